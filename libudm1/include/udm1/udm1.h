@@ -1,0 +1,382 @@
+/*
+ * udm1.h - public C interface of libudm1.
+ *
+ * libudm1 generates uniformly-distributed-modulo-1 (Weyl/Kronecker) sample
+ * sequences for computer graphics, exactly, at any index, behind a stable C ABI.
+ *
+ * This header compiles as C99 and C++. Everything it declares is prefixed udm1_
+ * or UDM1_. Nothing else is exported from the shared library.
+ *
+ * ---------------------------------------------------------------------------
+ * THE SEQUENCE CONTRACT (part of the ABI; it will not change within major 1)
+ * ---------------------------------------------------------------------------
+ * A sequence has D dimensions. Point n (the "index") of stream s has
+ * coordinates
+ *
+ *     x[n][j] = { o_j + r_j(seed, s) + n * alpha_j }        0 <= j < D
+ *
+ * where {.} is the fractional part, alpha_j the dimension's generator, o_j the
+ * base offset of the descriptor (0 unless given) and r_j the per-stream random
+ * shift (0 when randomization is UDM1_RANDOMIZE_NONE).
+ *
+ *  - Indices start at 0, and point 0 equals the offset:  x[0][j] = {o_j + r_j}.
+ *    Unrandomized presets have o_j = 0, so their point 0 is the origin. (The
+ *    paper counts n = 1, 2, ...; pass first = 1 to reproduce its points.)
+ *  - Every index 0 <= n < 2^64 is valid for a sequence. A point set (EPIS,
+ *    EPISWR) has a fixed number of points K and valid indices 0 <= n < K.
+ *  - Arithmetic is integer. alpha_j is held as its fractional part in 0.128
+ *    fixed point, A_j = round(frac(alpha_j) * 2^128). The raw value is the top
+ *    64 bits of (O_j * 2^64 + n * A_j) mod 2^128, with O_j = (o_j + r_j) in 0.64
+ *    fixed point. Its error against the real number {o_j + r_j + n alpha_j} is
+ *    below 2^-63 for every n < 2^64 (2^-64 from truncation, n * 2^-129 from A_j).
+ *  - Conversions: u64 is that raw 0.64 value; double is (u64 >> 11) * 2^-53;
+ *    float is (u64 >> 40) * 2^-24. Both lie in [0, 1) and are never 1.0.
+ *  - The same inputs give bit-identical outputs everywhere: per-sample and bulk
+ *    calls, any split of an index range, any thread, any run.
+ *
+ * Randomization (UDM1_RANDOMIZE_SHIFT, the paper's "unique random start for
+ * each pixel"): a Cranley-Patterson rotation done in integers. The 64-bit shift
+ * r_j is a counter-based hash of (seed, stream, j): no state per pixel, any
+ * pixel's points can be computed in any order on any thread. Use one stream id
+ * per pixel (for example ((uint64_t)y << 32) | x) or per independent estimate.
+ *
+ * Thread safety: a udm1_seq is immutable after creation. Every function that
+ * takes a `const udm1_seq *` may be called from any number of threads at once
+ * on the same handle. udm1_seq_destroy must not race with other uses of that
+ * handle. A udm1_cursor belongs to one thread at a time.
+ *
+ * Errors: functions that can fail return a udm1_status. On failure nothing is
+ * written to the caller's output, and udm1_last_error() returns a one-line
+ * message, on the calling thread, naming the function and the bad input.
+ */
+#ifndef UDM1_UDM1_H
+#define UDM1_UDM1_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define UDM1_VERSION_MAJOR 1
+#define UDM1_VERSION_MINOR 0
+#define UDM1_VERSION_PATCH 0
+/* MAJOR * 10000 + MINOR * 100 + PATCH, as returned by udm1_version(). */
+#define UDM1_VERSION (UDM1_VERSION_MAJOR * 10000 + UDM1_VERSION_MINOR * 100 + UDM1_VERSION_PATCH)
+
+/* The most dimensions a sequence may have (WR: square roots of the first
+ * 65536 primes; R_d: d up to this). Presets with a fixed list have fewer. */
+#define UDM1_MAX_DIMENSIONS 65536u
+
+/* The largest point count K of a point set (EPIS): 2^32 - 1. */
+#define UDM1_MAX_POINT_COUNT 4294967295u
+
+#if defined(UDM1_STATIC_DEFINE)
+#  define UDM1_API
+#elif defined(_WIN32)
+#  if defined(UDM1_BUILDING)
+#    define UDM1_API __declspec(dllexport)
+#  else
+#    define UDM1_API __declspec(dllimport)
+#  endif
+#elif defined(__GNUC__) && defined(UDM1_BUILDING)
+#  define UDM1_API __attribute__((visibility("default")))
+#else
+#  define UDM1_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------ */
+/* Status codes and version                                                  */
+/* ------------------------------------------------------------------------ */
+
+typedef enum udm1_status {
+    UDM1_OK = 0,
+    UDM1_ERROR_NULL_ARGUMENT = 1,    /* a required pointer argument was NULL */
+    UDM1_ERROR_INVALID_ARGUMENT = 2, /* a value outside its documented range */
+    UDM1_ERROR_DIMENSION = 3,        /* 0 dimensions, too many, or a dimension index out of range */
+    UDM1_ERROR_UNKNOWN_PRESET = 4,   /* no preset has that name */
+    UDM1_ERROR_RATIONAL_ALPHA = 5,   /* a generator is rational (e.g. sqrt of a perfect square) */
+    UDM1_ERROR_POINT_COUNT = 6,      /* a point set without a valid point count K, or K given to a sequence */
+    UDM1_ERROR_INDEX_RANGE = 7,      /* index past the point count, or first + count past 2^64 */
+    UDM1_ERROR_OUT_OF_MEMORY = 8
+} udm1_status;
+
+/* Version of the library actually loaded: UDM1_VERSION of its build. */
+UDM1_API uint32_t udm1_version(void);
+/* "1.0.0". Static storage; never NULL. */
+UDM1_API const char *udm1_version_string(void);
+/* A short fixed English text for a status ("invalid argument"). Static
+ * storage; never NULL, also for unknown codes. */
+UDM1_API const char *udm1_status_string(udm1_status status);
+/* The one-line message of the last failing udm1 call on this thread, such as
+ * "udm1_seq_create: unknown preset 'wrr'". Empty if none failed yet.
+ * Valid until the next failing udm1 call on this thread. */
+UDM1_API const char *udm1_last_error(void);
+
+/* ------------------------------------------------------------------------ */
+/* Presets                                                                   */
+/* ------------------------------------------------------------------------ */
+/*
+ * name      generators alpha_j (paper section)                     dimensions
+ * wr        sqrt of the primes 2, 3, 5, 7, 11, ... (5.1, Richtmyer)  1..65536
+ * wr-ao     sqrt2, sqrt13: the paper's AO pair WR (4.2.1)            1..2
+ * we        e, e^2 (4.2.1)                                           1..2
+ * wgr       (1+sqrt5)/2, (1+sqrt3)/2 (4.2.1)                         1..2
+ * wmmr      the 22 square roots of section 5.1, in its order         1..22
+ * hwmmr     the 22 values of section 5.1, in its order               1..22
+ * rd        R_d: phi_d^-1, ..., phi_d^-D with phi_d the real root    1..65536
+ *           of x^(D+1) = x + 1 (Roberts 2018). The set depends on D.
+ * golden    the golden ratio (1+sqrt5)/2: 1D Weyl sequence (= R_1)   1
+ * epis      EPIS point set x_n = {n/K + u} (4.2.2); needs K          1
+ * episwr    EPISWR = (EPIS, Weyl sqrt137) (4.2.2); needs K           1..2
+ * Preset names are matched exactly (lower case).
+ */
+
+/* Preset flag: the preset is a point set and needs a point count K >= 1. */
+#define UDM1_PRESET_POINT_SET 1u
+
+typedef struct udm1_preset_info {
+    const char *name;         /* static storage */
+    const char *description;  /* static storage, one line */
+    uint32_t max_dimensions;  /* dimensions accepted: 1..max_dimensions */
+    uint32_t flags;           /* UDM1_PRESET_* */
+} udm1_preset_info;
+
+/* Number of presets. */
+UDM1_API size_t udm1_preset_count(void);
+/* Information on preset i, 0 <= i < udm1_preset_count().
+ * Errors: NULL_ARGUMENT (info), INVALID_ARGUMENT (i out of range). */
+UDM1_API udm1_status udm1_preset_get(size_t i, udm1_preset_info *info);
+/* Information on the preset called name. Errors: NULL_ARGUMENT, UNKNOWN_PRESET. */
+UDM1_API udm1_status udm1_preset_find(const char *name, udm1_preset_info *info);
+
+/* ------------------------------------------------------------------------ */
+/* Creating sequences                                                        */
+/* ------------------------------------------------------------------------ */
+
+typedef struct udm1_seq udm1_seq;
+
+typedef enum udm1_randomize {
+    UDM1_RANDOMIZE_NONE = 0,  /* r_j = 0: the deterministic sequence */
+    UDM1_RANDOMIZE_SHIFT = 1  /* r_j = hash(seed, stream, j): random shift per stream */
+} udm1_randomize;
+
+typedef enum udm1_alpha_kind {
+    UDM1_ALPHA_SQRT = 1,     /* alpha = sqrt(k) for an integer k >= 2 that is not a perfect
+                                square; computed exactly by integer square root */
+    UDM1_ALPHA_FIXED = 2,    /* frac(alpha) = (fixed_hi * 2^64 + fixed_lo) / 2^128, taken as is */
+    UDM1_ALPHA_DOUBLE = 3    /* frac(alpha) of a finite double. Only its 53 bits are good: the
+                                sequence drifts from the real number you meant by about
+                                n * 2^-53; prefer SQRT or FIXED */
+} udm1_alpha_kind;
+
+/* One user generator. Unused fields are ignored. */
+typedef struct udm1_alpha {
+    uint32_t kind;      /* udm1_alpha_kind */
+    uint32_t reserved;  /* set to 0 */
+    uint64_t k;         /* UDM1_ALPHA_SQRT */
+    uint64_t fixed_hi;  /* UDM1_ALPHA_FIXED */
+    uint64_t fixed_lo;  /* UDM1_ALPHA_FIXED */
+    double value;       /* UDM1_ALPHA_DOUBLE */
+} udm1_alpha;
+
+/* Full description of a sequence. Always start from udm1_seq_desc_init(). */
+typedef struct udm1_seq_desc {
+    uint32_t struct_size;      /* sizeof(udm1_seq_desc); set by udm1_seq_desc_init */
+    uint32_t dimensions;       /* D >= 1 */
+    const char *preset;        /* a preset name, or NULL to use `alphas` */
+    const udm1_alpha *alphas;  /* D generators when preset is NULL */
+    const uint64_t *offsets;   /* optional: D base offsets o_j in 0.64 fixed point; NULL = 0 */
+    uint64_t point_count;      /* K for a point-set preset (1..UDM1_MAX_POINT_COUNT); else 0 */
+    uint64_t seed;             /* key of the random shifts */
+    uint32_t randomize;        /* udm1_randomize */
+    uint32_t reserved;         /* set to 0 */
+} udm1_seq_desc;
+
+/* Fill desc with defaults: struct_size set, dimensions 0, preset NULL,
+ * alphas NULL, offsets NULL, point_count 0, seed 0, UDM1_RANDOMIZE_SHIFT.
+ * Does nothing if desc is NULL. */
+UDM1_API void udm1_seq_desc_init(udm1_seq_desc *desc);
+
+/* Create a sequence from a descriptor. On success *out holds a new handle to
+ * release with udm1_seq_destroy; on failure *out is set to NULL (if out is not
+ * NULL). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (struct_size, randomize or a
+ * reserved field, an unknown alpha kind, a non-finite double), DIMENSION
+ * (0 or more than the preset's or library's maximum), UNKNOWN_PRESET,
+ * RATIONAL_ALPHA (sqrt of a perfect square, k < 2), POINT_COUNT (K missing or
+ * out of range for a point set, or K != 0 for a sequence), OUT_OF_MEMORY. */
+UDM1_API udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out);
+
+/* Shorthand: a preset with D dimensions, point count K (0 for sequences) and
+ * per-stream random shifts keyed by seed (UDM1_RANDOMIZE_SHIFT).
+ * For an unrandomized sequence use udm1_seq_create_desc. Errors as above. */
+UDM1_API udm1_status udm1_seq_create(const char *preset, uint32_t dimensions,
+                                     uint64_t point_count, uint64_t seed, udm1_seq **out);
+
+/* Release a sequence. NULL is accepted and ignored. */
+UDM1_API void udm1_seq_destroy(udm1_seq *seq);
+
+/* ------------------------------------------------------------------------ */
+/* Queries (0 or NULL for a NULL handle)                                     */
+/* ------------------------------------------------------------------------ */
+
+UDM1_API uint32_t udm1_seq_dimensions(const udm1_seq *seq);
+/* The preset name, or "custom" for a sequence made from alphas. */
+UDM1_API const char *udm1_seq_name(const udm1_seq *seq);
+/* K for a point set; 0 for a sequence (all 2^64 indices valid). */
+UDM1_API uint64_t udm1_seq_point_count(const udm1_seq *seq);
+UDM1_API uint64_t udm1_seq_seed(const udm1_seq *seq);
+UDM1_API uint32_t udm1_seq_randomize(const udm1_seq *seq);
+/* The generator of dimension dim as its 0.128 fixed-point fraction A_j.
+ * Errors: NULL_ARGUMENT, DIMENSION. */
+UDM1_API udm1_status udm1_seq_alpha(const udm1_seq *seq, uint32_t dim, uint64_t *hi, uint64_t *lo);
+/* The total offset O_j = o_j + r_j(seed, stream) of dimension dim for a stream,
+ * in 0.64 fixed point: the raw value of point 0. Errors: NULL_ARGUMENT, DIMENSION. */
+UDM1_API udm1_status udm1_seq_offset(const udm1_seq *seq, uint64_t stream, uint32_t dim, uint64_t *offset);
+
+/* ------------------------------------------------------------------------ */
+/* Random access: one value                                                  */
+/* ------------------------------------------------------------------------ */
+/* Value of (stream, index, dim). Errors: NULL_ARGUMENT, DIMENSION
+ * (dim >= D), INDEX_RANGE (index >= K for a point set). */
+UDM1_API udm1_status udm1_seq_sample_u64(const udm1_seq *seq, uint64_t stream, uint64_t index,
+                                         uint32_t dim, uint64_t *out);
+UDM1_API udm1_status udm1_seq_sample_f64(const udm1_seq *seq, uint64_t stream, uint64_t index,
+                                         uint32_t dim, double *out);
+UDM1_API udm1_status udm1_seq_sample_f32(const udm1_seq *seq, uint64_t stream, uint64_t index,
+                                         uint32_t dim, float *out);
+
+/* ------------------------------------------------------------------------ */
+/* Bulk fill                                                                 */
+/* ------------------------------------------------------------------------ */
+/* Write indices [first, first + count) by dimensions [dim0, dim0 + ndims) of
+ * one stream: value (first + i, dim0 + j) goes to out[i * stride + j].
+ * stride >= ndims (elements, not bytes). count == 0 writes nothing and
+ * succeeds (after the other checks). Errors: NULL_ARGUMENT (seq, or out
+ * when count > 0), DIMENSION (ndims == 0 or dim0 + ndims > D),
+ * INVALID_ARGUMENT (stride < ndims, or count * stride overflows size_t),
+ * INDEX_RANGE (first + count > 2^64, or > K for a point set).
+ * The result equals the per-sample calls bit for bit. */
+UDM1_API udm1_status udm1_seq_fill_u64(const udm1_seq *seq, uint64_t stream, uint64_t first, size_t count,
+                                       uint32_t dim0, uint32_t ndims, uint64_t *out, size_t stride);
+UDM1_API udm1_status udm1_seq_fill_f64(const udm1_seq *seq, uint64_t stream, uint64_t first, size_t count,
+                                       uint32_t dim0, uint32_t ndims, double *out, size_t stride);
+UDM1_API udm1_status udm1_seq_fill_f32(const udm1_seq *seq, uint64_t stream, uint64_t first, size_t count,
+                                       uint32_t dim0, uint32_t ndims, float *out, size_t stride);
+
+/* ------------------------------------------------------------------------ */
+/* Renderer cursor: pbrt-v4 Sampler shape (StartPixelSample, Get1D, Get2D)   */
+/* ------------------------------------------------------------------------ */
+/*
+ * For one (stream, index) the cursor hands out dimensions in order, starting
+ * at first_dimension: each 1D draw takes the next dimension, each 2D draw the
+ * next two. It is a small caller-owned struct: no allocation, no cleanup.
+ *
+ *   udm1_cursor c;
+ *   udm1_cursor_start(&c, seq, pixel_id, sample_index, 0);
+ *   float lens[2];  udm1_cursor_2d(&c, lens);      // dimensions 0, 1
+ *   float u = udm1_cursor_1d(&c);                  // dimension 2
+ *
+ * Draws past the sequence's dimension count D (padding rule, fixed by the
+ * ABI): dimension j >= D returns an independent uniform value, a counter-based
+ * hash of (seed, stream, index, j) converted like the sequence's values, so a
+ * path may be longer than the set without reusing its dimensions. Such draws
+ * are random, not low-discrepancy; choose D to cover the dimensions that
+ * matter. udm1_cursor_padded() tells how many draws were padded.
+ */
+typedef struct udm1_cursor {
+    const udm1_seq *seq;
+    uint64_t stream;
+    uint64_t index;
+    uint64_t key;        /* private: derived from the seed and the stream */
+    uint32_t dimension;  /* next dimension to hand out */
+    uint32_t padded;     /* number of values drawn past D so far */
+} udm1_cursor;
+
+/* Start a cursor at (stream, index), next dimension first_dimension.
+ * Errors: NULL_ARGUMENT, INDEX_RANGE (index >= K for a point set).
+ * On error the cursor is left unchanged. */
+UDM1_API udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t stream,
+                                       uint64_t index, uint32_t first_dimension);
+/* Next dimension as a float in [0, 1). The cursor must have been started. */
+UDM1_API float udm1_cursor_1d(udm1_cursor *cursor);
+/* Next two dimensions into out[0], out[1]. */
+UDM1_API void udm1_cursor_2d(udm1_cursor *cursor, float out[2]);
+/* Double-precision variants of the two draws above. */
+UDM1_API double udm1_cursor_1d_f64(udm1_cursor *cursor);
+UDM1_API void udm1_cursor_2d_f64(udm1_cursor *cursor, double out[2]);
+/* Number of draws so far that fell past the sequence's dimension count. */
+UDM1_API uint32_t udm1_cursor_padded(const udm1_cursor *cursor);
+
+/* ------------------------------------------------------------------------ */
+/* Quality metrics                                                           */
+/* ------------------------------------------------------------------------ */
+
+typedef enum udm1_discrepancy_kind {
+    UDM1_DISCREPANCY_L2_STAR = 1,      /* L2-star, square-rooted (as scipy.stats.qmc) */
+    UDM1_DISCREPANCY_CENTERED = 2,     /* centered L2, squared (as scipy "CD") */
+    UDM1_DISCREPANCY_WRAP_AROUND = 3,  /* wrap-around L2, squared (as scipy "WD") */
+    UDM1_DISCREPANCY_MIXTURE = 4       /* mixture L2, squared (as scipy "MD") */
+} udm1_discrepancy_kind;
+
+/* Discrepancy of n points in [0,1]^d, point i at points[i * stride + j].
+ * The definitions and normalisations are those of scipy.stats.qmc.discrepancy.
+ * O(n^2 d) time, no allocation. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n == 0,
+ * d == 0, stride < d, unknown kind, a coordinate outside [0,1] or NaN). */
+UDM1_API udm1_status udm1_discrepancy(const double *points, size_t n, uint32_t d, size_t stride,
+                                      uint32_t kind, double *out);
+
+/* The discrepancy of n independent uniform points in d dimensions, the
+ * "random" line: E[D^2] for the squared kinds, sqrt(E[D^2]) for L2-star.
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n or d 0, unknown kind). */
+UDM1_API udm1_status udm1_discrepancy_random(size_t n, uint32_t d, uint32_t kind, double *out);
+
+/* ------------------------------------------------------------------------ */
+/* Constant-set check                                                        */
+/* ------------------------------------------------------------------------ */
+/*
+ * Reports whether a set of generators can make a good sequence:
+ *  - rational: a generator is rational (sqrt of a perfect square, a zero
+ *    fixed-point fraction);
+ *  - dependent: two generators are rationally dependent together with 1. For
+ *    quadratic irrationals (a + b sqrt(m)) this is decided exactly: same
+ *    square-free part m. Otherwise a pair is reported when an integer relation
+ *    l1 a1 + l2 a2 = 0 mod 1 with |l1|, |l2| <= 16 holds to 2^-40 (numerically
+ *    dependent, e.g. repeated values);
+ *  - the worst 2D projection: over all pairs of dimensions, the one whose first
+ *    n unrandomized points (indices 0..n-1) have the largest L2-star
+ *    discrepancy, with its wrap-around discrepancy, beside the expectation for
+ *    n random points. (The paper's pair (sqrt487, sqrt237173) is no better than
+ *    random at n = 256.) With D == 1 the "projection" is the 1D set itself,
+ *    worst_dims is {0, 0} and the random values are those of d = 1.
+ *    Cost O(D^2 n^2): refused (INVALID_ARGUMENT) above D(D-1)/2 * n^2/2 = 2^36.
+ */
+typedef struct udm1_alpha_report {
+    uint32_t rational;           /* 1 if some generator is rational */
+    uint32_t rational_dim;       /* the first such dimension */
+    uint32_t dependent;          /* 1 if some pair is rationally dependent */
+    uint32_t dependent_exact;    /* 1 if that was decided exactly (quadratic irrationals) */
+    uint32_t dependent_dims[2];  /* the first such pair */
+    uint32_t worst_dims[2];      /* worst 2D projection (both 0 when D == 1) */
+    double worst_l2_star;        /* its L2-star discrepancy */
+    double worst_wrap_around;    /* its wrap-around discrepancy (squared, as scipy) */
+    double random_l2_star;       /* expected L2-star of n random points: sqrt(5 / (36 n)) */
+    double random_wrap_around;   /* expected wrap-around of n random points: 17 / (36 n) */
+    char message[256];           /* one-line summary */
+} udm1_alpha_report;
+
+/* Check the generators of a sequence at n points (2 <= n <= 65536).
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n, work limit), OUT_OF_MEMORY. */
+UDM1_API udm1_status udm1_seq_check(const udm1_seq *seq, uint64_t n, udm1_alpha_report *report);
+/* Check user generators before creating a sequence; unlike creation, a
+ * rational generator is reported, not refused. Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (n, count 0 or above UDM1_MAX_DIMENSIONS, a bad alpha). */
+UDM1_API udm1_status udm1_alpha_check(const udm1_alpha *alphas, uint32_t count, uint64_t n,
+                                      udm1_alpha_report *report);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* UDM1_UDM1_H */

@@ -1,0 +1,119 @@
+/* internal.h - definitions shared by libudm1's sources; not installed. */
+#ifndef UDM1_INTERNAL_H
+#define UDM1_INTERNAL_H
+
+#include "udm1/udm1.h"
+
+#include <stdint.h>
+
+#if defined(__GNUC__)
+#  define UDM1_HIDDEN __attribute__((visibility("hidden")))
+#  define UDM1_LIKELY(x) __builtin_expect(!!(x), 1)
+#  define UDM1_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#else
+#  define UDM1_HIDDEN
+#  define UDM1_LIKELY(x) (x)
+#  define UDM1_UNLIKELY(x) (x)
+#endif
+
+/* What is known about a generator's arithmetic nature (for udm1_alpha_check). */
+enum udm1_alpha_nature {
+    UDM1_NATURE_UNKNOWN = 0,   /* a fixed-point or double value: only numeric checks */
+    UDM1_NATURE_RATIONAL = 1,  /* rational: useless as a generator */
+    UDM1_NATURE_QUADRATIC = 2, /* a + b sqrt(m), m square-free >= 2, stored in `radical` */
+    UDM1_NATURE_INDEPENDENT = 3, /* independent of every other generator of its set and of 1
+                                    by construction (e, e^2; R_d) */
+    UDM1_NATURE_POINT_SET = 4    /* rational by design: the n/K axis of a point set (EPIS) */
+};
+
+/* One dimension's generator: the 0.128 fixed-point fraction and its nature. */
+typedef struct udm1_generator {
+    uint64_t hi, lo;
+    uint32_t nature;   /* enum udm1_alpha_nature */
+    uint64_t radical;  /* square-free m for UDM1_NATURE_QUADRATIC */
+} udm1_generator;
+
+struct udm1_seq {
+    uint32_t dims;
+    uint32_t randomize;
+    uint64_t seed;
+    uint64_t point_count;  /* 0: sequence */
+    uint64_t seed_key;     /* derived from seed, see hash.h */
+    const char *name;      /* static storage */
+    udm1_generator *gen;   /* dims entries */
+    uint64_t *offset;      /* dims base offsets o_j (0.64) */
+    uint64_t *dim_key;     /* dims per-dimension hash keys K_j */
+};
+
+/* ---- error reporting (status.c) ---- */
+/* Record a one-line message for udm1_last_error() and return status. */
+UDM1_HIDDEN udm1_status udm1_fail(udm1_status status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+/* ---- generators (generators.c) ---- */
+/* frac(sqrt(k)) for k >= 2 not a perfect square; returns 0 if k is a square. */
+UDM1_HIDDEN int udm1_gen_sqrt(uint64_t k, udm1_generator *g);
+/* frac((a + b sqrt(k)) / c), small a, b >= 1, c in {1, 2}; k not a square. */
+UDM1_HIDDEN int udm1_gen_quadratic(int64_t a, uint64_t b, uint64_t k, uint64_t c, udm1_generator *g);
+/* R_d generators phi_d^-1 .. phi_d^-d into g[0..d-1]; d >= 1. Returns 0 on out of memory. */
+UDM1_HIDDEN int udm1_gen_rd(uint32_t d, udm1_generator *g);
+/* Square-free part of k (k >= 1). */
+UDM1_HIDDEN uint64_t udm1_squarefree_part(uint64_t k);
+/* The first `count` primes into out. Returns 0 on out of memory. */
+UDM1_HIDDEN int udm1_first_primes(uint32_t count, uint64_t *out);
+
+/* ---- presets (presets.c) ---- */
+typedef struct udm1_preset {
+    const char *name;
+    const char *description;
+    uint32_t max_dimensions;
+    uint32_t flags;
+} udm1_preset;
+UDM1_HIDDEN const udm1_preset *udm1_preset_lookup(const char *name);
+/* Fill the generators of a preset for `dims` dimensions (and K for point sets). */
+UDM1_HIDDEN udm1_status udm1_preset_generators(const udm1_preset *p, uint32_t dims, uint64_t point_count,
+                                               udm1_generator *gen);
+
+/* ---- user generators (seq.c) ---- */
+/* Resolve alphas[j]; with check != 0 a rational one is marked, not refused. */
+UDM1_HIDDEN udm1_status udm1_user_generator(const char *fn, uint32_t j, const udm1_alpha *a, udm1_generator *g,
+                                            int check);
+
+/* ---- check (alpha_check.c) ---- */
+UDM1_HIDDEN udm1_status udm1_check_generators(const udm1_generator *gen, uint32_t dims, uint64_t n,
+                                              udm1_alpha_report *report);
+
+/* ---- 64x64 -> 128 multiply ---- */
+static inline void udm1_mul64(uint64_t a, uint64_t b, uint64_t *hi, uint64_t *lo)
+{
+#if defined(__SIZEOF_INT128__)
+    __extension__ typedef unsigned __int128 u128;
+    u128 p = (u128)a * b;
+    *hi = (uint64_t)(p >> 64);
+    *lo = (uint64_t)p;
+#else
+    uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
+    uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
+    uint64_t mid = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);
+    *lo = (mid << 32) | (p00 & 0xffffffffu);
+    *hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
+#endif
+}
+
+/* Raw value: top 64 bits of (offset * 2^64 + n * A) mod 2^128. */
+static inline uint64_t udm1_weyl_raw(const udm1_generator *g, uint64_t offset, uint64_t n)
+{
+    uint64_t mhi, mlo;
+    udm1_mul64(n, g->lo, &mhi, &mlo);
+    (void)mlo;
+    return n * g->hi + mhi + offset;
+}
+
+/* Conversions of a raw 0.64 value. Both are < 1 for every input. */
+static inline double udm1_to_f64(uint64_t u) { return (double)(int64_t)(u >> 11) * 0x1p-53; }
+static inline float udm1_to_f32(uint64_t u) { return (float)(int32_t)(u >> 40) * 0x1p-24f; }
+
+#endif /* UDM1_INTERNAL_H */

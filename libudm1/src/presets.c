@@ -1,0 +1,176 @@
+/* presets.c - the paper's generator sets by name (see the table in udm1.h). */
+#include "internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* 0.128 fractions of e and e^2, round to nearest; checked against mpmath in
+ * tests/python/test_exact.py. */
+static const uint64_t E_FRAC[2] = {0xB7E151628AED2A6Aull, 0xBF7158809CF4F3C7ull};
+static const uint64_t E2_FRAC[2] = {0x63992E35376B730Cull, 0xE8EE881ADA2AEEA1ull};
+
+enum spec_kind { SPEC_QUADRATIC, SPEC_E, SPEC_E2 };
+
+/* (a + b sqrt(k)) / c, or e / e^2 */
+typedef struct spec {
+    int kind;
+    int a;
+    unsigned b, k, c;
+} spec;
+
+#define SQRT(k) {SPEC_QUADRATIC, 0, 1, k, 1}
+#define PHI {SPEC_QUADRATIC, 1, 1, 5, 2}
+#define HALF_1_SQRT3 {SPEC_QUADRATIC, 1, 1, 3, 2}
+#define E_ {SPEC_E, 0, 0, 0, 0}
+#define E2_ {SPEC_E2, 0, 0, 0, 0}
+
+static const spec WR_AO[] = {SQRT(2), SQRT(13)};
+static const spec WE[] = {E_, E2_};
+static const spec WGR[] = {PHI, HALF_1_SQRT3};
+/* Section 5.1 of the paper, in its order. */
+static const spec WMMR[] = {SQRT(13),    SQRT(173),   SQRT(17),    SQRT(293),   SQRT(47),   SQRT(2213),
+                            SQRT(67),    SQRT(4493),  SQRT(97),    SQRT(9413),  SQRT(167),  SQRT(27893),
+                            SQRT(193),   SQRT(37253), SQRT(277),   SQRT(76733), SQRT(307),  SQRT(94253),
+                            SQRT(317),   SQRT(100493), SQRT(487),  SQRT(237173)};
+static const spec HWMMR[] = {PHI,        HALF_1_SQRT3, E_,          E2_,        SQRT(13),   SQRT(173),
+                             SQRT(17),   SQRT(293),    SQRT(47),    SQRT(2213), SQRT(67),   SQRT(4493),
+                             SQRT(97),   SQRT(9413),   SQRT(167),   SQRT(27893), SQRT(193), SQRT(37253),
+                             SQRT(277),  SQRT(76733),  SQRT(307),   SQRT(94253)};
+static const spec GOLDEN[] = {PHI};
+static const spec EPISWR_WEYL[] = {SQRT(137)};
+
+#define COUNT(a) ((uint32_t)(sizeof(a) / sizeof((a)[0])))
+
+static const udm1_preset PRESETS[] = {
+    {"wr", "WeylRichtmyer: square roots of the primes 2, 3, 5, 7, ... (paper 5.1)", UDM1_MAX_DIMENSIONS, 0},
+    {"wr-ao", "WR for ambient occlusion: (sqrt2, sqrt13) (paper 4.2.1)", COUNT(WR_AO), 0},
+    {"we", "WeylExponential: (e, e^2) (paper 4.2.1)", COUNT(WE), 0},
+    {"wgr", "WeylGoldenRatio: ((1+sqrt5)/2, (1+sqrt3)/2) (paper 4.2.1)", COUNT(WGR), 0},
+    {"wmmr", "Weyl metallic means ratio: 22 square roots (paper 5.1)", COUNT(WMMR), 0},
+    {"hwmmr", "Hybrid WMMR: golden ratios, e, e^2 and 18 square roots (paper 5.1)", COUNT(HWMMR), 0},
+    {"rd", "R_d: phi_d^-1 .. phi_d^-d, phi_d the root of x^(d+1) = x + 1 (Roberts 2018)", UDM1_MAX_DIMENSIONS, 0},
+    {"golden", "Golden ratio Weyl sequence in 1D (= R_1)", 1, 0},
+    {"epis", "EPIS point set {n/K + u} (paper 4.2.2)", 1, UDM1_PRESET_POINT_SET},
+    {"episwr", "EPISWR point set: (EPIS, Weyl sqrt137) (paper 4.2.2)", 2, UDM1_PRESET_POINT_SET},
+};
+
+size_t udm1_preset_count(void) { return sizeof(PRESETS) / sizeof(PRESETS[0]); }
+
+static void fill_info(const udm1_preset *p, udm1_preset_info *info)
+{
+    info->name = p->name;
+    info->description = p->description;
+    info->max_dimensions = p->max_dimensions;
+    info->flags = p->flags;
+}
+
+udm1_status udm1_preset_get(size_t i, udm1_preset_info *info)
+{
+    if (!info) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_preset_get: info is NULL");
+    if (i >= udm1_preset_count())
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_preset_get: index %zu is past the %zu presets", i,
+                         udm1_preset_count());
+    fill_info(&PRESETS[i], info);
+    return UDM1_OK;
+}
+
+const udm1_preset *udm1_preset_lookup(const char *name)
+{
+    for (size_t i = 0; i < udm1_preset_count(); ++i)
+        if (strcmp(PRESETS[i].name, name) == 0) return &PRESETS[i];
+    return NULL;
+}
+
+udm1_status udm1_preset_find(const char *name, udm1_preset_info *info)
+{
+    if (!name || !info) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_preset_find: %s is NULL", name ? "info" : "name");
+    const udm1_preset *p = udm1_preset_lookup(name);
+    if (!p) return udm1_fail(UDM1_ERROR_UNKNOWN_PRESET, "udm1_preset_find: unknown preset '%.64s'", name);
+    fill_info(p, info);
+    return UDM1_OK;
+}
+
+static void from_spec(const spec *s, udm1_generator *g)
+{
+    switch (s->kind) {
+    case SPEC_E:
+    case SPEC_E2: {
+        const uint64_t *f = s->kind == SPEC_E ? E_FRAC : E2_FRAC;
+        g->hi = f[0];
+        g->lo = f[1];
+        g->nature = UDM1_NATURE_INDEPENDENT;
+        g->radical = 0;
+        break;
+    }
+    default:
+        /* the table holds no perfect squares: tests/c/test_presets.c checks it */
+        udm1_gen_quadratic(s->a, s->b, s->k, s->c, g);
+        break;
+    }
+}
+
+static void from_list(const spec *list, uint32_t dims, udm1_generator *gen)
+{
+    for (uint32_t j = 0; j < dims; ++j) from_spec(&list[j], &gen[j]);
+}
+
+/* The EPIS axis n/K: A = ceil(2^128 / K), which makes the top 64 bits of n A
+ * equal floor(n 2^64 / K) exactly for every n < K <= 2^32. */
+static void epis_generator(uint64_t k, udm1_generator *g)
+{
+    g->nature = UDM1_NATURE_POINT_SET;
+    g->radical = 0;
+    if (k == 1) {
+        g->hi = g->lo = 0;
+        return;
+    }
+    /* floor((2^128 - 1) / K) + 1, by long division of two 64-bit words */
+    uint64_t qhi = UINT64_MAX / k, rhi = UINT64_MAX % k;
+#if defined(__SIZEOF_INT128__)
+    __extension__ typedef unsigned __int128 u128;
+    u128 num = ((u128)rhi << 64) | UINT64_MAX;
+    uint64_t qlo = (uint64_t)(num / k);
+#else
+    /* K < 2^32: divide in 32-bit halves */
+    uint64_t mid = (rhi << 32) | 0xFFFFFFFFull;
+    uint64_t q1 = mid / k, r1 = mid % k;
+    uint64_t low = (r1 << 32) | 0xFFFFFFFFull;
+    uint64_t qlo = (q1 << 32) | (low / k);
+#endif
+    qlo += 1;
+    if (qlo == 0) ++qhi;
+    g->hi = qhi;
+    g->lo = qlo;
+}
+
+udm1_status udm1_preset_generators(const udm1_preset *p, uint32_t dims, uint64_t point_count, udm1_generator *gen)
+{
+    const char *n = p->name;
+    if (strcmp(n, "wr") == 0) {
+        uint64_t *primes = malloc(sizeof(uint64_t) * dims);
+        if (!primes || !udm1_first_primes(dims, primes)) {
+            free(primes);
+            return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", dims);
+        }
+        for (uint32_t j = 0; j < dims; ++j) udm1_gen_sqrt(primes[j], &gen[j]);
+        free(primes);
+    } else if (strcmp(n, "wr-ao") == 0) {
+        from_list(WR_AO, dims, gen);
+    } else if (strcmp(n, "we") == 0) {
+        from_list(WE, dims, gen);
+    } else if (strcmp(n, "wgr") == 0) {
+        from_list(WGR, dims, gen);
+    } else if (strcmp(n, "wmmr") == 0) {
+        from_list(WMMR, dims, gen);
+    } else if (strcmp(n, "hwmmr") == 0) {
+        from_list(HWMMR, dims, gen);
+    } else if (strcmp(n, "rd") == 0) {
+        udm1_gen_rd(dims, gen);
+    } else if (strcmp(n, "golden") == 0) {
+        from_list(GOLDEN, dims, gen);
+    } else if (strcmp(n, "epis") == 0 || strcmp(n, "episwr") == 0) {
+        epis_generator(point_count, &gen[0]);
+        if (dims > 1) from_list(EPISWR_WEYL, dims - 1, gen + 1);
+    }
+    return UDM1_OK;
+}

@@ -1,0 +1,294 @@
+/* seq.c - udm1_seq: creation from presets or generators, queries, and
+ * random access to single values. */
+#include "hash.h"
+#include "internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Size of the first (1.0) layout of udm1_seq_desc: later layouts only append. */
+#define DESC_V1_SIZE ((uint32_t)sizeof(udm1_seq_desc))
+
+void udm1_seq_desc_init(udm1_seq_desc *desc)
+{
+    if (!desc) return;
+    memset(desc, 0, sizeof *desc);
+    desc->struct_size = DESC_V1_SIZE;
+    desc->randomize = UDM1_RANDOMIZE_SHIFT;
+}
+
+/* frac(v) of a finite double in 0.128 fixed point, exactly. */
+static void double_fraction(double v, uint64_t *hi, uint64_t *lo)
+{
+    double a = fabs(v);
+    double f = a - floor(a); /* exact for a >= 0 */
+    double scaled = f * 0x1p64; /* exact: power-of-two scale, < 2^64 */
+    uint64_t h = (uint64_t)scaled;
+    uint64_t l = (uint64_t)((scaled - (double)h) * 0x1p64);
+    if (v < 0 && (h | l)) { /* frac(-x) = 1 - frac(x): negate modulo 2^128 */
+        h = ~h;
+        l = ~l + 1;
+        if (l == 0) ++h;
+    }
+    *hi = h;
+    *lo = l;
+}
+
+/* Resolve one user generator. `check` mode reports rational ones instead of failing. */
+udm1_status udm1_user_generator(const char *fn, uint32_t j, const udm1_alpha *a, udm1_generator *g, int check)
+{
+    if (a->reserved != 0)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: alphas[%u].reserved must be 0", fn, j);
+    memset(g, 0, sizeof *g);
+    switch (a->kind) {
+    case UDM1_ALPHA_SQRT:
+        if (udm1_gen_sqrt(a->k, g)) return UDM1_OK;
+        if (check) {
+            g->nature = UDM1_NATURE_RATIONAL;
+            return UDM1_OK;
+        }
+        return udm1_fail(UDM1_ERROR_RATIONAL_ALPHA, "%s: alphas[%u] = sqrt(%llu) is rational", fn, j,
+                         (unsigned long long)a->k);
+    case UDM1_ALPHA_FIXED:
+        g->hi = a->fixed_hi;
+        g->lo = a->fixed_lo;
+        break;
+    case UDM1_ALPHA_DOUBLE:
+        if (!isfinite(a->value))
+            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: alphas[%u].value is not finite", fn, j);
+        double_fraction(a->value, &g->hi, &g->lo);
+        break;
+    default:
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: alphas[%u].kind %u is not a udm1_alpha_kind", fn, j,
+                         a->kind);
+    }
+    g->nature = UDM1_NATURE_UNKNOWN;
+    if ((g->hi | g->lo) == 0) {
+        g->nature = UDM1_NATURE_RATIONAL;
+        if (!check)
+            return udm1_fail(UDM1_ERROR_RATIONAL_ALPHA, "%s: alphas[%u] has a zero fractional part", fn, j);
+    }
+    return UDM1_OK;
+}
+
+udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
+{
+    static const char fn[] = "udm1_seq_create";
+    if (out) *out = NULL;
+    if (!desc) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: desc is NULL", fn);
+    if (!out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: out is NULL", fn);
+    if (desc->struct_size < DESC_V1_SIZE)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                         "%s: desc.struct_size %u is not a udm1_seq_desc size (call udm1_seq_desc_init)", fn,
+                         desc->struct_size);
+    if (desc->reserved != 0) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.reserved must be 0", fn);
+    if (desc->randomize != UDM1_RANDOMIZE_NONE && desc->randomize != UDM1_RANDOMIZE_SHIFT)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.randomize %u is not a udm1_randomize", fn,
+                         desc->randomize);
+    uint32_t dims = desc->dimensions;
+    if (dims == 0) return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimensions is 0", fn);
+    if (dims > UDM1_MAX_DIMENSIONS)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimensions %u exceeds the maximum %u", fn, dims,
+                         UDM1_MAX_DIMENSIONS);
+
+    const udm1_preset *preset = NULL;
+    if (desc->preset) {
+        preset = udm1_preset_lookup(desc->preset);
+        if (!preset) return udm1_fail(UDM1_ERROR_UNKNOWN_PRESET, "%s: unknown preset '%.64s'", fn, desc->preset);
+        if (dims > preset->max_dimensions)
+            return udm1_fail(UDM1_ERROR_DIMENSION, "%s: preset '%s' has at most %u dimensions, %u asked", fn,
+                             preset->name, preset->max_dimensions, dims);
+        int point_set = (preset->flags & UDM1_PRESET_POINT_SET) != 0;
+        if (point_set && (desc->point_count == 0 || desc->point_count > UDM1_MAX_POINT_COUNT))
+            return udm1_fail(UDM1_ERROR_POINT_COUNT, "%s: preset '%s' needs a point count K in 1..%u, got %llu",
+                             fn, preset->name, UDM1_MAX_POINT_COUNT, (unsigned long long)desc->point_count);
+        if (!point_set && desc->point_count != 0)
+            return udm1_fail(UDM1_ERROR_POINT_COUNT, "%s: preset '%s' is a sequence; point count must be 0, got %llu",
+                             fn, preset->name, (unsigned long long)desc->point_count);
+    } else {
+        if (!desc->alphas) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: desc.preset and desc.alphas are both NULL", fn);
+        if (desc->point_count != 0)
+            return udm1_fail(UDM1_ERROR_POINT_COUNT, "%s: a sequence from alphas takes point count 0, got %llu", fn,
+                             (unsigned long long)desc->point_count);
+    }
+
+    udm1_seq *seq = calloc(1, sizeof *seq);
+    if (seq) {
+        seq->gen = malloc(sizeof(udm1_generator) * dims);
+        seq->offset = calloc(dims, sizeof(uint64_t));
+        seq->dim_key = malloc(sizeof(uint64_t) * dims);
+    }
+    if (!seq || !seq->gen || !seq->offset || !seq->dim_key) {
+        udm1_seq_destroy(seq);
+        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %u dimensions", fn, dims);
+    }
+    seq->dims = dims;
+    seq->randomize = desc->randomize;
+    seq->seed = desc->seed;
+    seq->point_count = desc->point_count;
+    seq->seed_key = udm1_seed_key(desc->seed);
+
+    udm1_status st = UDM1_OK;
+    if (preset) {
+        seq->name = preset->name;
+        st = udm1_preset_generators(preset, dims, desc->point_count, seq->gen);
+    } else {
+        seq->name = "custom";
+        for (uint32_t j = 0; j < dims && st == UDM1_OK; ++j)
+            st = udm1_user_generator(fn, j, &desc->alphas[j], &seq->gen[j], 0);
+    }
+    if (st != UDM1_OK) {
+        udm1_seq_destroy(seq);
+        return st;
+    }
+    for (uint32_t j = 0; j < dims; ++j) {
+        if (desc->offsets) seq->offset[j] = desc->offsets[j];
+        seq->dim_key[j] = udm1_dim_key(seq->seed_key, j);
+    }
+    *out = seq;
+    return UDM1_OK;
+}
+
+udm1_status udm1_seq_create(const char *preset, uint32_t dimensions, uint64_t point_count, uint64_t seed,
+                            udm1_seq **out)
+{
+    if (out) *out = NULL;
+    if (!preset) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_seq_create: preset is NULL");
+    udm1_seq_desc desc;
+    udm1_seq_desc_init(&desc);
+    desc.preset = preset;
+    desc.dimensions = dimensions;
+    desc.point_count = point_count;
+    desc.seed = seed;
+    return udm1_seq_create_desc(&desc, out);
+}
+
+void udm1_seq_destroy(udm1_seq *seq)
+{
+    if (!seq) return;
+    free(seq->gen);
+    free(seq->offset);
+    free(seq->dim_key);
+    free(seq);
+}
+
+uint32_t udm1_seq_dimensions(const udm1_seq *seq) { return seq ? seq->dims : 0; }
+const char *udm1_seq_name(const udm1_seq *seq) { return seq ? seq->name : NULL; }
+uint64_t udm1_seq_point_count(const udm1_seq *seq) { return seq ? seq->point_count : 0; }
+uint64_t udm1_seq_seed(const udm1_seq *seq) { return seq ? seq->seed : 0; }
+uint32_t udm1_seq_randomize(const udm1_seq *seq) { return seq ? seq->randomize : 0; }
+
+udm1_status udm1_seq_alpha(const udm1_seq *seq, uint32_t dim, uint64_t *hi, uint64_t *lo)
+{
+    if (!seq || !hi || !lo) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_seq_alpha: a pointer argument is NULL");
+    if (dim >= seq->dims)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_alpha: dimension %u of a %u-dimensional sequence", dim,
+                         seq->dims);
+    *hi = seq->gen[dim].hi;
+    *lo = seq->gen[dim].lo;
+    return UDM1_OK;
+}
+
+/* O_j for a stream: base offset plus the random shift. */
+static inline uint64_t total_offset(const udm1_seq *seq, uint64_t stream_key, uint32_t dim)
+{
+    uint64_t o = seq->offset[dim];
+    if (seq->randomize == UDM1_RANDOMIZE_SHIFT) o += udm1_shift(stream_key, seq->dim_key[dim]);
+    return o;
+}
+
+udm1_status udm1_seq_offset(const udm1_seq *seq, uint64_t stream, uint32_t dim, uint64_t *offset)
+{
+    if (!seq || !offset) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_seq_offset: a pointer argument is NULL");
+    if (dim >= seq->dims)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_offset: dimension %u of a %u-dimensional sequence", dim,
+                         seq->dims);
+    *offset = total_offset(seq, udm1_stream_key(seq->seed_key, stream), dim);
+    return UDM1_OK;
+}
+
+static udm1_status sample_raw(const char *fn, const udm1_seq *seq, uint64_t stream, uint64_t index, uint32_t dim,
+                              const void *out, uint64_t *raw)
+{
+    if (!seq || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, seq ? "out" : "seq");
+    if (dim >= seq->dims)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimension %u of a %u-dimensional sequence", fn, dim, seq->dims);
+    if (seq->point_count && index >= seq->point_count)
+        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn,
+                         (unsigned long long)index, (unsigned long long)seq->point_count);
+    uint64_t o = total_offset(seq, udm1_stream_key(seq->seed_key, stream), dim);
+    *raw = udm1_weyl_raw(&seq->gen[dim], o, index);
+    return UDM1_OK;
+}
+
+udm1_status udm1_seq_sample_u64(const udm1_seq *seq, uint64_t stream, uint64_t index, uint32_t dim, uint64_t *out)
+{
+    uint64_t raw = 0;
+    udm1_status st = sample_raw("udm1_seq_sample_u64", seq, stream, index, dim, out, &raw);
+    if (st == UDM1_OK) *out = raw;
+    return st;
+}
+
+udm1_status udm1_seq_sample_f64(const udm1_seq *seq, uint64_t stream, uint64_t index, uint32_t dim, double *out)
+{
+    uint64_t raw = 0;
+    udm1_status st = sample_raw("udm1_seq_sample_f64", seq, stream, index, dim, out, &raw);
+    if (st == UDM1_OK) *out = udm1_to_f64(raw);
+    return st;
+}
+
+udm1_status udm1_seq_sample_f32(const udm1_seq *seq, uint64_t stream, uint64_t index, uint32_t dim, float *out)
+{
+    uint64_t raw = 0;
+    udm1_status st = sample_raw("udm1_seq_sample_f32", seq, stream, index, dim, out, &raw);
+    if (st == UDM1_OK) *out = udm1_to_f32(raw);
+    return st;
+}
+
+/* ---- the cursor ---- */
+
+udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t stream, uint64_t index,
+                              uint32_t first_dimension)
+{
+    if (!cursor || !seq)
+        return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_cursor_start: %s is NULL", cursor ? "seq" : "cursor");
+    if (seq->point_count && index >= seq->point_count)
+        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "udm1_cursor_start: index %llu of a %llu-point set",
+                         (unsigned long long)index, (unsigned long long)seq->point_count);
+    cursor->seq = seq;
+    cursor->stream = stream;
+    cursor->index = index;
+    cursor->key = udm1_stream_key(seq->seed_key, stream);
+    cursor->dimension = first_dimension;
+    cursor->padded = 0;
+    return UDM1_OK;
+}
+
+static inline uint64_t cursor_next(udm1_cursor *c)
+{
+    const udm1_seq *seq = c->seq;
+    uint32_t dim = c->dimension++;
+    uint64_t skey = c->key;
+    if (UDM1_LIKELY(dim < seq->dims)) return udm1_weyl_raw(&seq->gen[dim], total_offset(seq, skey, dim), c->index);
+    ++c->padded;
+    /* padding: an independent uniform value of (seed, stream, index, dim) */
+    return udm1_pad(udm1_shift(skey, udm1_dim_key(seq->seed_key, dim)), c->index);
+}
+
+float udm1_cursor_1d(udm1_cursor *cursor) { return udm1_to_f32(cursor_next(cursor)); }
+double udm1_cursor_1d_f64(udm1_cursor *cursor) { return udm1_to_f64(cursor_next(cursor)); }
+
+void udm1_cursor_2d(udm1_cursor *cursor, float out[2])
+{
+    out[0] = udm1_to_f32(cursor_next(cursor));
+    out[1] = udm1_to_f32(cursor_next(cursor));
+}
+
+void udm1_cursor_2d_f64(udm1_cursor *cursor, double out[2])
+{
+    out[0] = udm1_to_f64(cursor_next(cursor));
+    out[1] = udm1_to_f64(cursor_next(cursor));
+}
+
+uint32_t udm1_cursor_padded(const udm1_cursor *cursor) { return cursor ? cursor->padded : 0; }

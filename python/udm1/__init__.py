@@ -1,0 +1,24 @@
+"""udm1: exact Weyl/Kronecker (uniformly distributed modulo 1) sampling.
+
+Python bindings (ctypes) over libudm1. See ``udm1.Sequence`` for points as
+numpy arrays, ``udm1.qmc`` for scipy.stats.qmc engines, and ``udm1.discrepancy``.
+"""
+
+from ._native import library_path
+from .metrics import discrepancy, discrepancy_random
+from .sequence import Fixed, Preset, Sequence, Sqrt, UDM1Error, check_alphas, presets, version
+
+__all__ = [
+    "Fixed",
+    "Preset",
+    "Sequence",
+    "Sqrt",
+    "UDM1Error",
+    "check_alphas",
+    "discrepancy",
+    "discrepancy_random",
+    "library_path",
+    "presets",
+    "version",
+]
+__version__ = version()

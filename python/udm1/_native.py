@@ -1,0 +1,183 @@
+"""Loading libudm1 with ctypes and declaring its C functions.
+
+The shared library is looked for, in order:
+
+1. the path in the environment variable ``UDM1_LIBRARY`` (nothing else is
+   tried when it is set);
+2. the build trees of a source checkout (``build/libudm1``, then
+   ``build-asan/libudm1``, relative to the repository that holds this package);
+3. this package's own directory (an installed copy);
+4. the system's library path (``ctypes.util.find_library("udm1")``).
+"""
+
+from __future__ import annotations
+
+import ctypes
+import ctypes.util
+import os
+from pathlib import Path
+
+ABI_MAJOR = 1
+
+u8p = ctypes.POINTER(ctypes.c_uint8)
+u64p = ctypes.POINTER(ctypes.c_uint64)
+f64p = ctypes.POINTER(ctypes.c_double)
+f32p = ctypes.POINTER(ctypes.c_float)
+
+
+class SeqDesc(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("dimensions", ctypes.c_uint32),
+        ("preset", ctypes.c_char_p),
+        ("alphas", ctypes.c_void_p),
+        ("offsets", u64p),
+        ("point_count", ctypes.c_uint64),
+        ("seed", ctypes.c_uint64),
+        ("randomize", ctypes.c_uint32),
+        ("reserved", ctypes.c_uint32),
+    ]
+
+
+class Alpha(ctypes.Structure):
+    _fields_ = [
+        ("kind", ctypes.c_uint32),
+        ("reserved", ctypes.c_uint32),
+        ("k", ctypes.c_uint64),
+        ("fixed_hi", ctypes.c_uint64),
+        ("fixed_lo", ctypes.c_uint64),
+        ("value", ctypes.c_double),
+    ]
+
+
+class PresetInfo(ctypes.Structure):
+    _fields_ = [
+        ("name", ctypes.c_char_p),
+        ("description", ctypes.c_char_p),
+        ("max_dimensions", ctypes.c_uint32),
+        ("flags", ctypes.c_uint32),
+    ]
+
+
+class AlphaReport(ctypes.Structure):
+    _fields_ = [
+        ("rational", ctypes.c_uint32),
+        ("rational_dim", ctypes.c_uint32),
+        ("dependent", ctypes.c_uint32),
+        ("dependent_exact", ctypes.c_uint32),
+        ("dependent_dims", ctypes.c_uint32 * 2),
+        ("worst_dims", ctypes.c_uint32 * 2),
+        ("worst_l2_star", ctypes.c_double),
+        ("worst_wrap_around", ctypes.c_double),
+        ("random_l2_star", ctypes.c_double),
+        ("random_wrap_around", ctypes.c_double),
+        ("message", ctypes.c_char * 256),
+    ]
+
+
+class Cursor(ctypes.Structure):
+    _fields_ = [
+        ("seq", ctypes.c_void_p),
+        ("stream", ctypes.c_uint64),
+        ("index", ctypes.c_uint64),
+        ("key", ctypes.c_uint64),
+        ("dimension", ctypes.c_uint32),
+        ("padded", ctypes.c_uint32),
+    ]
+
+
+STATUS_NAMES = {
+    0: "UDM1_OK",
+    1: "UDM1_ERROR_NULL_ARGUMENT",
+    2: "UDM1_ERROR_INVALID_ARGUMENT",
+    3: "UDM1_ERROR_DIMENSION",
+    4: "UDM1_ERROR_UNKNOWN_PRESET",
+    5: "UDM1_ERROR_RATIONAL_ALPHA",
+    6: "UDM1_ERROR_POINT_COUNT",
+    7: "UDM1_ERROR_INDEX_RANGE",
+    8: "UDM1_ERROR_OUT_OF_MEMORY",
+}
+
+
+def _candidates():
+    env = os.environ.get("UDM1_LIBRARY")
+    if env:
+        yield env
+        return
+    here = Path(__file__).resolve().parent
+    repo = here.parent.parent
+    for build in ("build", "build-asan"):
+        yield str(repo / build / "libudm1" / "libudm1.so.1")
+    yield str(here / "libudm1.so.1")
+    found = ctypes.util.find_library("udm1")
+    if found:
+        yield found
+
+
+def _load():
+    tried = []
+    for path in _candidates():
+        if os.path.sep in path and not os.path.exists(path):
+            tried.append(f"{path} (missing)")
+            continue
+        try:
+            lib = ctypes.CDLL(path)
+        except OSError as exc:
+            tried.append(f"{path} ({exc})")
+            continue
+        lib.udm1_version.restype = ctypes.c_uint32
+        major = lib.udm1_version() // 10000
+        if major != ABI_MAJOR:
+            tried.append(f"{path} (ABI major {major}, need {ABI_MAJOR})")
+            continue
+        return lib, path
+    raise ImportError(
+        "udm1: cannot load libudm1; build it (cmake --build build) or set UDM1_LIBRARY. Tried: "
+        + "; ".join(tried)
+    )
+
+
+lib, library_path = _load()
+
+_S = ctypes.c_int  # udm1_status
+_SEQ = ctypes.c_void_p
+
+
+def _proto(name, restype, *argtypes):
+    fn = getattr(lib, name)
+    fn.restype = restype
+    fn.argtypes = list(argtypes)
+
+
+_proto("udm1_version_string", ctypes.c_char_p)
+_proto("udm1_status_string", ctypes.c_char_p, _S)
+_proto("udm1_last_error", ctypes.c_char_p)
+_proto("udm1_preset_count", ctypes.c_size_t)
+_proto("udm1_preset_get", _S, ctypes.c_size_t, ctypes.POINTER(PresetInfo))
+_proto("udm1_preset_find", _S, ctypes.c_char_p, ctypes.POINTER(PresetInfo))
+_proto("udm1_seq_desc_init", None, ctypes.POINTER(SeqDesc))
+_proto("udm1_seq_create_desc", _S, ctypes.POINTER(SeqDesc), ctypes.POINTER(_SEQ))
+_proto("udm1_seq_create", _S, ctypes.c_char_p, ctypes.c_uint32, ctypes.c_uint64, ctypes.c_uint64, ctypes.POINTER(_SEQ))
+_proto("udm1_seq_destroy", None, _SEQ)
+_proto("udm1_seq_dimensions", ctypes.c_uint32, _SEQ)
+_proto("udm1_seq_name", ctypes.c_char_p, _SEQ)
+_proto("udm1_seq_point_count", ctypes.c_uint64, _SEQ)
+_proto("udm1_seq_seed", ctypes.c_uint64, _SEQ)
+_proto("udm1_seq_randomize", ctypes.c_uint32, _SEQ)
+_proto("udm1_seq_alpha", _S, _SEQ, ctypes.c_uint32, u64p, u64p)
+_proto("udm1_seq_offset", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint32, u64p)
+_proto("udm1_seq_sample_u64", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32, u64p)
+_proto("udm1_seq_sample_f64", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32, f64p)
+_proto("udm1_seq_sample_f32", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32, f32p)
+for _suffix, _ptr in (("u64", ctypes.c_void_p), ("f64", ctypes.c_void_p), ("f32", ctypes.c_void_p)):
+    _proto(
+        f"udm1_seq_fill_{_suffix}", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_size_t,
+        ctypes.c_uint32, ctypes.c_uint32, _ptr, ctypes.c_size_t,
+    )
+_proto("udm1_cursor_start", _S, ctypes.POINTER(Cursor), _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32)
+_proto("udm1_cursor_1d_f64", ctypes.c_double, ctypes.POINTER(Cursor))
+_proto("udm1_cursor_padded", ctypes.c_uint32, ctypes.POINTER(Cursor))
+_proto("udm1_discrepancy", _S, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_uint32, ctypes.c_size_t, ctypes.c_uint32, f64p)
+_proto("udm1_discrepancy_random", _S, ctypes.c_size_t, ctypes.c_uint32, ctypes.c_uint32, f64p)
+_proto("udm1_seq_check", _S, _SEQ, ctypes.c_uint64, ctypes.POINTER(AlphaReport))
+_proto("udm1_alpha_check", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.c_uint64, ctypes.POINTER(AlphaReport))

@@ -1,0 +1,279 @@
+"""The Sequence class: a udm1_seq handle returning numpy arrays."""
+
+from __future__ import annotations
+
+import ctypes
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import _native
+from ._native import lib
+
+ALPHA_SQRT, ALPHA_FIXED, ALPHA_DOUBLE = 1, 2, 3
+RANDOMIZE_NONE, RANDOMIZE_SHIFT = 0, 1
+
+
+class UDM1Error(ValueError):
+    """A udm1 call failed. ``status`` is the C status code, ``status_name``
+    its enum name, and the message is the library's one-line description."""
+
+    def __init__(self, status: int, message: str):
+        self.status = status
+        self.status_name = _native.STATUS_NAMES.get(status, f"status {status}")
+        super().__init__(message)
+
+
+def check(status: int) -> None:
+    """Raise UDM1Error for a failing status code."""
+    if status != 0:
+        detail = lib.udm1_last_error().decode("utf-8", "replace")
+        if status == 8:
+            raise MemoryError(detail)
+        raise UDM1Error(status, detail or lib.udm1_status_string(status).decode())
+
+
+@dataclass(frozen=True)
+class Sqrt:
+    """Generator sqrt(k), computed exactly by the library."""
+
+    k: int
+
+
+@dataclass(frozen=True)
+class Fixed:
+    """Generator given by its fractional part in 0.128 fixed point: value / 2^128."""
+
+    value: int
+
+
+def _alpha_struct(a) -> _native.Alpha:
+    s = _native.Alpha()
+    if isinstance(a, Sqrt):
+        s.kind, s.k = ALPHA_SQRT, int(a.k)
+    elif isinstance(a, Fixed):
+        v = int(a.value) % (1 << 128)
+        s.kind, s.fixed_hi, s.fixed_lo = ALPHA_FIXED, v >> 64, v & ((1 << 64) - 1)
+    elif isinstance(a, numbers.Real):
+        s.kind, s.value = ALPHA_DOUBLE, float(a)
+    else:
+        raise TypeError(f"udm1: alpha {a!r} is not udm1.Sqrt, udm1.Fixed or a float")
+    return s
+
+
+def _alpha_array(alphas):
+    arr = (_native.Alpha * len(alphas))()
+    for i, a in enumerate(alphas):
+        arr[i] = _alpha_struct(a)
+    return arr
+
+
+@dataclass(frozen=True)
+class Preset:
+    name: str
+    description: str
+    max_dimensions: int
+    point_set: bool
+
+
+def presets() -> list[Preset]:
+    """Every preset of the library, in its order."""
+    out = []
+    info = _native.PresetInfo()
+    for i in range(lib.udm1_preset_count()):
+        check(lib.udm1_preset_get(i, ctypes.byref(info)))
+        out.append(Preset(info.name.decode(), info.description.decode(), info.max_dimensions, bool(info.flags & 1)))
+    return out
+
+
+_DTYPES = {
+    np.dtype(np.float64): ("udm1_seq_fill_f64", "udm1_seq_sample_f64", ctypes.c_double),
+    np.dtype(np.float32): ("udm1_seq_fill_f32", "udm1_seq_sample_f32", ctypes.c_float),
+    np.dtype(np.uint64): ("udm1_seq_fill_u64", "udm1_seq_sample_u64", ctypes.c_uint64),
+}
+
+
+class Sequence:
+    """A udm1 sequence or point set.
+
+    ``Sequence("wr", 8, seed=7)``: a preset with a random shift per stream.
+    ``Sequence("wr", 8, randomize=False)``: the deterministic sequence.
+    ``Sequence(alphas=[udm1.Sqrt(2), udm1.Sqrt(13)])``: your own generators.
+    ``Sequence("episwr", 2, point_count=64, seed=1)``: a point set of K points.
+
+    Point ``n`` of stream ``s`` is ``{offset_j + shift_j(seed, s) + n * alpha_j}``;
+    indices start at 0 and point 0 equals the offset (see udm1.h).
+    """
+
+    def __init__(self, preset: str | None = None, d: int | None = None, *, alphas=None, point_count: int = 0,
+                 seed: int = 0, randomize: bool = True, offsets=None):
+        self._handle = None
+        if (preset is None) == (alphas is None):
+            raise ValueError("udm1.Sequence: give either a preset name or alphas")
+        if alphas is not None:
+            alphas = list(alphas)
+            if d is None:
+                d = len(alphas)
+            if d != len(alphas):
+                raise ValueError(f"udm1.Sequence: d = {d} but {len(alphas)} alphas")
+        if d is None:
+            raise ValueError("udm1.Sequence: d (the number of dimensions) is required with a preset")
+        if not (0 <= int(d) < 1 << 32):
+            raise UDM1Error(3, f"udm1.Sequence: dimensions {d} out of range")
+        desc = _native.SeqDesc()
+        lib.udm1_seq_desc_init(ctypes.byref(desc))
+        desc.dimensions = int(d)
+        desc.point_count = int(point_count)
+        desc.seed = int(seed) % (1 << 64)
+        desc.randomize = RANDOMIZE_SHIFT if randomize else RANDOMIZE_NONE
+        keep = []
+        if preset is not None:
+            desc.preset = str(preset).encode()
+        else:
+            arr = _alpha_array(alphas)
+            keep.append(arr)
+            desc.alphas = ctypes.cast(arr, ctypes.c_void_p)
+        if offsets is not None:
+            off = np.ascontiguousarray(np.asarray(offsets, dtype=np.uint64))
+            if off.shape != (int(d),):
+                raise ValueError(f"udm1.Sequence: offsets must have {d} entries")
+            keep.append(off)
+            desc.offsets = off.ctypes.data_as(_native.u64p)
+        handle = ctypes.c_void_p()
+        check(lib.udm1_seq_create_desc(ctypes.byref(desc), ctypes.byref(handle)))
+        self._handle = handle
+
+    def __del__(self):
+        handle = getattr(self, "_handle", None)
+        if handle is not None and lib is not None:
+            lib.udm1_seq_destroy(handle)
+            self._handle = None
+
+    def close(self) -> None:
+        """Release the handle now (also done by the garbage collector)."""
+        self.__del__()
+
+    def __repr__(self):
+        pc = f", point_count={self.point_count}" if self.point_count else ""
+        return f"udm1.Sequence({self.name!r}, {self.d}{pc}, seed={self.seed}, randomize={self.randomized})"
+
+    @property
+    def handle(self):
+        if self._handle is None:
+            raise ValueError("udm1.Sequence: the sequence was closed")
+        return self._handle
+
+    @property
+    def d(self) -> int:
+        return lib.udm1_seq_dimensions(self.handle)
+
+    @property
+    def name(self) -> str:
+        return lib.udm1_seq_name(self.handle).decode()
+
+    @property
+    def point_count(self) -> int:
+        """K for a point set, 0 for a sequence."""
+        return lib.udm1_seq_point_count(self.handle)
+
+    @property
+    def seed(self) -> int:
+        return lib.udm1_seq_seed(self.handle)
+
+    @property
+    def randomized(self) -> bool:
+        return lib.udm1_seq_randomize(self.handle) == RANDOMIZE_SHIFT
+
+    def alpha(self, dim: int) -> int:
+        """Generator of dimension dim: its fractional part times 2^128, as an int."""
+        hi, lo = ctypes.c_uint64(), ctypes.c_uint64()
+        check(lib.udm1_seq_alpha(self.handle, _u32(dim), ctypes.byref(hi), ctypes.byref(lo)))
+        return (hi.value << 64) | lo.value
+
+    def offset(self, dim: int, stream: int = 0) -> int:
+        """Total offset of dimension dim for a stream, times 2^64: the raw value of point 0."""
+        out = ctypes.c_uint64()
+        check(lib.udm1_seq_offset(self.handle, _u64(stream), _u32(dim), ctypes.byref(out)))
+        return out.value
+
+    def sample(self, index: int, dim: int, stream: int = 0, dtype=np.float64):
+        """One value by random access; dtype float64, float32 or uint64 (raw 0.64)."""
+        _, name, ctype = _DTYPES[np.dtype(dtype)]
+        out = ctype()
+        check(getattr(lib, name)(self.handle, _u64(stream), _u64(index), _u32(dim), ctypes.byref(out)))
+        return np.dtype(dtype).type(out.value)
+
+    def points(self, n: int, first: int = 0, *, stream: int = 0, dims=None, dtype=np.float64,
+               out: np.ndarray | None = None) -> np.ndarray:
+        """Points [first, first + n) as an (n, nd) array; dims is a range or slice
+        of dimensions (default all). With out, fills that C-contiguous array."""
+        d = self.d
+        if dims is None:
+            d0, nd = 0, d
+        else:
+            r = range(d)[dims] if isinstance(dims, slice) else dims
+            if not isinstance(r, range) or r.step != 1 or len(r) == 0:
+                raise ValueError("udm1.Sequence.points: dims must be a non-empty contiguous range")
+            d0, nd = r.start, len(r)
+        dt = np.dtype(dtype)
+        fill_name = _DTYPES[dt][0]
+        n = int(n)
+        if n < 0:
+            raise ValueError(f"udm1.Sequence.points: n = {n} is negative")
+        if out is None:
+            out = np.empty((n, nd), dtype=dt)
+        elif out.dtype != dt or out.shape != (n, nd) or not out.flags.c_contiguous:
+            raise ValueError(f"udm1.Sequence.points: out must be a C-contiguous {dt} array of shape ({n}, {nd})")
+        check(getattr(lib, fill_name)(self.handle, _u64(stream), _u64(first), n, _u32(d0), _u32(nd),
+                                      out.ctypes.data if n else None, nd))
+        return out
+
+    def check(self, n: int = 256) -> dict:
+        """udm1_seq_check: rationality, dependence and the worst 2D projection at n points."""
+        rep = _native.AlphaReport()
+        check(lib.udm1_seq_check(self.handle, int(n), ctypes.byref(rep)))
+        return _report_dict(rep)
+
+
+def check_alphas(alphas, n: int = 256) -> dict:
+    """udm1_alpha_check on user generators (Sqrt, Fixed or float)."""
+    alphas = list(alphas)
+    arr = _alpha_array(alphas)
+    rep = _native.AlphaReport()
+    check(lib.udm1_alpha_check(ctypes.cast(arr, ctypes.c_void_p), len(alphas), int(n), ctypes.byref(rep)))
+    return _report_dict(rep)
+
+
+def _report_dict(rep) -> dict:
+    return {
+        "rational": bool(rep.rational),
+        "rational_dim": rep.rational_dim if rep.rational else None,
+        "dependent": bool(rep.dependent),
+        "dependent_exact": bool(rep.dependent_exact),
+        "dependent_dims": tuple(rep.dependent_dims) if rep.dependent else None,
+        "worst_dims": tuple(rep.worst_dims),
+        "worst_l2_star": rep.worst_l2_star,
+        "worst_wrap_around": rep.worst_wrap_around,
+        "random_l2_star": rep.random_l2_star,
+        "random_wrap_around": rep.random_wrap_around,
+        "message": rep.message.decode(),
+    }
+
+
+def _u64(v) -> int:
+    v = int(v)
+    if not 0 <= v < 1 << 64:
+        raise UDM1Error(2, f"udm1: {v} does not fit in 64 unsigned bits")
+    return v
+
+
+def _u32(v) -> int:
+    v = int(v)
+    if not 0 <= v < 1 << 32:
+        raise UDM1Error(3, f"udm1: dimension {v} does not fit in 32 unsigned bits")
+    return v
+
+
+def version() -> str:
+    return lib.udm1_version_string().decode()
