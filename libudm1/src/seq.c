@@ -18,15 +18,17 @@ void udm1_seq_desc_init(udm1_seq_desc *desc)
     desc->randomize = UDM1_RANDOMIZE_SHIFT;
 }
 
-/* frac(v) of a finite double in 0.128 fixed point, exactly. */
+/* floor(frac(v) * 2^128) of a finite double. */
 static void double_fraction(double v, uint64_t *hi, uint64_t *lo)
 {
     double a = fabs(v);
-    double f = a - floor(a); /* exact for a >= 0 */
+    double f = a - floor(a);    /* exact for a >= 0 */
     double scaled = f * 0x1p64; /* exact: power-of-two scale, < 2^64 */
     uint64_t h = (uint64_t)scaled;
-    uint64_t l = (uint64_t)((scaled - (double)h) * 0x1p64);
-    if (v < 0 && (h | l)) { /* frac(-x) = 1 - frac(x): negate modulo 2^128 */
+    double rest = (scaled - (double)h) * 0x1p64; /* exact */
+    uint64_t l = (uint64_t)rest;
+    if (v < 0) { /* frac(-x) = 1 - frac(x): floor of it is -ceil(frac(x) 2^128) mod 2^128 */
+        if ((double)l != rest && ++l == 0) ++h;
         h = ~h;
         l = ~l + 1;
         if (l == 0) ++h;

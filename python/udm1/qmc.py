@@ -1,0 +1,94 @@
+"""scipy.stats.qmc engines over udm1's sequences.
+
+Each engine is a ``scipy.stats.qmc.QMCEngine``: ``random(n)``, ``reset()``,
+``fast_forward(n)`` (O(1): any index is computed directly), and it works with
+``qmc.discrepancy``, ``qmc.scale`` and ``scipy.integrate.qmc_quad``.
+
+``scramble=True`` (the default, as in scipy) applies udm1's random shift,
+keyed by a 64-bit seed drawn from ``rng``; ``scramble=False`` gives the
+deterministic sequence, whose first point is the origin.
+
+    >>> from udm1.qmc import WR
+    >>> WR(2, seed=1).random(4).shape
+    (4, 2)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.stats import qmc
+
+from .sequence import Sequence
+
+
+class Weyl(qmc.QMCEngine):
+    """A udm1 preset as a QMC engine. ``preset`` is any udm1 preset name;
+    ``point_count`` is K for the point-set presets (epis, episwr)."""
+
+    _preset: str | None = None  # fixed by the subclasses
+
+    def __init__(self, d: int, *, preset: str = "wr", scramble: bool = True, point_count: int = 0,
+                 optimization=None, rng=None, seed=None):
+        if seed is not None:
+            if rng is not None:
+                raise ValueError("udm1.qmc: give rng or seed, not both")
+            rng = seed
+        super().__init__(d=d, optimization=optimization, rng=rng)
+        self.preset = self._preset or preset
+        self.scramble = bool(scramble)
+        key = int(self.rng.integers(0, 2**64, dtype=np.uint64)) if scramble else 0
+        self._seq = Sequence(self.preset, d, point_count=point_count, seed=key, randomize=self.scramble)
+        self._init_quad = self._quad_args(d, point_count, optimization)
+
+    def _quad_args(self, d, point_count, optimization) -> dict:
+        args = {"d": d, "scramble": True, "optimization": optimization}
+        if self._preset is None:
+            args["preset"] = self.preset
+            args["point_count"] = point_count
+        return args
+
+    def _random(self, n: int = 1, *, workers: int = 1) -> np.ndarray:
+        return self._seq.points(n, first=self.num_generated)
+
+    def fast_forward(self, n: int) -> "Weyl":
+        """Skip n points in O(1)."""
+        self.num_generated += int(n)
+        return self
+
+    @property
+    def sequence(self) -> Sequence:
+        """The underlying udm1.Sequence (stream 0)."""
+        return self._seq
+
+
+def _preset_engine(name: str, preset: str, doc: str):
+    def __init__(self, d: int, *, scramble: bool = True, optimization=None, rng=None, seed=None):
+        Weyl.__init__(self, d, scramble=scramble, optimization=optimization, rng=rng, seed=seed)
+
+    return type(name, (Weyl,), {"_preset": preset, "__init__": __init__, "__doc__": doc})
+
+
+WR = _preset_engine("WR", "wr", "WeylRichtmyer: square roots of the primes (paper 5.1).")
+WRAO = _preset_engine("WRAO", "wr-ao", "The paper's AO pair (sqrt2, sqrt13); d <= 2.")
+WE = _preset_engine("WE", "we", "(e, e^2); d <= 2.")
+WGR = _preset_engine("WGR", "wgr", "((1+sqrt5)/2, (1+sqrt3)/2); d <= 2.")
+WMMR = _preset_engine("WMMR", "wmmr", "The paper's 22 metallic-means square roots; d <= 22.")
+HWMMR = _preset_engine("HWMMR", "hwmmr", "The paper's hybrid set of 22 values; d <= 22.")
+Rd = _preset_engine("Rd", "rd", "R_d, the generalized golden ratio sequence (Roberts 2018).")
+Golden = _preset_engine("Golden", "golden", "The golden-ratio Weyl sequence; d = 1.")
+
+
+class EPISWR(Weyl):
+    """The paper's EPISWR point set of n points: ({i/n + u}, {i sqrt137 + v})."""
+
+    _preset = "episwr"
+
+    def __init__(self, d: int = 2, *, n: int, scramble: bool = True, optimization=None, rng=None, seed=None):
+        self.n = int(n)
+        Weyl.__init__(self, d, point_count=self.n, scramble=scramble, optimization=optimization, rng=rng, seed=seed)
+
+    def _quad_args(self, d, point_count, optimization) -> dict:
+        return {"d": d, "n": point_count, "scramble": True, "optimization": optimization}
+
+
+__all__ = ["Weyl", "WR", "WRAO", "WE", "WGR", "WMMR", "HWMMR", "Rd", "Golden", "EPISWR"]

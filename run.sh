@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# run.sh - the project's entry point (see README.md).
+#
+#   ./run.sh          the main job: build, then write report/ (sequence report on built-in data)
+#   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C tests
+#                     again under AddressSanitizer + UndefinedBehaviorSanitizer
+#   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
+#
+# Each command installs what is missing (Debian packages, Python packages into
+# .venv) and skips what is there.
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+cd "$ROOT"
+# shellcheck source=scripts/bootstrap.sh
+source scripts/bootstrap.sh
+
+JOBS="$(nproc 2>/dev/null || echo 2)"
+PY="$ROOT/.venv/bin/python"
+
+build() { # build <dir> [cmake options...]
+    local dir="$1"
+    shift
+    cmake -S . -B "$dir" -G Ninja -DUDM1_PYTHON="$PY" "$@" >/dev/null
+    cmake --build "$dir" -j "$JOBS"
+}
+
+cmd="${1:-report}"
+case "$cmd" in
+report)
+    shift || true
+    udm1_bootstrap "$ROOT"
+    build build -DCMAKE_BUILD_TYPE=Release
+    udm1_log "writing report/ (sequence report)"
+    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" \
+        "$PY" tools/report/sequence_report.py --out "$ROOT/report" "$@"
+    ;;
+test)
+    udm1_bootstrap "$ROOT"
+    build build -DCMAKE_BUILD_TYPE=Release
+    udm1_log "running every test (ctest in build/)"
+    ctest --test-dir build -j "$JOBS" --output-on-failure
+    udm1_log "building and running the C tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
+    build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON -DUDM1_MULTIVERSION=OFF
+    ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        ctest --test-dir build-asan -j "$JOBS" -L c --output-on-failure
+    udm1_log "all tests passed"
+    ;;
+bench)
+    shift || true
+    udm1_bootstrap "$ROOT"
+    build build -DCMAKE_BUILD_TYPE=Release
+    udm1_log "C throughput (tools/bench_seq.c)"
+    ./build/tools/udm1_bench_seq "$@"
+    udm1_log "Python throughput against numpy and scipy (tools/bench_python.py)"
+    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_python.py
+    ;;
+*)
+    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench])" >&2
+    exit 2
+    ;;
+esac

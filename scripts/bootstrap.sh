@@ -1,0 +1,49 @@
+# scripts/bootstrap.sh - sourced by run.sh. Installs what is missing, skips what is there:
+#   Debian packages (apt-get, as root or through sudo) and the Python packages of
+#   python/requirements.txt into the virtual environment .venv.
+
+UDM1_DEBIAN_PACKAGES=(build-essential cmake ninja-build pkg-config binutils python3 python3-venv)
+
+udm1_log() { printf '[udm1] %s\n' "$*" >&2; }
+
+udm1_bootstrap_debian() {
+    local missing=() p
+    for p in "${UDM1_DEBIAN_PACKAGES[@]}"; do
+        dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+    done
+    if [ ${#missing[@]} -eq 0 ]; then
+        udm1_log "Debian packages present: ${UDM1_DEBIAN_PACKAGES[*]}"
+        return 0
+    fi
+    local sudo=""
+    if [ "$(id -u)" != 0 ]; then
+        if command -v sudo >/dev/null 2>&1; then sudo="sudo"; else
+            udm1_log "error: missing Debian packages (${missing[*]}) and not root; install them or run as root"
+            return 1
+        fi
+    fi
+    udm1_log "installing Debian packages: ${missing[*]}"
+    $sudo apt-get update -q >&2 || return 1
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}" >&2 || return 1
+}
+
+udm1_bootstrap_python() {
+    local root="$1" venv="$1/.venv" req="$1/python/requirements.txt"
+    if [ ! -x "$venv/bin/python" ]; then
+        udm1_log "creating the virtual environment $venv"
+        python3 -m venv "$venv" >&2 || return 1
+    fi
+    local stamp="$venv/.udm1-requirements" want
+    want=$(sha256sum "$req" | cut -d' ' -f1)
+    if [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then
+        udm1_log "Python packages present (python/requirements.txt)"
+        return 0
+    fi
+    udm1_log "installing Python packages from python/requirements.txt"
+    "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "$req" >&2 || return 1
+    echo "$want" > "$stamp"
+}
+
+udm1_bootstrap() {
+    udm1_bootstrap_debian && udm1_bootstrap_python "$1"
+}

@@ -1,0 +1,47 @@
+/* check.h - the few macros the C tests need. A failed CHECK prints the file,
+ * line and expression and makes the test exit non-zero; the test goes on so
+ * one run shows every failure. */
+#ifndef UDM1_TEST_CHECK_H
+#define UDM1_TEST_CHECK_H
+
+#include <stdio.h>
+
+static int check_failures = 0;
+
+#define CHECK(cond)                                                                   \
+    do {                                                                              \
+        if (!(cond)) {                                                                \
+            fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);  \
+            ++check_failures;                                                         \
+        }                                                                             \
+    } while (0)
+
+/* CHECK with a printf-style explanation. */
+#define CHECKF(cond, ...)                                                             \
+    do {                                                                              \
+        if (!(cond)) {                                                                \
+            fprintf(stderr, "%s:%d: CHECK failed: %s: ", __FILE__, __LINE__, #cond);  \
+            fprintf(stderr, __VA_ARGS__);                                             \
+            fputc('\n', stderr);                                                      \
+            ++check_failures;                                                         \
+        }                                                                             \
+    } while (0)
+
+#define CHECK_STATUS(call, expected)                                                  \
+    do {                                                                              \
+        udm1_status check_st_ = (call);                                               \
+        if (check_st_ != (expected)) {                                                \
+            fprintf(stderr, "%s:%d: %s returned %d (%s), expected %s; last error: %s\n", \
+                    __FILE__, __LINE__, #call, (int)check_st_,                        \
+                    udm1_status_string(check_st_), #expected, udm1_last_error());     \
+            ++check_failures;                                                         \
+        }                                                                             \
+    } while (0)
+
+#define CHECK_DONE()                                                                  \
+    do {                                                                              \
+        if (check_failures) fprintf(stderr, "%d check(s) failed\n", check_failures);  \
+        return check_failures ? 1 : 0;                                                \
+    } while (0)
+
+#endif

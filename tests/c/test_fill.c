@@ -1,0 +1,246 @@
+/* test_fill.c - bulk fills equal per-sample calls bit for bit, for every
+ * preset, output type, stride, dimension range, index range (including the
+ * top of the 2^64 range) and split of a range; the cursor equals per-sample
+ * calls; float and double outputs are never 1.0. */
+#include "check.h"
+
+#include <udm1/udm1.h>
+
+#include <stdlib.h>
+#include <string.h>
+
+static udm1_seq *make(const char *preset, uint32_t dims, uint64_t k, uint64_t seed, int randomize)
+{
+    udm1_seq_desc d;
+    udm1_seq_desc_init(&d);
+    d.preset = preset;
+    d.dimensions = dims;
+    d.point_count = k;
+    d.seed = seed;
+    d.randomize = randomize ? UDM1_RANDOMIZE_SHIFT : UDM1_RANDOMIZE_NONE;
+    udm1_seq *s = NULL;
+    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_OK);
+    return s;
+}
+
+/* fill [first, first+count) x [d0, d0+nd) three ways and compare with samples */
+static void compare_range(const udm1_seq *s, uint64_t stream, uint64_t first, size_t count, uint32_t d0, uint32_t nd,
+                          size_t stride)
+{
+    size_t n = count * stride + 1;
+    uint64_t *u = malloc(n * sizeof *u);
+    double *f = malloc(n * sizeof *f);
+    float *g = malloc(n * sizeof *g);
+    if (!u || !f || !g) abort();
+    for (size_t i = 0; i < n; ++i) {
+        u[i] = 0xDEADBEEF;
+        f[i] = -1.0;
+        g[i] = -1.0f;
+    }
+    CHECK_STATUS(udm1_seq_fill_u64(s, stream, first, count, d0, nd, u, stride), UDM1_OK);
+    CHECK_STATUS(udm1_seq_fill_f64(s, stream, first, count, d0, nd, f, stride), UDM1_OK);
+    CHECK_STATUS(udm1_seq_fill_f32(s, stream, first, count, d0, nd, g, stride), UDM1_OK);
+    int bad = 0;
+    for (size_t i = 0; i < count && bad < 5; ++i) {
+        for (uint32_t j = 0; j < stride; ++j) {
+            size_t at = i * stride + j;
+            if (j >= nd) { /* gaps of the stride untouched */
+                if (u[at] != 0xDEADBEEF || f[at] != -1.0 || g[at] != -1.0f) ++bad;
+                continue;
+            }
+            uint64_t eu = 0;
+            double ef = 0;
+            float eg = 0;
+            udm1_seq_sample_u64(s, stream, first + i, d0 + j, &eu);
+            udm1_seq_sample_f64(s, stream, first + i, d0 + j, &ef);
+            udm1_seq_sample_f32(s, stream, first + i, d0 + j, &eg);
+            if (u[at] != eu || memcmp(&f[at], &ef, sizeof ef) != 0 || memcmp(&g[at], &eg, sizeof eg) != 0) {
+                fprintf(stderr, "  %s first=%llu count=%zu d0=%u nd=%u stride=%zu: i=%zu j=%u %016llx vs %016llx\n",
+                        udm1_seq_name(s), (unsigned long long)first, count, d0, nd, stride, i, j,
+                        (unsigned long long)u[at], (unsigned long long)eu);
+                ++bad;
+            }
+            if (!(f[at] >= 0.0 && f[at] < 1.0 && g[at] >= 0.0f && g[at] < 1.0f)) ++bad;
+        }
+    }
+    if (u[count * stride] != 0xDEADBEEF) ++bad; /* nothing written past the end */
+    CHECKF(bad == 0, "%d mismatches", bad);
+    free(u);
+    free(f);
+    free(g);
+}
+
+static void test_bulk_equals_samples(void)
+{
+    static const struct { const char *name; uint32_t dims; uint64_t k; } cases[] = {
+        {"wr", 1, 0}, {"wr", 2, 0}, {"wr", 3, 0}, {"wr", 17, 0}, {"wr", 64, 0}, {"wr", 600, 0},
+        {"wr-ao", 2, 0}, {"we", 2, 0}, {"wgr", 2, 0}, {"wmmr", 22, 0}, {"hwmmr", 22, 0}, {"rd", 2, 0},
+        {"rd", 7, 0}, {"golden", 1, 0}, {"epis", 1, 1}, {"epis", 1, 1000}, {"episwr", 2, 4096},
+    };
+    static const uint64_t firsts[] = {0, 1, 999, (1ull << 32) - 1, 1ull << 53, 1ull << 63};
+    static const size_t counts[] = {0, 1, 2, 7, 16, 255, 1031};
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; ++c) {
+        for (int rnd = 0; rnd < 2; ++rnd) {
+            udm1_seq *s = make(cases[c].name, cases[c].dims, cases[c].k, 42, rnd);
+            uint32_t D = cases[c].dims;
+            for (size_t fi = 0; fi < sizeof firsts / sizeof *firsts; ++fi)
+                for (size_t ci = 0; ci < sizeof counts / sizeof *counts; ++ci) {
+                    uint64_t first = firsts[fi];
+                    size_t count = counts[ci];
+                    if (cases[c].k) { /* stay inside the point set */
+                        if (first >= cases[c].k) first = first % cases[c].k;
+                        if (count > cases[c].k - first) count = (size_t)(cases[c].k - first);
+                    }
+                    compare_range(s, 5, first, count, 0, D, D);           /* contiguous */
+                    if (D > 1) compare_range(s, 5, first, count, 1, D - 1, D + 2); /* strided sub-range */
+                    compare_range(s, 6, first, count, D - 1, 1, 3);       /* one dimension, strided */
+                }
+            udm1_seq_destroy(s);
+        }
+    }
+    /* the very top of the index range */
+    udm1_seq *s = make("wr", 5, 0, 3, 1);
+    compare_range(s, 0, UINT64_MAX - 100, 101, 0, 5, 5);
+    compare_range(s, UINT64_MAX, UINT64_MAX, 1, 0, 5, 5);
+    udm1_seq_destroy(s);
+}
+
+static void test_splits(void)
+{
+    udm1_seq *s = make("wr", 6, 0, 11, 1);
+    enum { N = 3000, D = 6 };
+    static float whole[N * D], parts[N * D];
+    CHECK_STATUS(udm1_seq_fill_f32(s, 77, 1000, N, 0, D, whole, D), UDM1_OK);
+    /* split at uneven points, and by dimension */
+    size_t cuts[] = {0, 1, 17, 1024, 1025, 2999, N};
+    for (size_t i = 0; i + 1 < sizeof cuts / sizeof *cuts; ++i)
+        CHECK_STATUS(udm1_seq_fill_f32(s, 77, 1000 + cuts[i], cuts[i + 1] - cuts[i], 0, 4, parts + cuts[i] * D, D),
+                     UDM1_OK);
+    CHECK_STATUS(udm1_seq_fill_f32(s, 77, 1000, N, 4, 2, parts + 4, D), UDM1_OK);
+    CHECK(memcmp(whole, parts, sizeof whole) == 0);
+    /* streams differ, seeds differ, the unrandomized sequence ignores the stream */
+    CHECK_STATUS(udm1_seq_fill_f32(s, 78, 1000, N, 0, D, parts, D), UDM1_OK);
+    CHECK(memcmp(whole, parts, sizeof whole) != 0);
+    udm1_seq_destroy(s);
+    s = make("wr", 6, 0, 11, 0);
+    CHECK_STATUS(udm1_seq_fill_f32(s, 1, 0, N, 0, D, whole, D), UDM1_OK);
+    CHECK_STATUS(udm1_seq_fill_f32(s, 2, 0, N, 0, D, parts, D), UDM1_OK);
+    CHECK(memcmp(whole, parts, sizeof whole) == 0);
+    for (int j = 0; j < D; ++j) CHECK(whole[j] == 0.0f); /* point 0 of the unrandomized sequence is the origin */
+    udm1_seq_destroy(s);
+}
+
+static void test_cursor(void)
+{
+    udm1_seq *s = make("wmmr", 22, 0, 5, 1);
+    for (uint64_t idx = 0; idx < 50; ++idx) {
+        udm1_cursor c;
+        CHECK_STATUS(udm1_cursor_start(&c, s, 123, idx, 3), UDM1_OK);
+        float v[2];
+        udm1_cursor_2d(&c, v);
+        float e0, e1;
+        udm1_seq_sample_f32(s, 123, idx, 3, &e0);
+        udm1_seq_sample_f32(s, 123, idx, 4, &e1);
+        CHECK(v[0] == e0 && v[1] == e1);
+        double x = udm1_cursor_1d_f64(&c), ex;
+        udm1_seq_sample_f64(s, 123, idx, 5, &ex);
+        CHECK(x == ex);
+        CHECK(c.dimension == 6 && udm1_cursor_padded(&c) == 0);
+        /* past the 22 dimensions: padded values, counted, in [0, 1), deterministic */
+        c.dimension = 21;
+        double p[2];
+        udm1_cursor_2d_f64(&c, p);
+        CHECK(udm1_cursor_padded(&c) == 1);
+        CHECK(p[1] >= 0.0 && p[1] < 1.0);
+        udm1_cursor again;
+        udm1_cursor_start(&again, s, 123, idx, 22);
+        CHECK(udm1_cursor_1d_f64(&again) == p[1]);
+        udm1_cursor_start(&again, s, 123, idx + 1, 22); /* the next index differs */
+        CHECK(udm1_cursor_1d_f64(&again) != p[1]);
+    }
+    udm1_seq_destroy(s);
+}
+
+static void test_padding_is_uniform(void)
+{
+    /* 1D set, draws 1..8 padded: mean 1/2, variance 1/12, no draw repeats */
+    udm1_seq *s = make("golden", 1, 0, 99, 1);
+    double sum = 0.0, sum2 = 0.0;
+    int n = 0;
+    for (uint64_t idx = 0; idx < 4096; ++idx) {
+        udm1_cursor c;
+        udm1_cursor_start(&c, s, idx * 31, idx, 1);
+        for (int k = 0; k < 8; ++k) {
+            double v = udm1_cursor_1d_f64(&c);
+            sum += v;
+            sum2 += v * v;
+            ++n;
+        }
+        CHECK(udm1_cursor_padded(&c) == 8);
+    }
+    double mean = sum / n, var = sum2 / n - mean * mean;
+    /* 5 sigma: sd of the mean is sqrt(1/12/n) = 0.0016 */
+    CHECKF(mean > 0.5 - 0.008 && mean < 0.5 + 0.008, "mean %g", mean);
+    CHECKF(var > 1.0 / 12 - 0.005 && var < 1.0 / 12 + 0.005, "variance %g", var);
+    udm1_seq_destroy(s);
+}
+
+static void test_never_one(void)
+{
+    /* offset 2^64 - 1 and alpha tiny: raw values at the very top of [0, 1) */
+    udm1_alpha a = {UDM1_ALPHA_FIXED, 0, 0, 0, 1, 0.0}; /* alpha = 2^-128 */
+    uint64_t off = UINT64_MAX;
+    udm1_seq_desc d;
+    udm1_seq_desc_init(&d);
+    d.dimensions = 1;
+    d.alphas = &a;
+    d.offsets = &off;
+    d.randomize = UDM1_RANDOMIZE_NONE;
+    udm1_seq *s = NULL;
+    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_OK);
+    float g[64];
+    double f[64];
+    uint64_t u = 0;
+    CHECK_STATUS(udm1_seq_fill_f32(s, 0, 0, 64, 0, 1, g, 1), UDM1_OK);
+    CHECK_STATUS(udm1_seq_fill_f64(s, 0, 0, 64, 0, 1, f, 1), UDM1_OK);
+    CHECK_STATUS(udm1_seq_sample_u64(s, 0, 0, 0, &u), UDM1_OK);
+    CHECK(u == UINT64_MAX);
+    for (int i = 0; i < 64; ++i) {
+        CHECK(g[i] < 1.0f && g[i] == 1.0f - 0x1p-24f);
+        CHECK(f[i] < 1.0 && f[i] == 1.0 - 0x1p-53);
+    }
+    float one;
+    CHECK_STATUS(udm1_seq_sample_f32(s, 0, 5, 0, &one), UDM1_OK);
+    CHECK(one < 1.0f);
+    udm1_cursor c;
+    udm1_cursor_start(&c, s, 0, 3, 0);
+    CHECK(udm1_cursor_1d(&c) < 1.0f);
+    udm1_seq_destroy(s);
+
+    /* a randomized sequence over many values: min >= 0, max < 1 */
+    s = make("wr", 4, 0, 1, 1);
+    static float big[1 << 20];
+    float mx = 0.0f;
+    for (uint64_t stream = 0; stream < 64; ++stream) {
+        CHECK_STATUS(udm1_seq_fill_f32(s, stream, stream << 40, (1 << 20) / 4, 0, 4, big, 4), UDM1_OK);
+        for (size_t i = 0; i < (1 << 20); ++i) {
+            if (big[i] > mx) mx = big[i];
+            if (!(big[i] >= 0.0f && big[i] < 1.0f)) {
+                CHECKF(0, "value %a out of [0,1)", (double)big[i]);
+                break;
+            }
+        }
+    }
+    CHECK(mx < 1.0f && mx > 0.999f);
+    udm1_seq_destroy(s);
+}
+
+int main(void)
+{
+    test_bulk_equals_samples();
+    test_splits();
+    test_cursor();
+    test_padding_is_uniform();
+    test_never_one();
+    CHECK_DONE();
+}
