@@ -12,8 +12,14 @@
 
 #include <string.h>
 
-/* States per block: 4 arrays of 8 bytes each = 16 KiB of stack. */
-#define BLOCK 512u
+/* States per block: 4 arrays of 8 bytes each = 15 KiB of stack. Not a power of
+ * two on purpose: the flat kernel stores one vector per block at a stride of
+ * BLOCK values, and a 4 KiB stride (512 doubles) maps every store to the same
+ * L1 set; 480 measured 2x faster than 512 for f64 (BENCHMARKS.md). */
+#define BLOCK 480u
+/* Blocks per tile of the flat kernel: 16 x 480 doubles = 60 KiB, written while
+ * the states of a group stay in registers, then the next group. */
+#define TILE 16u
 
 #if defined(UDM1_HAVE_TARGET_CLONES)
 #  define UDM1_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
@@ -54,49 +60,56 @@ typedef double f64x8 __attribute__((vector_size(64)));
 #  define VCONV_F64(h) (__builtin_convertvector((i64x8)((h) >> 11), f64x8) * 0x1p-53)
 #  define VCONV_F32(h) (__builtin_convertvector(__builtin_convertvector((h) >> 40, i32x8), f32x8) * 0x1p-24f)
 #  define DEFINE_FLAT_KERNEL(NAME, T, VT, VCONV, CONV)                                                \
-    UDM1_CLONES static void NAME(T *restrict out, size_t total, size_t L, const uint64_t *restrict lo0,   \
-                                 const uint64_t *restrict hi0, const uint64_t *restrict ilo0,             \
+    UDM1_CLONES static void NAME(T *restrict out, size_t total, size_t L, uint64_t *restrict lo0,         \
+                                 uint64_t *restrict hi0, const uint64_t *restrict ilo0,                   \
                                  const uint64_t *restrict ihi0)                                           \
     {                                                                                                  \
-        size_t e0 = 0;                                                                                 \
-        for (; e0 + 16 <= L; e0 += 16) { /* two groups at once: independent chains overlap */          \
-            u64x8 lo_a, hi_a, ilo_a, ihi_a, lo_b, hi_b, ilo_b, ihi_b;                                  \
-            memcpy(&lo_a, lo0 + e0, 64); memcpy(&lo_b, lo0 + e0 + 8, 64);                              \
-            memcpy(&hi_a, hi0 + e0, 64); memcpy(&hi_b, hi0 + e0 + 8, 64);                              \
-            memcpy(&ilo_a, ilo0 + e0, 64); memcpy(&ilo_b, ilo0 + e0 + 8, 64);                          \
-            memcpy(&ihi_a, ihi0 + e0, 64); memcpy(&ihi_b, ihi0 + e0 + 8, 64);                          \
-            size_t base = e0;                                                                          \
-            for (; base + 16 <= total; base += L) {                                                    \
-                VT va = VCONV(hi_a), vb = VCONV(hi_b);                                                 \
-                memcpy(out + base, &va, sizeof va);                                                    \
-                memcpy(out + base + 8, &vb, sizeof vb);                                                \
-                u64x8 la = lo_a + ilo_a, lb = lo_b + ilo_b;                                            \
-                hi_a = hi_a + ihi_a - (u64x8)(la < ilo_a); /* a true lane compares as -1 */            \
-                hi_b = hi_b + ihi_b - (u64x8)(lb < ilo_b);                                             \
-                lo_a = la;                                                                             \
-                lo_b = lb;                                                                             \
+        for (size_t c0 = 0; c0 < total; c0 += TILE * L) { /* a tile of blocks stays in cache */        \
+            size_t cend = total - c0 < TILE * L ? total : c0 + TILE * L;                               \
+            size_t e0 = 0;                                                                             \
+            for (; e0 + 16 <= L; e0 += 16) { /* two groups at once: independent chains overlap */      \
+                u64x8 lo_a, hi_a, ilo_a, ihi_a, lo_b, hi_b, ilo_b, ihi_b;                              \
+                memcpy(&lo_a, lo0 + e0, 64); memcpy(&lo_b, lo0 + e0 + 8, 64);                          \
+                memcpy(&hi_a, hi0 + e0, 64); memcpy(&hi_b, hi0 + e0 + 8, 64);                          \
+                memcpy(&ilo_a, ilo0 + e0, 64); memcpy(&ilo_b, ilo0 + e0 + 8, 64);                      \
+                memcpy(&ihi_a, ihi0 + e0, 64); memcpy(&ihi_b, ihi0 + e0 + 8, 64);                      \
+                size_t base = c0 + e0;                                                                 \
+                for (; base + 16 <= cend; base += L) {                                                 \
+                    VT va = VCONV(hi_a), vb = VCONV(hi_b);                                             \
+                    memcpy(out + base, &va, sizeof va);                                                \
+                    memcpy(out + base + 8, &vb, sizeof vb);                                            \
+                    u64x8 la = lo_a + ilo_a, lb = lo_b + ilo_b;                                        \
+                    hi_a = hi_a + ihi_a - (u64x8)(la < ilo_a); /* a true lane compares as -1 */        \
+                    hi_b = hi_b + ihi_b - (u64x8)(lb < ilo_b);                                         \
+                    lo_a = la;                                                                         \
+                    lo_b = lb;                                                                         \
+                }                                                                                      \
+                if (base < cend) { /* the last, partial block */                                       \
+                    uint64_t h[16];                                                                    \
+                    memcpy(h, &hi_a, 64);                                                              \
+                    memcpy(h + 8, &hi_b, 64);                                                          \
+                    for (size_t k = 0; base + k < cend && k < 16; ++k) out[base + k] = CONV(h[k]);     \
+                }                                                                                      \
+                memcpy(lo0 + e0, &lo_a, 64); memcpy(lo0 + e0 + 8, &lo_b, 64);                          \
+                memcpy(hi0 + e0, &hi_a, 64); memcpy(hi0 + e0 + 8, &hi_b, 64);                          \
             }                                                                                          \
-            if (base < total) { /* the last, partial block */                                          \
-                uint64_t h[16];                                                                        \
-                memcpy(h, &hi_a, 64);                                                                  \
-                memcpy(h + 8, &hi_b, 64);                                                              \
-                for (size_t k = 0; base + k < total && k < 16; ++k) out[base + k] = CONV(h[k]);        \
-            }                                                                                          \
-        }                                                                                              \
-        for (; e0 < L; ++e0) { /* states left over when L is not a multiple of 8 */                    \
-            uint64_t lo = lo0[e0], hi = hi0[e0];                                                       \
-            for (size_t base = e0; base < total; base += L) {                                          \
-                out[base] = CONV(hi);                                                                  \
-                uint64_t l = lo + ilo0[e0];                                                            \
-                hi = hi + ihi0[e0] + (uint64_t)(l < ilo0[e0]);                                         \
-                lo = l;                                                                                \
+            for (; e0 < L; ++e0) { /* states left over when L is not a multiple of 16 */               \
+                uint64_t lo = lo0[e0], hi = hi0[e0];                                                   \
+                for (size_t base = c0 + e0; base < cend; base += L) {                                  \
+                    out[base] = CONV(hi);                                                              \
+                    uint64_t l = lo + ilo0[e0];                                                        \
+                    hi = hi + ihi0[e0] + (uint64_t)(l < ilo0[e0]);                                     \
+                    lo = l;                                                                            \
+                }                                                                                      \
+                lo0[e0] = lo;                                                                          \
+                hi0[e0] = hi;                                                                          \
             }                                                                                          \
         }                                                                                              \
     }
 #else
 #  define DEFINE_FLAT_KERNEL(NAME, T, VT, VCONV, CONV)                                                \
-    static void NAME(T *restrict out, size_t total, size_t L, const uint64_t *restrict lo0,              \
-                     const uint64_t *restrict hi0, const uint64_t *restrict ilo0, const uint64_t *restrict ihi0) \
+    static void NAME(T *restrict out, size_t total, size_t L, uint64_t *restrict lo0,                    \
+                     uint64_t *restrict hi0, const uint64_t *restrict ilo0, const uint64_t *restrict ihi0)       \
     {                                                                                                  \
         for (size_t e0 = 0; e0 < L; ++e0) {                                                            \
             uint64_t lo = lo0[e0], hi = hi0[e0];                                                       \
@@ -119,7 +132,7 @@ DEFINE_FLAT_KERNEL(flat_f32, float, f32x8, VCONV_F32, CONV_F32)
 
 enum out_kind { OUT_U64, OUT_F64, OUT_F32 };
 
-static void run_flat(int kind, void *out, size_t total, size_t L, const uint64_t *lo, const uint64_t *hi,
+static void run_flat(int kind, void *out, size_t total, size_t L, uint64_t *lo, uint64_t *hi,
                      const uint64_t *ilo, const uint64_t *ihi)
 {
     switch (kind) {
