@@ -44,6 +44,12 @@ int main(void)
     num[2].value = 3.0 * 1.4142135623730951; /* 3 sqrt2 as a double: numerically dependent on dim 0 */
     CHECK_STATUS(udm1_alpha_check(num, 3, 64, &r), UDM1_OK);
     CHECK(r.dependent && !r.dependent_exact && r.dependent_dims[0] == 0 && r.dependent_dims[1] == 2);
+    udm1_alpha rep2[2];
+    memset(rep2, 0, sizeof rep2);
+    rep2[0].kind = rep2[1].kind = UDM1_ALPHA_FIXED; /* a repeated value */
+    rep2[0].fixed_hi = rep2[1].fixed_hi = 0x9E3779B97F4A7C15ull;
+    CHECK_STATUS(udm1_alpha_check(rep2, 2, 64, &r), UDM1_OK);
+    CHECK(r.dependent && !r.dependent_exact);
     num[2].value = 1.0 / 3.0;
     CHECK_STATUS(udm1_alpha_check(num, 3, 64, &r), UDM1_OK);
     CHECK(r.rational && r.rational_dim == 2);

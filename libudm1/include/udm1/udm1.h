@@ -343,14 +343,16 @@ UDM1_API udm1_status udm1_discrepancy_random(size_t n, uint32_t d, uint32_t kind
  *    quadratic irrationals (a + b sqrt(m)) this is decided exactly: same
  *    square-free part m. Otherwise a pair is reported when an integer relation
  *    l1 a1 + l2 a2 = 0 mod 1 with |l1|, |l2| <= 16 holds to 2^-40 (numerically
- *    dependent, e.g. repeated values);
+ *    dependent, e.g. repeated values); skipped, and said in the message, when
+ *    (generators of unknown nature) x D exceeds 2^20;
  *  - the worst 2D projection: over all pairs of dimensions, the one whose first
  *    n unrandomized points (indices 0..n-1) have the largest L2-star
  *    discrepancy, with its wrap-around discrepancy, beside the expectation for
  *    n random points. (The paper's pair (sqrt487, sqrt237173) is no better than
  *    random at n = 256.) With D == 1 the "projection" is the 1D set itself,
  *    worst_dims is {0, 0} and the random values are those of d = 1.
- *    Cost O(D^2 n^2): refused (INVALID_ARGUMENT) above D(D-1)/2 * n^2/2 = 2^36.
+ *    Cost O(D^2 n^2): refused (INVALID_ARGUMENT) above D(D-1)/2 * (n^2/2 + 256)
+ *    = 2^36 kernel evaluations (about a minute).
  */
 typedef struct udm1_alpha_report {
     uint32_t rational;           /* 1 if some generator is rational */
