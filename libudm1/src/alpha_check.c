@@ -161,6 +161,8 @@ udm1_status udm1_seq_check(const udm1_seq *seq, uint64_t n, udm1_alpha_report *r
 {
     if (!seq || !report)
         return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_seq_check: %s is NULL", seq ? "report" : "seq");
+    if (!seq->gen)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_seq_check: '%s' is not a Weyl sequence", seq->name);
     return udm1_check_generators(seq->gen, seq->dims, n, report);
 }
 

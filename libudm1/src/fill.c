@@ -10,6 +10,7 @@
 #include "hash.h"
 #include "internal.h"
 
+#include <stdlib.h>
 #include <string.h>
 
 /* States per block: 4 arrays of 8 bytes each = 15 KiB of stack. Not a power of
@@ -152,6 +153,43 @@ static void run_kernel(int kind, void *out, size_t offset, size_t len, uint64_t 
     }
 }
 
+/* Any sampler kind: raw values in chunks of rows (its own fill, or one value
+ * call each), then converted and written with the stride. */
+static udm1_status fill_generic(const char *fn, int kind, const udm1_seq *seq, uint64_t stream, uint64_t first,
+                                size_t count, uint32_t dim0, uint32_t ndims, void *out, size_t stride)
+{
+    enum { CHUNK_VALUES = 2048 };
+    size_t rows = ndims >= CHUNK_VALUES ? 1 : CHUNK_VALUES / ndims;
+    uint64_t stack_buf[CHUNK_VALUES];
+    uint64_t *raw = ndims > CHUNK_VALUES ? malloc(sizeof(uint64_t) * ndims) : stack_buf;
+    if (!raw) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %u dimensions", fn, ndims);
+    uint64_t skey = udm1_stream_key(seq->seed_key, stream);
+    for (size_t i0 = 0; i0 < count; i0 += rows) {
+        size_t n = count - i0 < rows ? count - i0 : rows;
+        if (seq->fill) {
+            seq->fill(seq, skey, first + i0, n, dim0, ndims, raw);
+        } else {
+            for (size_t i = 0; i < n; ++i)
+                for (uint32_t j = 0; j < ndims; ++j) raw[i * ndims + j] = seq->value(seq, skey, first + i0 + i, dim0 + j);
+        }
+        for (size_t i = 0; i < n; ++i) {
+            const uint64_t *src = raw + i * ndims;
+            size_t at = (i0 + i) * stride;
+            switch (kind) {
+            case OUT_U64: memcpy((uint64_t *)out + at, src, sizeof(uint64_t) * ndims); break;
+            case OUT_F64:
+                for (uint32_t j = 0; j < ndims; ++j) ((double *)out)[at + j] = CONV_F64(src[j]);
+                break;
+            default:
+                for (uint32_t j = 0; j < ndims; ++j) ((float *)out)[at + j] = CONV_F32(src[j]);
+                break;
+            }
+        }
+    }
+    if (raw != stack_buf) free(raw);
+    return UDM1_OK;
+}
+
 static udm1_status fill(const char *fn, int kind, const udm1_seq *seq, uint64_t stream, uint64_t first, size_t count,
                         uint32_t dim0, uint32_t ndims, void *out, size_t stride)
 {
@@ -173,6 +211,7 @@ static udm1_status fill(const char *fn, int kind, const udm1_seq *seq, uint64_t 
                          count, stride);
     if (count == 0) return UDM1_OK;
     if (!out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: out is NULL", fn);
+    if (seq->value) return fill_generic(fn, kind, seq, stream, first, count, dim0, ndims, out, stride);
 
     uint64_t lo[BLOCK], hi[BLOCK], inc_lo[BLOCK], inc_hi[BLOCK];
     uint64_t skey = udm1_stream_key(seq->seed_key, stream);
@@ -192,7 +231,7 @@ static udm1_status fill(const char *fn, int kind, const udm1_seq *seq, uint64_t 
             uint32_t dim = dim0 + c0 + jj;
             const udm1_generator *g = &seq->gen[dim];
             uint64_t o = seq->offset[dim];
-            if (seq->randomize == UDM1_RANDOMIZE_SHIFT) o += udm1_shift(skey, seq->dim_key[dim]);
+            if (seq->mode == UDM1_MODE_SHIFT) o += udm1_shift(skey, seq->dim_key[dim]);
             /* increment P A (mod 2^128) */
             uint64_t phi, plo;
             udm1_mul64((uint64_t)rows_per_block, g->lo, &phi, &plo);

@@ -4,6 +4,7 @@
 
 #include "udm1/udm1.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 #if defined(__GNUC__)
@@ -33,16 +34,36 @@ typedef struct udm1_generator {
     uint64_t radical;  /* square-free m for UDM1_NATURE_QUADRATIC */
 } udm1_generator;
 
+/* The randomization a sequence applies, with UDM1_RANDOMIZE_DEFAULT resolved. */
+enum udm1_mode {
+    UDM1_MODE_NONE = 0,
+    UDM1_MODE_SHIFT = 1,   /* add r_j modulo 1 (Cranley-Patterson) */
+    UDM1_MODE_PERMUTE = 2, /* base 2: XOR with r_j; base b: a random permutation per digit */
+    UDM1_MODE_OWEN = 3,    /* nested uniform (Owen) scrambling by hashing */
+    UDM1_MODE_STREAMS = 4  /* PRNGs: an independent stream per stream id, no transform */
+};
+
+typedef struct udm1_seq udm1_seq_t;
+/* Raw 0.64 value of (stream key, index, dimension < D), randomization applied. */
+typedef uint64_t (*udm1_value_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim);
+/* Optional fast path: raw values of rows [first, first+count) x dims [dim0, dim0+nd), row-major. */
+typedef void (*udm1_fill_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t first, size_t count, uint32_t dim0,
+                             uint32_t nd, uint64_t *raw);
+
 struct udm1_seq {
     uint32_t dims;
-    uint32_t randomize;
+    uint32_t randomize;    /* as asked (udm1_randomize) */
+    uint32_t mode;         /* effective (enum udm1_mode) */
     uint64_t seed;
     uint64_t point_count;  /* 0: sequence */
     uint64_t seed_key;     /* derived from seed, see hash.h */
     const char *name;      /* static storage */
-    udm1_generator *gen;   /* dims entries */
+    udm1_value_fn value;   /* NULL for Weyl sequences: the inline fast path over gen */
+    udm1_fill_fn fill;     /* NULL: fills call value() */
+    udm1_generator *gen;   /* Weyl: dims generators */
     uint64_t *offset;      /* dims base offsets o_j (0.64) */
     uint64_t *dim_key;     /* dims per-dimension hash keys K_j */
+    void *data;            /* other kinds: their tables (freed with free()) */
 };
 
 /* ---- error reporting (status.c) ---- */
@@ -66,16 +87,33 @@ UDM1_HIDDEN uint64_t udm1_squarefree_part(uint64_t k);
 UDM1_HIDDEN int udm1_first_primes(uint32_t count, uint64_t *out);
 
 /* ---- presets (presets.c) ---- */
+typedef udm1_status (*udm1_init_fn)(udm1_seq_t *seq);
 typedef struct udm1_preset {
     const char *name;
     const char *description;
     uint32_t max_dimensions;
     uint32_t flags;
+    uint32_t default_mode; /* enum udm1_mode of UDM1_RANDOMIZE_DEFAULT */
+    udm1_init_fn init;     /* fills gen (Weyl) or value + data; dims, K, seed, mode are set */
 } udm1_preset;
 UDM1_HIDDEN const udm1_preset *udm1_preset_lookup(const char *name);
-/* Fill the generators of a preset for `dims` dimensions (and K for point sets). */
-UDM1_HIDDEN udm1_status udm1_preset_generators(const udm1_preset *p, uint32_t dims, uint64_t point_count,
-                                               udm1_generator *gen);
+
+/* ---- sampler kinds: init functions (one file each) ---- */
+UDM1_HIDDEN udm1_status udm1_init_pcg32(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_drand48(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_halton(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_sobol(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_hammersley(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_lp(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_cmj(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_grps(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_pmj02(udm1_seq_t *seq);
+/* Weyl sequences with a non-shift randomization go through this value function. */
+UDM1_HIDDEN uint64_t udm1_weyl_value(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim);
+
+/* Base-b radical inverse of n as 0.64 (floor), exact; digits permuted per mode
+ * (r is the dimension's random word). Used by Halton and Hammersley. */
+UDM1_HIDDEN uint64_t udm1_radical_inverse(uint64_t n, uint32_t base, uint32_t mode, uint64_t r);
 
 /* ---- user generators (seq.c) ---- */
 /* Resolve alphas[j]; with check != 0 a rational one is marked, not refused. */

@@ -41,17 +41,101 @@ static const spec EPISWR_WEYL[] = {SQRT(137)};
 
 #define COUNT(a) ((uint32_t)(sizeof(a) / sizeof((a)[0])))
 
+static void from_spec(const spec *s, udm1_generator *g);
+
+static udm1_status weyl_alloc(udm1_seq_t *seq)
+{
+    seq->gen = malloc(sizeof(udm1_generator) * seq->dims);
+    if (!seq->gen) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory");
+    return UDM1_OK;
+}
+
+static udm1_status from_list(udm1_seq_t *seq, const spec *list)
+{
+    udm1_status st = weyl_alloc(seq);
+    for (uint32_t j = 0; st == UDM1_OK && j < seq->dims; ++j) from_spec(&list[j], &seq->gen[j]);
+    return st;
+}
+
+static udm1_status init_wr(udm1_seq_t *seq)
+{
+    udm1_status st = weyl_alloc(seq);
+    if (st != UDM1_OK) return st;
+    uint64_t *primes = malloc(sizeof(uint64_t) * seq->dims);
+    if (!primes || !udm1_first_primes(seq->dims, primes)) {
+        free(primes);
+        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", seq->dims);
+    }
+    for (uint32_t j = 0; j < seq->dims; ++j) udm1_gen_sqrt(primes[j], &seq->gen[j]);
+    free(primes);
+    return UDM1_OK;
+}
+
+static udm1_status init_wr_ao(udm1_seq_t *seq) { return from_list(seq, WR_AO); }
+static udm1_status init_we(udm1_seq_t *seq) { return from_list(seq, WE); }
+static udm1_status init_wgr(udm1_seq_t *seq) { return from_list(seq, WGR); }
+static udm1_status init_wmmr(udm1_seq_t *seq) { return from_list(seq, WMMR); }
+static udm1_status init_hwmmr(udm1_seq_t *seq) { return from_list(seq, HWMMR); }
+static udm1_status init_golden(udm1_seq_t *seq) { return from_list(seq, GOLDEN); }
+
+static udm1_status init_rd(udm1_seq_t *seq)
+{
+    udm1_status st = weyl_alloc(seq);
+    if (st == UDM1_OK) udm1_gen_rd(seq->dims, seq->gen);
+    return st;
+}
+
+static void epis_generator(uint64_t k, udm1_generator *g);
+
+static udm1_status init_epis(udm1_seq_t *seq)
+{
+    udm1_status st = weyl_alloc(seq);
+    if (st != UDM1_OK) return st;
+    epis_generator(seq->point_count, &seq->gen[0]);
+    if (seq->dims > 1) from_spec(&EPISWR_WEYL[0], &seq->gen[1]);
+    return UDM1_OK;
+}
+
+#define POINT_SET UDM1_PRESET_POINT_SET
+#define PAIRS UDM1_PRESET_PAIRS
 static const udm1_preset PRESETS[] = {
-    {"wr", "WeylRichtmyer: square roots of the primes 2, 3, 5, 7, ... (paper 5.1)", UDM1_MAX_DIMENSIONS, 0},
-    {"wr-ao", "WR for ambient occlusion: (sqrt2, sqrt13) (paper 4.2.1)", COUNT(WR_AO), 0},
-    {"we", "WeylExponential: (e, e^2) (paper 4.2.1)", COUNT(WE), 0},
-    {"wgr", "WeylGoldenRatio: ((1+sqrt5)/2, (1+sqrt3)/2) (paper 4.2.1)", COUNT(WGR), 0},
-    {"wmmr", "Weyl metallic means ratio: 22 square roots (paper 5.1)", COUNT(WMMR), 0},
-    {"hwmmr", "Hybrid WMMR: golden ratios, e, e^2 and 18 square roots (paper 5.1)", COUNT(HWMMR), 0},
-    {"rd", "R_d: phi_d^-1 .. phi_d^-d, phi_d the root of x^(d+1) = x + 1 (Roberts 2018)", UDM1_MAX_DIMENSIONS, 0},
-    {"golden", "Golden ratio Weyl sequence in 1D (= R_1)", 1, 0},
-    {"epis", "EPIS point set {n/K + u} (paper 4.2.2)", 1, UDM1_PRESET_POINT_SET},
-    {"episwr", "EPISWR point set: (EPIS, Weyl sqrt137) (paper 4.2.2)", 2, UDM1_PRESET_POINT_SET},
+    /* the paper's Weyl/Kronecker sets */
+    {"wr", "WeylRichtmyer: square roots of the primes 2, 3, 5, 7, ... (paper 5.1)", UDM1_MAX_DIMENSIONS, 0,
+     UDM1_MODE_SHIFT, init_wr},
+    {"wr-ao", "WR for ambient occlusion: (sqrt2, sqrt13) (paper 4.2.1)", COUNT(WR_AO), 0, UDM1_MODE_SHIFT, init_wr_ao},
+    {"we", "WeylExponential: (e, e^2) (paper 4.2.1)", COUNT(WE), 0, UDM1_MODE_SHIFT, init_we},
+    {"wgr", "WeylGoldenRatio: ((1+sqrt5)/2, (1+sqrt3)/2) (paper 4.2.1)", COUNT(WGR), 0, UDM1_MODE_SHIFT, init_wgr},
+    {"wmmr", "Weyl metallic means ratio: 22 square roots (paper 5.1)", COUNT(WMMR), 0, UDM1_MODE_SHIFT, init_wmmr},
+    {"hwmmr", "Hybrid WMMR: golden ratios, e, e^2 and 18 square roots (paper 5.1)", COUNT(HWMMR), 0, UDM1_MODE_SHIFT,
+     init_hwmmr},
+    {"rd", "R_d: phi_d^-1 .. phi_d^-d, phi_d the root of x^(d+1) = x + 1 (Roberts 2018)", UDM1_MAX_DIMENSIONS, 0,
+     UDM1_MODE_SHIFT, init_rd},
+    {"golden", "Golden ratio Weyl sequence in 1D (= R_1)", 1, 0, UDM1_MODE_SHIFT, init_golden},
+    {"epis", "EPIS point set {n/K + u} (paper 4.2.2)", 1, POINT_SET, UDM1_MODE_SHIFT, init_epis},
+    {"episwr", "EPISWR point set: (EPIS, Weyl sqrt137) (paper 4.2.2)", 2, POINT_SET, UDM1_MODE_SHIFT, init_epis},
+    /* the baselines */
+    {"pcg32", "PCG32 (O'Neill 2014), seekable; 32 random bits per value", UDM1_MAX_DIMENSIONS, 0, UDM1_MODE_STREAMS,
+     udm1_init_pcg32},
+    {"drand48", "drand48, bit-identical to the C library's; seekable", UDM1_MAX_DIMENSIONS, 0, UDM1_MODE_STREAMS,
+     udm1_init_drand48},
+    {"halton", "Halton: radical inverses in prime bases, random digit permutations", UDM1_MAX_DIMENSIONS, 0,
+     UDM1_MODE_PERMUTE, udm1_init_halton},
+    {"halton-owen", "Halton, Owen-scrambled by hashing (base-b nested permutations)", UDM1_MAX_DIMENSIONS, 0,
+     UDM1_MODE_OWEN, udm1_init_halton},
+    {"sobol", "Sobol, Joe-Kuo new-joe-kuo-6.21201, random digital shift", UDM1_SOBOL_MAX_DIMENSIONS, 0,
+     UDM1_MODE_PERMUTE, udm1_init_sobol},
+    {"sobol-owen", "Sobol, Owen-scrambled by hashing (Burley 2020)", UDM1_SOBOL_MAX_DIMENSIONS, 0, UDM1_MODE_OWEN,
+     udm1_init_sobol},
+    {"hammersley", "Hammersley point set (i/K, radical inverses 2, 3, 5, ...), random digital shift",
+     UDM1_MAX_DIMENSIONS, POINT_SET, UDM1_MODE_PERMUTE, udm1_init_hammersley},
+    {"lp", "Larcher-Pillichshammer (i/K, LP(i)) point set, in pairs, random digital shift", UDM1_MAX_DIMENSIONS,
+     POINT_SET | PAIRS, UDM1_MODE_PERMUTE, udm1_init_lp},
+    {"cmj", "Correlated multi-jittered (Kensler 2013), in pairs, a pattern per stream", UDM1_MAX_DIMENSIONS,
+     POINT_SET | PAIRS, UDM1_MODE_STREAMS, udm1_init_cmj},
+    {"grps", "Golden ratio point set (Schretter, Kobbelt, Dehaye 2012), in pairs", UDM1_MAX_DIMENSIONS,
+     POINT_SET | PAIRS, UDM1_MODE_STREAMS, udm1_init_grps},
+    {"pmj02", "Progressive multi-jittered (0,2) (Christensen et al. 2018, Pharr 2019), in pairs", 64,
+     POINT_SET | PAIRS, UDM1_MODE_PERMUTE, udm1_init_pmj02},
 };
 
 size_t udm1_preset_count(void) { return sizeof(PRESETS) / sizeof(PRESETS[0]); }
@@ -109,11 +193,6 @@ static void from_spec(const spec *s, udm1_generator *g)
     }
 }
 
-static void from_list(const spec *list, uint32_t dims, udm1_generator *gen)
-{
-    for (uint32_t j = 0; j < dims; ++j) from_spec(&list[j], &gen[j]);
-}
-
 /* The EPIS axis n/K: A = ceil(2^128 / K), which makes the top 64 bits of n A
  * equal floor(n 2^64 / K) exactly for every n < K <= 2^32. */
 static void epis_generator(uint64_t k, udm1_generator *g)
@@ -141,36 +220,4 @@ static void epis_generator(uint64_t k, udm1_generator *g)
     if (qlo == 0) ++qhi;
     g->hi = qhi;
     g->lo = qlo;
-}
-
-udm1_status udm1_preset_generators(const udm1_preset *p, uint32_t dims, uint64_t point_count, udm1_generator *gen)
-{
-    const char *n = p->name;
-    if (strcmp(n, "wr") == 0) {
-        uint64_t *primes = malloc(sizeof(uint64_t) * dims);
-        if (!primes || !udm1_first_primes(dims, primes)) {
-            free(primes);
-            return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", dims);
-        }
-        for (uint32_t j = 0; j < dims; ++j) udm1_gen_sqrt(primes[j], &gen[j]);
-        free(primes);
-    } else if (strcmp(n, "wr-ao") == 0) {
-        from_list(WR_AO, dims, gen);
-    } else if (strcmp(n, "we") == 0) {
-        from_list(WE, dims, gen);
-    } else if (strcmp(n, "wgr") == 0) {
-        from_list(WGR, dims, gen);
-    } else if (strcmp(n, "wmmr") == 0) {
-        from_list(WMMR, dims, gen);
-    } else if (strcmp(n, "hwmmr") == 0) {
-        from_list(HWMMR, dims, gen);
-    } else if (strcmp(n, "rd") == 0) {
-        udm1_gen_rd(dims, gen);
-    } else if (strcmp(n, "golden") == 0) {
-        from_list(GOLDEN, dims, gen);
-    } else if (strcmp(n, "epis") == 0 || strcmp(n, "episwr") == 0) {
-        epis_generator(point_count, &gen[0]);
-        if (dims > 1) from_list(EPISWR_WEYL, dims - 1, gen + 1);
-    }
-    return UDM1_OK;
 }

@@ -2,6 +2,7 @@
  * random access to single values. */
 #include "hash.h"
 #include "internal.h"
+#include "scramble.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -15,7 +16,7 @@ void udm1_seq_desc_init(udm1_seq_desc *desc)
     if (!desc) return;
     memset(desc, 0, sizeof *desc);
     desc->struct_size = DESC_V1_SIZE;
-    desc->randomize = UDM1_RANDOMIZE_SHIFT;
+    desc->randomize = UDM1_RANDOMIZE_DEFAULT;
 }
 
 /* floor(frac(v) * 2^128) of a finite double. */
@@ -85,7 +86,7 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
                          "%s: desc.struct_size %u is not a udm1_seq_desc size (call udm1_seq_desc_init)", fn,
                          desc->struct_size);
     if (desc->reserved != 0) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.reserved must be 0", fn);
-    if (desc->randomize != UDM1_RANDOMIZE_NONE && desc->randomize != UDM1_RANDOMIZE_SHIFT)
+    if (desc->randomize > UDM1_RANDOMIZE_OWEN)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.randomize %u is not a udm1_randomize", fn,
                          desc->randomize);
     uint32_t dims = desc->dimensions;
@@ -117,11 +118,10 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
 
     udm1_seq *seq = calloc(1, sizeof *seq);
     if (seq) {
-        seq->gen = malloc(sizeof(udm1_generator) * dims);
         seq->offset = calloc(dims, sizeof(uint64_t));
         seq->dim_key = malloc(sizeof(uint64_t) * dims);
     }
-    if (!seq || !seq->gen || !seq->offset || !seq->dim_key) {
+    if (!seq || !seq->offset || !seq->dim_key) {
         udm1_seq_destroy(seq);
         return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %u dimensions", fn, dims);
     }
@@ -130,13 +130,22 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
     seq->seed = desc->seed;
     seq->point_count = desc->point_count;
     seq->seed_key = udm1_seed_key(desc->seed);
+    for (uint32_t j = 0; j < dims; ++j) {
+        if (desc->offsets) seq->offset[j] = desc->offsets[j];
+        seq->dim_key[j] = udm1_dim_key(seq->seed_key, j);
+    }
+    static const uint32_t modes[] = {UDM1_MODE_NONE, 0, UDM1_MODE_SHIFT, UDM1_MODE_PERMUTE, UDM1_MODE_OWEN};
+    uint32_t default_mode = preset ? preset->default_mode : UDM1_MODE_SHIFT;
+    seq->mode = desc->randomize == UDM1_RANDOMIZE_DEFAULT ? default_mode : modes[desc->randomize];
 
     udm1_status st = UDM1_OK;
     if (preset) {
         seq->name = preset->name;
-        st = udm1_preset_generators(preset, dims, desc->point_count, seq->gen);
+        st = preset->init(seq);
     } else {
         seq->name = "custom";
+        seq->gen = malloc(sizeof(udm1_generator) * dims);
+        if (!seq->gen) st = udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %u dimensions", fn, dims);
         for (uint32_t j = 0; j < dims && st == UDM1_OK; ++j)
             st = udm1_user_generator(fn, j, &desc->alphas[j], &seq->gen[j], 0);
     }
@@ -144,10 +153,8 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
         udm1_seq_destroy(seq);
         return st;
     }
-    for (uint32_t j = 0; j < dims; ++j) {
-        if (desc->offsets) seq->offset[j] = desc->offsets[j];
-        seq->dim_key[j] = udm1_dim_key(seq->seed_key, j);
-    }
+    /* Weyl sequences take the inline path for no randomization and shifts */
+    if (seq->gen && seq->mode != UDM1_MODE_NONE && seq->mode != UDM1_MODE_SHIFT) seq->value = udm1_weyl_value;
     *out = seq;
     return UDM1_OK;
 }
@@ -170,6 +177,7 @@ void udm1_seq_destroy(udm1_seq *seq)
 {
     if (!seq) return;
     free(seq->gen);
+    free(seq->data);
     free(seq->offset);
     free(seq->dim_key);
     free(seq);
@@ -181,23 +189,52 @@ uint64_t udm1_seq_point_count(const udm1_seq *seq) { return seq ? seq->point_cou
 uint64_t udm1_seq_seed(const udm1_seq *seq) { return seq ? seq->seed : 0; }
 uint32_t udm1_seq_randomize(const udm1_seq *seq) { return seq ? seq->randomize : 0; }
 
+uint32_t udm1_seq_randomization(const udm1_seq *seq)
+{
+    static const uint32_t asked[] = {UDM1_RANDOMIZE_NONE, UDM1_RANDOMIZE_SHIFT, UDM1_RANDOMIZE_PERMUTE,
+                                     UDM1_RANDOMIZE_OWEN, UDM1_RANDOMIZE_DEFAULT};
+    return seq ? asked[seq->mode] : 0;
+}
+
+uint32_t udm1_seq_flags(const udm1_seq *seq)
+{
+    if (!seq || !seq->name) return 0;
+    const udm1_preset *p = udm1_preset_lookup(seq->name);
+    return p ? p->flags : 0;
+}
+
 udm1_status udm1_seq_alpha(const udm1_seq *seq, uint32_t dim, uint64_t *hi, uint64_t *lo)
 {
     if (!seq || !hi || !lo) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_seq_alpha: a pointer argument is NULL");
     if (dim >= seq->dims)
         return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_alpha: dimension %u of a %u-dimensional sequence", dim,
                          seq->dims);
+    if (!seq->gen)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_seq_alpha: '%s' is not a Weyl sequence", seq->name);
     *hi = seq->gen[dim].hi;
     *lo = seq->gen[dim].lo;
     return UDM1_OK;
 }
 
-/* O_j for a stream: base offset plus the random shift. */
+/* O_j for a stream: base offset plus the random shift (Weyl, NONE or SHIFT). */
 static inline uint64_t total_offset(const udm1_seq *seq, uint64_t stream_key, uint32_t dim)
 {
     uint64_t o = seq->offset[dim];
-    if (seq->randomize == UDM1_RANDOMIZE_SHIFT) o += udm1_shift(stream_key, seq->dim_key[dim]);
+    if (seq->mode == UDM1_MODE_SHIFT) o += udm1_shift(stream_key, seq->dim_key[dim]);
     return o;
+}
+
+/* The value of (stream key, index, dim < D) for any kind. */
+static inline uint64_t value_of(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    if (seq->value) return seq->value(seq, skey, index, dim);
+    return udm1_weyl_raw(&seq->gen[dim], total_offset(seq, skey, dim), index);
+}
+
+uint64_t udm1_weyl_value(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    uint64_t r = seq->mode == UDM1_MODE_NONE ? 0 : udm1_shift(skey, seq->dim_key[dim]);
+    return udm1_randomize_base2(seq->mode, udm1_weyl_raw(&seq->gen[dim], seq->offset[dim], index), r);
 }
 
 udm1_status udm1_seq_offset(const udm1_seq *seq, uint64_t stream, uint32_t dim, uint64_t *offset)
@@ -206,7 +243,9 @@ udm1_status udm1_seq_offset(const udm1_seq *seq, uint64_t stream, uint32_t dim, 
     if (dim >= seq->dims)
         return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_offset: dimension %u of a %u-dimensional sequence", dim,
                          seq->dims);
-    *offset = total_offset(seq, udm1_stream_key(seq->seed_key, stream), dim);
+    uint64_t o = seq->offset[dim];
+    if (seq->mode != UDM1_MODE_NONE) o += udm1_shift(udm1_stream_key(seq->seed_key, stream), seq->dim_key[dim]);
+    *offset = o;
     return UDM1_OK;
 }
 
@@ -219,8 +258,7 @@ static udm1_status sample_raw(const char *fn, const udm1_seq *seq, uint64_t stre
     if (seq->point_count && index >= seq->point_count)
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn,
                          (unsigned long long)index, (unsigned long long)seq->point_count);
-    uint64_t o = total_offset(seq, udm1_stream_key(seq->seed_key, stream), dim);
-    *raw = udm1_weyl_raw(&seq->gen[dim], o, index);
+    *raw = value_of(seq, udm1_stream_key(seq->seed_key, stream), index, dim);
     return UDM1_OK;
 }
 
@@ -272,7 +310,7 @@ static inline uint64_t cursor_next(udm1_cursor *c)
     const udm1_seq *seq = c->seq;
     uint32_t dim = c->dimension++;
     uint64_t skey = c->key;
-    if (UDM1_LIKELY(dim < seq->dims)) return udm1_weyl_raw(&seq->gen[dim], total_offset(seq, skey, dim), c->index);
+    if (UDM1_LIKELY(dim < seq->dims)) return value_of(seq, skey, c->index, dim);
     ++c->padded;
     /* padding: an independent uniform value of (seed, stream, index, dim) */
     return udm1_pad(udm1_shift(skey, udm1_dim_key(seq->seed_key, dim)), c->index);

@@ -12,7 +12,7 @@ from . import _native
 from ._native import lib
 
 ALPHA_SQRT, ALPHA_FIXED, ALPHA_DOUBLE = 1, 2, 3
-RANDOMIZE_NONE, RANDOMIZE_SHIFT = 0, 1
+RANDOMIZE = {"none": 0, "default": 1, "shift": 2, "permute": 3, "owen": 4}
 
 
 class UDM1Error(ValueError):
@@ -99,6 +99,8 @@ class Sequence:
 
     ``Sequence("wr", 8, seed=7)``: a preset with a random shift per stream.
     ``Sequence("wr", 8, randomize=False)``: the deterministic sequence.
+    ``randomize`` is True (the preset's default), False, or one of "shift",
+    "permute", "owen" (see udm1.h).
     ``Sequence(alphas=[udm1.Sqrt(2), udm1.Sqrt(13)])``: your own generators.
     ``Sequence("episwr", 2, point_count=64, seed=1)``: a point set of K points.
 
@@ -126,7 +128,7 @@ class Sequence:
         desc.dimensions = int(d)
         desc.point_count = int(point_count)
         desc.seed = int(seed) % (1 << 64)
-        desc.randomize = RANDOMIZE_SHIFT if randomize else RANDOMIZE_NONE
+        desc.randomize = _randomize_code(randomize)
         keep = []
         if preset is not None:
             desc.preset = str(preset).encode()
@@ -183,7 +185,13 @@ class Sequence:
 
     @property
     def randomized(self) -> bool:
-        return lib.udm1_seq_randomize(self.handle) == RANDOMIZE_SHIFT
+        return lib.udm1_seq_randomize(self.handle) != 0
+
+    @property
+    def randomization(self) -> str:
+        """The randomization applied ("none", "shift", "permute", "owen"; "default" for PRNG streams)."""
+        code = lib.udm1_seq_randomization(self.handle)
+        return [k for k, v in RANDOMIZE.items() if v == code][0]
 
     def alpha(self, dim: int) -> int:
         """Generator of dimension dim: its fractional part times 2^128, as an int."""
@@ -259,6 +267,16 @@ def _report_dict(rep) -> dict:
         "random_wrap_around": rep.random_wrap_around,
         "message": rep.message.decode(),
     }
+
+
+def _randomize_code(randomize) -> int:
+    if randomize is True:
+        return RANDOMIZE["default"]
+    if randomize is False or randomize is None:
+        return RANDOMIZE["none"]
+    if isinstance(randomize, str) and randomize in RANDOMIZE:
+        return RANDOMIZE[randomize]
+    raise ValueError(f"udm1.Sequence: randomize {randomize!r} is not True, False or one of {sorted(RANDOMIZE)}")
 
 
 def _u64(v) -> int:

@@ -82,7 +82,7 @@ static void test_create_errors(void)
     udm1_seq_desc_init(NULL); /* accepted */
     CHECK_STATUS(udm1_seq_create_desc(NULL, &s), UDM1_ERROR_NULL_ARGUMENT);
     udm1_seq_desc_init(&d);
-    CHECK(d.struct_size == sizeof d && d.randomize == UDM1_RANDOMIZE_SHIFT && d.preset == NULL);
+    CHECK(d.struct_size == sizeof d && d.randomize == UDM1_RANDOMIZE_DEFAULT && d.preset == NULL);
     d.dimensions = 2;
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_NULL_ARGUMENT); /* no preset, no alphas */
     d.preset = "wr";
@@ -93,7 +93,7 @@ static void test_create_errors(void)
     udm1_seq_desc_init(&d);
     d.dimensions = 2;
     d.preset = "wr";
-    d.randomize = 2;
+    d.randomize = UDM1_RANDOMIZE_OWEN + 1;
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
     CHECK(mentions("randomize"));
     d.randomize = UDM1_RANDOMIZE_NONE;

@@ -1,7 +1,8 @@
 /* test_fill.c - bulk fills equal per-sample calls bit for bit, for every
  * preset, output type, stride, dimension range, index range (including the
  * top of the 2^64 range) and split of a range; the cursor equals per-sample
- * calls; float and double outputs are never 1.0. */
+ * calls; float and double outputs are never 1.0. Every preset, every
+ * randomization. */
 #include "check.h"
 
 #include <udm1/udm1.h>
@@ -9,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static udm1_seq *make(const char *preset, uint32_t dims, uint64_t k, uint64_t seed, int randomize)
+static udm1_seq *make(const char *preset, uint32_t dims, uint64_t k, uint64_t seed, uint32_t randomize)
 {
     udm1_seq_desc d;
     udm1_seq_desc_init(&d);
@@ -17,7 +18,7 @@ static udm1_seq *make(const char *preset, uint32_t dims, uint64_t k, uint64_t se
     d.dimensions = dims;
     d.point_count = k;
     d.seed = seed;
-    d.randomize = randomize ? UDM1_RANDOMIZE_SHIFT : UDM1_RANDOMIZE_NONE;
+    d.randomize = randomize;
     udm1_seq *s = NULL;
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_OK);
     return s;
@@ -49,11 +50,17 @@ static void compare_range(const udm1_seq *s, uint64_t stream, uint64_t first, si
                 continue;
             }
             uint64_t eu = 0;
-            double ef = 0;
-            float eg = 0;
             udm1_seq_sample_u64(s, stream, first + i, d0 + j, &eu);
-            udm1_seq_sample_f64(s, stream, first + i, d0 + j, &ef);
-            udm1_seq_sample_f32(s, stream, first + i, d0 + j, &eg);
+            /* the documented conversions of the raw value, and the per-sample calls on the first row */
+            double ef = (double)(eu >> 11) * 0x1p-53;
+            float eg = (float)(eu >> 40) * 0x1p-24f;
+            if (i == 0) {
+                double sf = -1;
+                float sg = -1;
+                udm1_seq_sample_f64(s, stream, first + i, d0 + j, &sf);
+                udm1_seq_sample_f32(s, stream, first + i, d0 + j, &sg);
+                if (sf != ef || sg != eg) ++bad;
+            }
             if (u[at] != eu || memcmp(&f[at], &ef, sizeof ef) != 0 || memcmp(&g[at], &eg, sizeof eg) != 0) {
                 fprintf(stderr, "  %s first=%llu count=%zu d0=%u nd=%u stride=%zu: i=%zu j=%u %016llx vs %016llx\n",
                         udm1_seq_name(s), (unsigned long long)first, count, d0, nd, stride, i, j,
@@ -70,38 +77,54 @@ static void compare_range(const udm1_seq *s, uint64_t stream, uint64_t first, si
     free(g);
 }
 
+/* thorough: every first x count below; otherwise a few */
+static void check_preset(const char *name, uint32_t D, uint64_t K, uint32_t randomize, int thorough)
+{
+    static const uint64_t firsts[] = {0, 999, 1ull << 63, 1, (1ull << 32) - 1, 1ull << 53};
+    static const size_t counts[] = {0, 17, 1031, 1, 2, 7, 16, 255};
+    size_t nf = thorough ? 6 : 3, nc = thorough ? 8 : 3;
+    udm1_seq *s = make(name, D, K, 42, randomize);
+    for (size_t fi = 0; fi < nf; ++fi)
+        for (size_t ci = 0; ci < nc; ++ci) {
+            uint64_t first = firsts[fi];
+            size_t count = counts[ci];
+            if (K) { /* stay inside the point set */
+                if (first >= K) first = first % K;
+                if (count > K - first) count = (size_t)(K - first);
+            }
+            compare_range(s, 5, first, count, 0, D, D);                    /* contiguous */
+            if (D > 1) compare_range(s, 5, first, count, 1, D - 1, D + 2); /* strided sub-range */
+            compare_range(s, 6, first, count, D - 1, 1, 3);                /* one dimension, strided */
+        }
+    udm1_seq_destroy(s);
+}
+
 static void test_bulk_equals_samples(void)
 {
-    static const struct { const char *name; uint32_t dims; uint64_t k; } cases[] = {
-        {"wr", 1, 0}, {"wr", 2, 0}, {"wr", 3, 0}, {"wr", 17, 0}, {"wr", 64, 0}, {"wr", 600, 0},
-        {"wr-ao", 2, 0}, {"we", 2, 0}, {"wgr", 2, 0}, {"wmmr", 22, 0}, {"hwmmr", 22, 0}, {"rd", 2, 0},
-        {"rd", 7, 0}, {"golden", 1, 0}, {"epis", 1, 1}, {"epis", 1, 1000}, {"episwr", 2, 4096},
-    };
-    static const uint64_t firsts[] = {0, 1, 999, (1ull << 32) - 1, 1ull << 53, 1ull << 63};
-    static const size_t counts[] = {0, 1, 2, 7, 16, 255, 1031};
-    for (size_t c = 0; c < sizeof cases / sizeof *cases; ++c) {
-        for (int rnd = 0; rnd < 2; ++rnd) {
-            udm1_seq *s = make(cases[c].name, cases[c].dims, cases[c].k, 42, rnd);
-            uint32_t D = cases[c].dims;
-            for (size_t fi = 0; fi < sizeof firsts / sizeof *firsts; ++fi)
-                for (size_t ci = 0; ci < sizeof counts / sizeof *counts; ++ci) {
-                    uint64_t first = firsts[fi];
-                    size_t count = counts[ci];
-                    if (cases[c].k) { /* stay inside the point set */
-                        if (first >= cases[c].k) first = first % cases[c].k;
-                        if (count > cases[c].k - first) count = (size_t)(cases[c].k - first);
-                    }
-                    compare_range(s, 5, first, count, 0, D, D);           /* contiguous */
-                    if (D > 1) compare_range(s, 5, first, count, 1, D - 1, D + 2); /* strided sub-range */
-                    compare_range(s, 6, first, count, D - 1, 1, 3);       /* one dimension, strided */
-                }
-            udm1_seq_destroy(s);
-        }
+    /* every preset, every randomization */
+    for (size_t p = 0; p < udm1_preset_count(); ++p) {
+        udm1_preset_info info;
+        udm1_preset_get(p, &info);
+        int point_set = (info.flags & UDM1_PRESET_POINT_SET) != 0;
+        uint32_t dims[3] = {1, info.max_dimensions < 3 ? info.max_dimensions : 3,
+                            info.max_dimensions < 23 ? info.max_dimensions : 23};
+        for (int di = 0; di < 3; ++di)
+            for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_OWEN; ++r)
+                check_preset(info.name, dims[di], point_set ? 1000 : 0, r, r == UDM1_RANDOMIZE_DEFAULT && di == 1);
+        if (point_set) check_preset(info.name, dims[1], 1, UDM1_RANDOMIZE_DEFAULT, 1);
     }
+    /* many dimensions (the fill's chunking), Weyl and others */
+    check_preset("wr", 600, 0, UDM1_RANDOMIZE_DEFAULT, 0);
+    check_preset("sobol", 600, 0, UDM1_RANDOMIZE_OWEN, 0);
+    check_preset("halton", 100, 0, UDM1_RANDOMIZE_NONE, 0);
+    check_preset("pcg32", 2100, 0, UDM1_RANDOMIZE_DEFAULT, 0);
     /* the very top of the index range */
     udm1_seq *s = make("wr", 5, 0, 3, 1);
     compare_range(s, 0, UINT64_MAX - 100, 101, 0, 5, 5);
     compare_range(s, UINT64_MAX, UINT64_MAX, 1, 0, 5, 5);
+    udm1_seq_destroy(s);
+    s = make("sobol-owen", 5, 0, 3, 1);
+    compare_range(s, 0, UINT64_MAX - 100, 101, 0, 5, 5);
     udm1_seq_destroy(s);
 }
 

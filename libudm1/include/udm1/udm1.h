@@ -34,7 +34,7 @@
  *  - The same inputs give bit-identical outputs everywhere: per-sample and bulk
  *    calls, any split of an index range, any thread, any run.
  *
- * Randomization (UDM1_RANDOMIZE_SHIFT, the paper's "unique random start for
+ * Randomization (UDM1_RANDOMIZE_DEFAULT for the Weyl presets = SHIFT, the paper's "unique random start for
  * each pixel"): a Cranley-Patterson rotation done in integers. The 64-bit shift
  * r_j is a counter-based hash of (seed, stream, j): no state per pixel, any
  * pixel's points can be computed in any order on any thread. Use one stream id
@@ -56,7 +56,7 @@
 #include <stdint.h>
 
 #define UDM1_VERSION_MAJOR 1
-#define UDM1_VERSION_MINOR 0
+#define UDM1_VERSION_MINOR 1
 #define UDM1_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, as returned by udm1_version(). */
 #define UDM1_VERSION (UDM1_VERSION_MAJOR * 10000 + UDM1_VERSION_MINOR * 100 + UDM1_VERSION_PATCH)
@@ -65,8 +65,11 @@
  * 65536 primes; R_d: d up to this). Presets with a fixed list have fewer. */
 #define UDM1_MAX_DIMENSIONS 65536u
 
-/* The largest point count K of a point set (EPIS): 2^32 - 1. */
+/* The largest point count K of a point set: 2^32 - 1 (pmj02: 2^20). */
 #define UDM1_MAX_POINT_COUNT 4294967295u
+
+/* Dimensions of the Sobol presets: the Joe-Kuo new-joe-kuo-6.21201 set. */
+#define UDM1_SOBOL_MAX_DIMENSIONS 21201u
 
 #if defined(UDM1_STATIC_DEFINE)
 #  define UDM1_API
@@ -118,6 +121,7 @@ UDM1_API const char *udm1_last_error(void);
 /* Presets                                                                   */
 /* ------------------------------------------------------------------------ */
 /*
+ * The paper's Weyl/Kronecker sets (x_n = {s + n alpha}, exact in integers):
  * name      generators alpha_j (paper section)                     dimensions
  * wr        sqrt of the primes 2, 3, 5, 7, 11, ... (5.1, Richtmyer)  1..65536
  * wr-ao     sqrt2, sqrt13: the paper's AO pair WR (4.2.1)            1..2
@@ -130,11 +134,49 @@ UDM1_API const char *udm1_last_error(void);
  * golden    the golden ratio (1+sqrt5)/2: 1D Weyl sequence (= R_1)   1
  * epis      EPIS point set x_n = {n/K + u} (4.2.2); needs K          1
  * episwr    EPISWR = (EPIS, Weyl sqrt137) (4.2.2); needs K           1..2
+ * Their default randomization is the random shift (UDM1_RANDOMIZE_SHIFT).
+ *
+ * The baselines the paper compares with, and today's production samplers:
+ * name        what                                      default randomization   dims
+ * pcg32       PCG32 XSH-RR (O'Neill), value (n, j) is   a stream per stream id  1..65536
+ *             output number n*D + j of the stream; 32 random bits per value
+ * drand48     the C library's drand48, same layout;     a stream per stream id  1..65536
+ *             with UDM1_RANDOMIZE_NONE and stream 0 it is bit-identical to
+ *             srand48(seed) then drand48(), drand48(), ...
+ * halton      radical inverse of n in base p_j (the     random digit            1..65536
+ *             j-th prime), exact                        permutations (PERMUTE)
+ * halton-owen the same                                  Owen scrambling (OWEN)  1..65536
+ * sobol       Sobol, Joe-Kuo new-joe-kuo-6.21201        random digital shift    1..21201
+ *             direction numbers, 64-bit; point n is     (PERMUTE: XOR)
+ *             that of scipy's Sobol (Gray-code order): with UDM1_RANDOMIZE_NONE
+ *             its doubles equal scipy.stats.qmc.Sobol(d, scramble=False, bits=53)
+ * sobol-owen  the same                                  Owen scrambling by      1..21201
+ *                                                       hashing (Burley 2020)
+ * hammersley  (n/K, radical inverses in bases 2, 3,     random digital shift    1..65536
+ *             5, ...); needs K
+ * lp          Larcher-Pillichshammer (n/K, LP(n));      random digital shift    pairs
+ *             needs K
+ * cmj         correlated multi-jittered (Kensler        a pattern per stream    pairs
+ *             2013); needs K
+ * grps        golden ratio point set (Schretter,        a pattern per stream    pairs
+ *             Kobbelt, Dehaye 2012); needs K
+ * pmj02       progressive multi-jittered (0,2)          random digital shift    pairs, 1..64
+ *             (Christensen et al. 2018, Pharr 2019);    (keeps the (0,2)
+ *             tables built at creation; K <= 2^20       stratification)
+ *
+ * "pairs" (UDM1_PRESET_PAIRS): a 2D construction. Dimensions 2k and 2k+1 form
+ * pair k; every pair is its own pattern (keyed by the seed and k) and pairs
+ * k >= 1 visit the points in their own order (a hashed permutation of the K
+ * indices), so pairs are decorrelated. An odd D uses the first coordinate of
+ * the last pair. Halton's and Sobol's digit structure reaches 2^64 indices;
+ * Owen scrambling covers the top 32 digits and fills the rest uniformly.
  * Preset names are matched exactly (lower case).
  */
 
 /* Preset flag: the preset is a point set and needs a point count K >= 1. */
 #define UDM1_PRESET_POINT_SET 1u
+/* Preset flag: a 2D construction used in pairs of dimensions (see above). */
+#define UDM1_PRESET_PAIRS 2u
 
 typedef struct udm1_preset_info {
     const char *name;         /* static storage */
@@ -158,8 +200,12 @@ UDM1_API udm1_status udm1_preset_find(const char *name, udm1_preset_info *info);
 typedef struct udm1_seq udm1_seq;
 
 typedef enum udm1_randomize {
-    UDM1_RANDOMIZE_NONE = 0,  /* r_j = 0: the deterministic sequence */
-    UDM1_RANDOMIZE_SHIFT = 1  /* r_j = hash(seed, stream, j): random shift per stream */
+    UDM1_RANDOMIZE_NONE = 0,    /* the deterministic sequence; every stream gives the same points */
+    UDM1_RANDOMIZE_DEFAULT = 1, /* the preset's own randomization (see the preset table) */
+    UDM1_RANDOMIZE_SHIFT = 2,   /* random shift r_j = hash(seed, stream, j), added modulo 1 */
+    UDM1_RANDOMIZE_PERMUTE = 3, /* random digital shift: base 2, XOR with r_j; base b (Halton,
+                                   Hammersley), a random permutation of the digits at each position */
+    UDM1_RANDOMIZE_OWEN = 4     /* nested uniform (Owen) scrambling by hashing, keyed by r_j */
 } udm1_randomize;
 
 typedef enum udm1_alpha_kind {
@@ -190,12 +236,14 @@ typedef struct udm1_seq_desc {
     const uint64_t *offsets;   /* optional: D base offsets o_j in 0.64 fixed point; NULL = 0 */
     uint64_t point_count;      /* K for a point-set preset (1..UDM1_MAX_POINT_COUNT); else 0 */
     uint64_t seed;             /* key of the random shifts */
-    uint32_t randomize;        /* udm1_randomize */
+    uint32_t randomize;        /* udm1_randomize; PRNGs and "pattern" presets (cmj, grps) take an
+                                  independent stream per stream id unless NONE, and then
+                                  apply SHIFT/PERMUTE/OWEN on top if asked */
     uint32_t reserved;         /* set to 0 */
 } udm1_seq_desc;
 
 /* Fill desc with defaults: struct_size set, dimensions 0, preset NULL,
- * alphas NULL, offsets NULL, point_count 0, seed 0, UDM1_RANDOMIZE_SHIFT.
+ * alphas NULL, offsets NULL, point_count 0, seed 0, UDM1_RANDOMIZE_DEFAULT.
  * Does nothing if desc is NULL. */
 UDM1_API void udm1_seq_desc_init(udm1_seq_desc *desc);
 
@@ -209,7 +257,7 @@ UDM1_API void udm1_seq_desc_init(udm1_seq_desc *desc);
 UDM1_API udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out);
 
 /* Shorthand: a preset with D dimensions, point count K (0 for sequences) and
- * per-stream random shifts keyed by seed (UDM1_RANDOMIZE_SHIFT).
+ * its default per-stream randomization keyed by seed (UDM1_RANDOMIZE_DEFAULT).
  * For an unrandomized sequence use udm1_seq_create_desc. Errors as above. */
 UDM1_API udm1_status udm1_seq_create(const char *preset, uint32_t dimensions,
                                      uint64_t point_count, uint64_t seed, udm1_seq **out);
@@ -227,12 +275,20 @@ UDM1_API const char *udm1_seq_name(const udm1_seq *seq);
 /* K for a point set; 0 for a sequence (all 2^64 indices valid). */
 UDM1_API uint64_t udm1_seq_point_count(const udm1_seq *seq);
 UDM1_API uint64_t udm1_seq_seed(const udm1_seq *seq);
+/* The randomization asked for (desc.randomize). */
 UDM1_API uint32_t udm1_seq_randomize(const udm1_seq *seq);
+/* The randomization applied: UDM1_RANDOMIZE_NONE, SHIFT, PERMUTE or OWEN, with
+ * DEFAULT resolved; DEFAULT itself for a PRNG's or pattern's plain streams. (1.1) */
+UDM1_API uint32_t udm1_seq_randomization(const udm1_seq *seq);
+/* Preset flags (UDM1_PRESET_*) of the sequence; 0 for "custom". (1.1) */
+UDM1_API uint32_t udm1_seq_flags(const udm1_seq *seq);
 /* The generator of dimension dim as its 0.128 fixed-point fraction A_j.
- * Errors: NULL_ARGUMENT, DIMENSION. */
+ * Errors: NULL_ARGUMENT, DIMENSION, INVALID_ARGUMENT (not a Weyl sequence). */
 UDM1_API udm1_status udm1_seq_alpha(const udm1_seq *seq, uint32_t dim, uint64_t *hi, uint64_t *lo);
-/* The total offset O_j = o_j + r_j(seed, stream) of dimension dim for a stream,
- * in 0.64 fixed point: the raw value of point 0. Errors: NULL_ARGUMENT, DIMENSION. */
+/* The base offset plus the dimension's random word, O_j = o_j + r_j(seed, stream)
+ * (r_j = 0 without randomization), in 0.64 fixed point. For a Weyl sequence
+ * with no randomization or a shift it is the raw value of point 0.
+ * Errors: NULL_ARGUMENT, DIMENSION. */
 UDM1_API udm1_status udm1_seq_offset(const udm1_seq *seq, uint64_t stream, uint32_t dim, uint64_t *offset);
 
 /* ------------------------------------------------------------------------ */
@@ -368,8 +424,9 @@ typedef struct udm1_alpha_report {
     char message[256];           /* one-line summary */
 } udm1_alpha_report;
 
-/* Check the generators of a sequence at n points (2 <= n <= 65536).
- * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n, work limit), OUT_OF_MEMORY. */
+/* Check the generators of a Weyl sequence at n points (2 <= n <= 65536).
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n, work limit, not a Weyl
+ * sequence), OUT_OF_MEMORY. */
 UDM1_API udm1_status udm1_seq_check(const udm1_seq *seq, uint64_t n, udm1_alpha_report *report);
 /* Check user generators before creating a sequence; unlike creation, a
  * rational generator is reported, not refused. Errors: NULL_ARGUMENT,

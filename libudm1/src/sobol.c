@@ -1,0 +1,95 @@
+/* sobol.c - the Sobol sequence with Joe and Kuo's direction numbers
+ * (new-joe-kuo-6.21201), 64 bits.
+ *
+ * The table of primitive polynomials and initial numbers m_1..m_s is generated
+ * at build time (libudm1/gen/sobol_table.py, from scipy's copy or Joe and Kuo's
+ * file); it is not kept in the source tree. Direction numbers:
+ *   V_k = m_k 2^(64-k)                                    k = 1..s
+ *   V_k = V_{k-s} ^ (V_{k-s} >> s) ^ XOR_i a_i V_{k-i}    k > s
+ * with a_i the inner coefficients of the polynomial. Dimension 0 is the van der
+ * Corput sequence. Point n is the XOR of V_k over the set bits of the Gray code
+ * n ^ (n >> 1): the order of scipy.stats.qmc.Sobol, whose doubles with
+ * bits=53 and scramble=False equal ours with UDM1_RANDOMIZE_NONE.
+ */
+#include "scramble.h"
+
+#include <stdlib.h>
+
+#if defined(UDM1_HAVE_SOBOL_TABLE)
+extern const uint32_t udm1_sobol_table_dims;
+extern const uint32_t udm1_sobol_table_poly[];
+extern const uint32_t udm1_sobol_table_offset[];
+extern const uint32_t udm1_sobol_table_m[];
+#endif
+
+typedef struct sobol { uint64_t v[1][64]; } sobol; /* dims x 64 direction numbers */
+
+static uint64_t sobol_raw(const sobol *t, uint32_t dim, uint64_t n)
+{
+    uint64_t g = n ^ (n >> 1), x = 0;
+    const uint64_t *v = t->v[dim];
+    for (int k = 0; g; ++k, g >>= 1)
+        if (g & 1) x ^= v[k];
+    return x;
+}
+
+static uint64_t sobol_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    uint64_t v = sobol_raw(seq->data, dim, index) + seq->offset[dim];
+    return udm1_randomize_base2(seq->mode, v, udm1_word(seq, skey, dim));
+}
+
+/* Sequential fill: the Gray code changes one bit per step. */
+static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, size_t count, uint32_t dim0,
+                       uint32_t nd, uint64_t *raw)
+{
+    const sobol *t = seq->data;
+    for (uint32_t j = 0; j < nd; ++j) {
+        uint32_t dim = dim0 + j;
+        uint64_t x = sobol_raw(t, dim, first), r = udm1_word(seq, skey, dim), o = seq->offset[dim];
+        const uint64_t *v = t->v[dim];
+        for (size_t i = 0; i < count; ++i) {
+            raw[i * nd + j] = udm1_randomize_base2(seq->mode, x + o, r);
+            uint64_t next = first + i + 1; /* Gray(next) = Gray(next - 1) ^ 2^ctz(next) */
+            if (next) x ^= v[__builtin_ctzll(next)];
+        }
+    }
+}
+
+udm1_status udm1_init_sobol(udm1_seq_t *seq)
+{
+#if defined(UDM1_HAVE_SOBOL_TABLE)
+    if (seq->dims > udm1_sobol_table_dims)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_create: the Sobol table has %u dimensions, %u asked",
+                         udm1_sobol_table_dims, seq->dims);
+    sobol *t = malloc(sizeof(uint64_t) * 64 * seq->dims);
+    if (!t) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u dimensions", seq->dims);
+    for (uint32_t j = 0; j < seq->dims; ++j) {
+        uint64_t *v = t->v[j];
+        uint32_t poly = udm1_sobol_table_poly[j];
+        uint32_t s = 0;
+        while ((poly >> (s + 1)) != 0) ++s; /* degree */
+        const uint32_t *m = udm1_sobol_table_m + udm1_sobol_table_offset[j];
+        for (uint32_t k = 0; k < 64; ++k) {
+            if (s == 0) {
+                v[k] = 1ull << (63 - k);
+            } else if (k < s) {
+                v[k] = (uint64_t)m[k] << (63 - k);
+            } else {
+                uint64_t x = v[k - s] ^ (v[k - s] >> s);
+                for (uint32_t i = 1; i < s; ++i)
+                    if ((poly >> (s - i)) & 1u) x ^= v[k - i];
+                v[k] = x;
+            }
+        }
+    }
+    seq->data = t;
+    seq->value = sobol_value;
+    seq->fill = sobol_fill;
+    return UDM1_OK;
+#else
+    (void)seq;
+    return udm1_fail(UDM1_ERROR_UNKNOWN_PRESET,
+                     "udm1_seq_create: this libudm1 was built without the Sobol table (UDM1_SOBOL=OFF)");
+#endif
+}
