@@ -5,7 +5,15 @@ numpy arrays, ``udm1.qmc`` for scipy.stats.qmc engines, and ``udm1.discrepancy``
 """
 
 from ._native import library_path
-from .metrics import discrepancy, discrepancy_random
+from .metrics import (
+    discrepancy,
+    discrepancy_random,
+    integrand,
+    integrand_exact,
+    integrands,
+    min_distance,
+    star_discrepancy,
+)
 from .sequence import Fixed, Preset, Sequence, Sqrt, UDM1Error, check_alphas, presets, version
 
 __all__ = [
@@ -17,6 +25,11 @@ __all__ = [
     "check_alphas",
     "discrepancy",
     "discrepancy_random",
+    "integrand",
+    "integrand_exact",
+    "integrands",
+    "min_distance",
+    "star_discrepancy",
     "library_path",
     "presets",
     "version",

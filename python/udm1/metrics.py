@@ -32,3 +32,61 @@ def discrepancy_random(n: int, d: int, method: str = "CD") -> float:
     out = ctypes.c_double()
     check(lib.udm1_discrepancy_random(int(n), int(d), METHODS[method], ctypes.byref(out)))
     return out.value
+
+
+def _points2d(sample, name: str, min_d: int = 1) -> np.ndarray:
+    x = np.ascontiguousarray(np.asarray(sample, dtype=np.float64))
+    if x.ndim != 2 or x.shape[1] < min_d:
+        raise ValueError(f"udm1.{name}: sample must be an (n, d) array with d >= {min_d}")
+    return x
+
+
+def star_discrepancy(sample) -> float:
+    """Exact star discrepancy of an (n, 2) sample (n <= 16384), O(n^2)."""
+    x = _points2d(sample, "star_discrepancy", 2)
+    out = ctypes.c_double()
+    check(lib.udm1_star_discrepancy_2d(x.ctypes.data, x.shape[0], x.shape[1], ctypes.byref(out)))
+    return out.value
+
+
+def min_distance(sample, toroidal: bool = False) -> float:
+    """Smallest pairwise distance of an (n, d) sample (multiply by sqrt(n) to normalise)."""
+    x = _points2d(sample, "min_distance")
+    out = ctypes.c_double()
+    check(lib.udm1_min_distance(x.ctypes.data, x.shape[0], x.shape[1], x.shape[1], int(bool(toroidal)), ctypes.byref(out)))
+    return out.value
+
+
+def integrands() -> dict:
+    """{name: code} of the test integrands (see udm1.h)."""
+    out = {}
+    for code in range(1, 64):
+        name = lib.udm1_integrand_name(code)
+        if name:
+            out[name.decode()] = code
+    return out
+
+
+def _integrand_code(integrand) -> int:
+    if isinstance(integrand, str):
+        table = integrands()
+        if integrand not in table:
+            raise ValueError(f"udm1: unknown integrand {integrand!r}; known: {sorted(table)}")
+        return table[integrand]
+    return int(integrand)
+
+
+def integrand(name, sample) -> np.ndarray:
+    """Values of a test integrand at the rows of an (n, d) sample."""
+    x = _points2d(sample, "integrand")
+    out = np.empty(x.shape[0])
+    check(lib.udm1_integrand_eval(_integrand_code(name), x.shape[1], x.ctypes.data, x.shape[0], x.shape[1],
+                                  out.ctypes.data))
+    return out
+
+
+def integrand_exact(name, d: int) -> float:
+    """The exact integral of a test integrand over [0,1]^d."""
+    out = ctypes.c_double()
+    check(lib.udm1_integrand_exact(_integrand_code(name), int(d), ctypes.byref(out)))
+    return out.value

@@ -237,6 +237,28 @@ class Sequence:
                                       out.ctypes.data if n else None, nd))
         return out
 
+    def integration_error(self, integrand, d: int, n: int, randomizations: int = 32) -> tuple[float, float]:
+        """(rmse, bias) of the mean of a test integrand over points [0, n) of streams
+        0..R-1 against its exact integral (udm1_integration_error)."""
+        from .metrics import _integrand_code
+
+        rmse, bias = ctypes.c_double(), ctypes.c_double()
+        check(lib.udm1_integration_error(self.handle, _integrand_code(integrand), int(d), int(n), int(randomizations),
+                                         ctypes.byref(rmse), ctypes.byref(bias)))
+        return rmse.value, bias.value
+
+    def spectrum(self, n: int, size: int = 128, randomizations: int = 16, dim0: int = 0) -> np.ndarray:
+        """Periodogram of dimensions (dim0, dim0+1), (size, size), zero frequency at the centre."""
+        out = np.empty((int(size), int(size)))
+        check(lib.udm1_spectrum_2d(self.handle, _u32(dim0), int(n), int(randomizations), int(size), out.ctypes.data))
+        return out
+
+    def zoneplate(self, width: int, height: int, spp: int, dim0: int = 0) -> np.ndarray:
+        """The zone plate test image (height, width), float32."""
+        out = np.empty((int(height), int(width)), dtype=np.float32)
+        check(lib.udm1_zoneplate(self.handle, _u32(dim0), int(width), int(height), int(spp), out.ctypes.data))
+        return out
+
     def check(self, n: int = 256) -> dict:
         """udm1_seq_check: rationality, dependence and the worst 2D projection at n points."""
         rep = _native.AlphaReport()
