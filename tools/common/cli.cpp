@@ -1,0 +1,46 @@
+// cli.cpp - see cli.h.
+#include "cli.h"
+
+#include <udm1/udm1.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+namespace udm1app {
+
+uint64_t parse_u64(const std::string &text, const std::string &what, uint64_t lo, uint64_t hi)
+{
+    const char *s = text.c_str();
+    char *end = nullptr;
+    errno = 0;
+    unsigned long long v = std::strtoull(s, &end, 10);
+    if (text.empty() || *end != '\0' || errno == ERANGE || text[0] == '-' || v < lo || v > hi)
+        throw Error(what + " '" + text + "' is not a whole number in " + std::to_string(lo) + ".." +
+                    std::to_string(hi));
+    return v;
+}
+
+double parse_double(const std::string &text, const std::string &what, double lo, double hi)
+{
+    const char *s = text.c_str();
+    char *end = nullptr;
+    errno = 0;
+    double v = std::strtod(s, &end);
+    if (text.empty() || *end != '\0' || errno == ERANGE || !std::isfinite(v) || v < lo || v > hi)
+        throw Error(what + " '" + text + "' is not a number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                    "]");
+    return v;
+}
+
+uint32_t parse_randomize(const std::string &text)
+{
+    if (text == "none") return UDM1_RANDOMIZE_NONE;
+    if (text == "default") return UDM1_RANDOMIZE_DEFAULT;
+    if (text == "shift") return UDM1_RANDOMIZE_SHIFT;
+    if (text == "permute") return UDM1_RANDOMIZE_PERMUTE;
+    if (text == "owen") return UDM1_RANDOMIZE_OWEN;
+    throw Error("--randomize '" + text + "' is not one of none, default, shift, permute, owen");
+}
+
+}  // namespace udm1app

@@ -1,0 +1,24 @@
+// cli.h - command-line helpers shared by udm1's tools: parsing numbers and
+// names strictly, and one-line errors that name the bad input.
+#pragma once
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace udm1app {
+
+// A user error: the tool prints "<tool>: <message>" and exits with `code`.
+struct Error : std::runtime_error {
+    int code;
+    explicit Error(const std::string &message, int exit_code = 2) : std::runtime_error(message), code(exit_code) {}
+};
+
+// The whole string must be a number in [lo, hi]; otherwise Error naming `what`.
+uint64_t parse_u64(const std::string &text, const std::string &what, uint64_t lo, uint64_t hi);
+double parse_double(const std::string &text, const std::string &what, double lo, double hi);
+
+// udm1_randomize from "none", "default", "shift", "permute", "owen".
+uint32_t parse_randomize(const std::string &text);
+
+}  // namespace udm1app

@@ -1,0 +1,32 @@
+// image_write.cpp - see image_write.h.
+#include "image_write.h"
+
+#include "atomic_file.h"
+#include "cli.h"
+
+#include <OpenImageIO/imageio.h>
+
+namespace udm1app {
+
+void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
+                 bool srgb)
+{
+    AtomicFile file(path);
+    auto out = OIIO::ImageOutput::create(file.temp_path());
+    if (!out) throw Error("cannot write '" + path + "': no image format for its extension", 2);
+    OIIO::TypeDesc type = OIIO::TypeDesc::FLOAT;
+    std::string fmt = out->format_name();
+    if (fmt == "png" || fmt == "jpeg" || fmt == "bmp" || fmt == "targa") type = OIIO::TypeDesc::UINT8;
+    if (fmt == "tiff") type = OIIO::TypeDesc::UINT16;
+    OIIO::ImageSpec spec(width, height, channels, type);
+    if (fmt == "png") {
+        spec.attribute("oiio:ColorSpace", srgb ? "sRGB" : "linear");
+        if (!srgb) spec.attribute("oiio:Gamma", 1.0f);
+    }
+    if (!out->open(file.temp_path(), spec) ||
+        !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
+        throw Error("cannot write '" + path + "': " + out->geterror(), 1);
+    file.commit();
+}
+
+}  // namespace udm1app

@@ -1,0 +1,17 @@
+// image_write.h - writing images through OpenImageIO (PNG, EXR, TIFF, ...),
+// atomically (no partial file on failure).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace udm1app {
+
+// Write a width x height image of `channels` floats per pixel (row-major, top
+// row first) to `path`; the format comes from the extension. 8- and 16-bit
+// formats get the values clamped to [0, 1]; PNGs are tagged linear (gamma 1)
+// unless `srgb`. Throws Error naming the path on failure.
+void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
+                 bool srgb = false);
+
+}  // namespace udm1app
