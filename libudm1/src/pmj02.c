@@ -15,7 +15,8 @@
  * x-strata only meet grids with few y-bits, whose rows the subcell fixes, and
  * the other way round, so x and y are chosen independently by walking down
  * the occupied-cell bitsets (Pharr). Every prefix of 2^m points is then a
- * (0,m,2)-net in base 2; tests/c/test_baselines.c checks it.
+ * (0,m,2)-net in base 2, and so is every aligned block of 2^m points;
+ * tests/c/test_baselines.c checks both.
  */
 #include "scramble.h"
 
@@ -156,14 +157,32 @@ static int build(uint32_t *xs, uint32_t *ys, uint32_t K, uint64_t key)
 
 typedef struct pmj02 {
     uint32_t pairs;
+    uint32_t bits;  /* m with 2^m >= K */
     uint32_t xy[1]; /* pairs x K x 2 */
 } pmj02;
+
+/* Pairs k >= 1 read their table in a shuffled order: the index, as an m-bit
+ * fraction, Owen-scrambled (Burley's shuffle), walking again while past K.
+ * Owen scrambling maps aligned blocks of 2^a indices onto aligned blocks, and
+ * every aligned block of a PMJ02 table is itself a (0,a,2)-net, so every
+ * power-of-two prefix of every pair stays stratified, while the pairs are
+ * decorrelated (the same index no longer means the same stratum pattern). */
+static uint64_t shuffled(const pmj02 *t, uint64_t K, uint32_t key, uint64_t index)
+{
+    if (t->bits == 0) return index;
+    uint32_t sh = 32 - t->bits, j = (uint32_t)index;
+    do j = udm1_owen32(j << sh, key) >> sh;
+    while (j >= K);
+    return j;
+}
 
 static uint64_t pmj02_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
     const pmj02 *t = seq->data;
     uint64_t K = seq->point_count;
-    uint64_t v = (uint64_t)t->xy[((dim / 2) * K + index) * 2 + (dim & 1)] << 32;
+    uint32_t pair = dim / 2;
+    if (pair) index = shuffled(t, K, udm1_key32(seq->seed_key, 0x504D4A53u, pair), index);
+    uint64_t v = (uint64_t)t->xy[(pair * K + index) * 2 + (dim & 1)] << 32;
     return udm1_randomize_base2(seq->mode, v + seq->offset[dim], udm1_word(seq, skey, dim));
 }
 
@@ -192,6 +211,8 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
         return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for pmj02 tables");
     }
     t->pairs = pairs;
+    t->bits = 0;
+    while (((uint64_t)1 << t->bits) < K) ++t->bits;
     seq->data = t;
     seq->value = pmj02_value;
     return UDM1_OK;

@@ -15,11 +15,14 @@
  */
 #include "scramble.h"
 
-static uint32_t digit_key(uint64_t r, uint32_t k, udm1_u128 prefix, int nested)
+/* The permutation key of digit position k: r's low word stepped by a Weyl
+ * constant per position (udm1_permute hashes its key thoroughly); for Owen
+ * scrambling also a hash of the scrambled digits above (the prefix). */
+static inline uint32_t digit_key(uint64_t r, uint32_t k, udm1_u128 prefix, int nested)
 {
-    uint64_t h = r + ((uint64_t)k + 1u) * UDM1_GOLDEN_GAMMA;
-    if (nested) h ^= udm1_mix64((uint64_t)prefix ^ udm1_mix64((uint64_t)(prefix >> 64) + k));
-    return (uint32_t)udm1_mix64(h);
+    uint32_t key = (uint32_t)r + (k + 1u) * 0x9E3779B9u;
+    if (nested) key ^= (uint32_t)((((uint64_t)prefix ^ (uint64_t)(prefix >> 64)) * 0xD6E8FEB86659FD93ull) >> 32);
+    return key;
 }
 
 uint64_t udm1_radical_inverse(uint64_t n, uint32_t b, uint32_t mode, uint64_t r)
@@ -29,14 +32,17 @@ uint64_t udm1_radical_inverse(uint64_t n, uint32_t b, uint32_t mode, uint64_t r)
     udm1_u128 R = 0, D = 1;
     const udm1_u128 enough = (udm1_u128)1 << 64;
     for (uint32_t k = 0; D < enough; ++k) {
-        if (!scramble && n == 0) break;
-        uint32_t d;
-        if (n <= UINT32_MAX) { /* 32-bit division is several times faster */
-            d = (uint32_t)n % b;
-            n = (uint32_t)n / b;
-        } else {
-            d = (uint32_t)(n % b);
-            n /= b;
+        uint32_t d = 0;
+        if (n) {
+            if (n <= UINT32_MAX) { /* 32-bit division is several times faster */
+                d = (uint32_t)n % b;
+                n = (uint32_t)n / b;
+            } else {
+                d = (uint32_t)(n % b);
+                n /= b;
+            }
+        } else if (!scramble) {
+            break; /* the remaining digits are zeros */
         }
         if (scramble) d = udm1_permute(d, b, digit_key(r, k, R, mode == UDM1_MODE_OWEN));
         R = R * b + d;

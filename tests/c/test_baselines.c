@@ -119,6 +119,14 @@ static void test_nets(void)
         for (int p = 0; p < 2; ++p)
             for (uint32_t m = 0; ((size_t)1 << m) <= K; ++m)
                 CHECKF(is_net(buf + 2 * p, 5, m), "pmj02 mode %u pair %d prefix 2^%u", modes[mi], p, m);
+        /* the pairs are decorrelated: |corr(x of pair 0, x of pair 1)| small */
+        double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+        for (size_t i = 0; i < K; ++i) {
+            double a = (double)buf[5 * i] * 0x1p-64, b = (double)buf[5 * i + 2] * 0x1p-64;
+            sx += a, sy += b, sxx += a * a, syy += b * b, sxy += a * b;
+        }
+        double corr = (sxy / K - sx / K * sy / K) / sqrt((sxx / K - sx * sx / K / K) * (syy / K - sy * sy / K / K));
+        CHECKF(fabs(corr) < 0.1, "pmj02 pairs 0 and 1 correlate: %g", corr);
         udm1_seq_destroy(s);
     }
     /* negative control: random points are not a net */
@@ -131,6 +139,11 @@ static void test_nets(void)
     uint64_t *big = malloc(sizeof(uint64_t) * 2 * ((size_t)1 << 16));
     CHECK_STATUS(udm1_seq_fill_u64(s, 0, 0, (size_t)1 << 16, 0, 2, big, 2), UDM1_OK);
     for (uint32_t m = 0; m <= 16; ++m) CHECKF(is_net(big, 2, m), "pmj02 2^16: prefix 2^%u", m);
+    /* every aligned block is a net too (what the shuffle of pairs k >= 1 relies on) */
+    int blocks_bad = 0;
+    for (uint32_t m = 1; m <= 12; ++m)
+        for (size_t j = 0; j < ((size_t)1 << (16 - m)); ++j) blocks_bad += !is_net(big + 2 * (j << m), 2, m);
+    CHECKF(blocks_bad == 0, "pmj02: %d aligned blocks are not nets", blocks_bad);
     free(big);
     udm1_seq_destroy(s);
     free(buf);
@@ -254,6 +267,33 @@ static void test_uniform_randomizations(void)
     }
 }
 
+static void test_dimensions_decorrelated(void)
+{
+    /* over 1024 points, no two of the first 8 dimensions correlate (|r| < 0.1) */
+    enum { N = 1024, D = 8 };
+    static double x[N * D];
+    for (size_t p = 0; p < udm1_preset_count(); ++p) {
+        udm1_preset_info info;
+        udm1_preset_get(p, &info);
+        uint32_t d = info.max_dimensions < D ? info.max_dimensions : D;
+        if (d < 2) continue;
+        udm1_seq *s = make(info.name, d, (info.flags & UDM1_PRESET_POINT_SET) ? N : 0, 3, UDM1_RANDOMIZE_DEFAULT);
+        CHECK_STATUS(udm1_seq_fill_f64(s, 1, 0, N, 0, d, x, d), UDM1_OK);
+        for (uint32_t a = 0; a < d; ++a)
+            for (uint32_t b = a + 1; b < d; ++b) {
+                double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+                for (int i = 0; i < N; ++i) {
+                    double u = x[i * d + a], v = x[i * d + b];
+                    sa += u, sb += v, saa += u * u, sbb += v * v, sab += u * v;
+                }
+                double cov = sab / N - sa / N * sb / N;
+                double r = cov / sqrt((saa / N - sa * sa / N / N) * (sbb / N - sb * sb / N / N));
+                CHECKF(fabs(r) < 0.1, "%s: dimensions %u and %u correlate, r = %.3f", info.name, a, b, r);
+            }
+        udm1_seq_destroy(s);
+    }
+}
+
 static void test_limits(void)
 {
     udm1_seq *s = NULL;
@@ -293,6 +333,7 @@ int main(void)
     test_cmj_strata();
     test_grps();
     test_uniform_randomizations();
+    test_dimensions_decorrelated();
     test_limits();
     CHECK_DONE();
 }

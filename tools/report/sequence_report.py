@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import argparse
 import csv
-import html
 import json
 import math
 import platform
@@ -28,6 +27,7 @@ import numpy as np  # noqa: E402
 from scipy.stats import qmc  # noqa: E402
 
 import udm1  # noqa: E402
+from report_common import log, md_table, md_to_html, writable_folder  # noqa: E402
 
 # The paper's 2D sets (section 4.2), the first two dimensions of its
 # many-dimensional sets (section 5.1), R_2, and the anchors.
@@ -42,10 +42,6 @@ PLOT_SETS = [
     ("R_2", "rd", {}),
 ]
 METHODS = ["L2-star", "CD", "WD"]
-
-
-def log(msg: str) -> None:
-    print(f"[report] {msg}", file=sys.stderr, flush=True)
 
 
 def udm1_points(preset: str, n: int, seed: int, point_count: bool = False, dims: int = 2) -> np.ndarray:
@@ -185,12 +181,6 @@ def exactness(out: Path) -> tuple[str, list[dict]]:
     return name, rows
 
 
-def md_table(header: list[str], rows: list[list]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(c) for c in r) + " |" for r in rows]
-    return "\n".join(lines)
-
-
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", default="report", help="output folder (default: report)")
@@ -200,14 +190,8 @@ def main(argv=None) -> int:
     if args.seeds < 1 or args.seeds > 1000:
         print(f"sequence_report: --seeds {args.seeds} is outside 1..1000", file=sys.stderr)
         return 2
-    out = Path(args.out)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-        probe = out / ".write-test"
-        probe.write_text("")
-        probe.unlink()
-    except OSError as exc:
-        print(f"sequence_report: cannot write to '{out}': {exc.strerror}", file=sys.stderr)
+    out = writable_folder(args.out, "sequence_report")
+    if out is None:
         return 1
     t0 = time.time()
     ns = [64, 256] if args.quick else [64, 256, 1024, 4096]
@@ -280,40 +264,6 @@ A ratio above 1 means that some pair of dimensions is worse than independent ran
     log(f"wrote {out}/index.html, report.md, data.json, discrepancy.csv and {len(METHODS) + 2} figures "
         f"in {time.time() - t0:.0f} s")
     return 0
-
-
-def md_to_html(md: str) -> str:
-    """A small Markdown subset (headings, tables, images, paragraphs) to static HTML."""
-    body, table = [], []
-
-    def flush_table():
-        if not table:
-            return
-        rows = [[c.strip() for c in line.strip("|").split("|")] for line in table if not set(line) <= set("|-")]
-        body.append("<table>" + "".join(
-            "<tr>" + "".join(f"<{'th' if i == 0 else 'td'}>{html.escape(c)}</{'th' if i == 0 else 'td'}>" for c in r)
-            + "</tr>" for i, r in enumerate(rows)) + "</table>")
-        table.clear()
-
-    for line in md.splitlines():
-        if line.startswith("|"):
-            table.append(line)
-            continue
-        flush_table()
-        if line.startswith("#"):
-            level = len(line) - len(line.lstrip("#"))
-            body.append(f"<h{level}>{html.escape(line[level:].strip())}</h{level}>")
-        elif line.startswith("!["):
-            for part in line.split(") "):
-                alt, src = part[2:].split("](")
-                body.append(f'<img alt="{html.escape(alt)}" src="{html.escape(src.rstrip(")"))}">')
-        elif line.strip():
-            body.append(f"<p>{html.escape(line)}</p>")
-    flush_table()
-    style = ("body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}table{border-collapse:collapse}"
-             "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}img{max-width:100%}")
-    return f"<!doctype html><html><head><meta charset='utf-8'><title>udm1 report</title><style>{style}</style></head>" \
-           f"<body>{''.join(body)}</body></html>\n"
 
 
 if __name__ == "__main__":
