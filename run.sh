@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # run.sh - the project's entry point (see README.md).
 #
-#   ./run.sh          the main job: build, then write report/ (sequence report on built-in data)
+#   ./run.sh          the main job: build, then write report/ (sequence and sampler reports)
 #   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C tests
 #                     again under AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
@@ -30,9 +30,12 @@ report)
     shift || true
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
-    udm1_log "writing report/ (sequence report)"
-    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" \
-        "$PY" tools/report/sequence_report.py --out "$ROOT/report" "$@"
+    export PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1"
+    udm1_log "writing report/: the sequence report"
+    "$PY" tools/report/sequence_report.py --out "$ROOT/report" "$@"
+    udm1_log "writing report/: the sampler report (every sampler, about 2 minutes)"
+    "$PY" tools/report/sampler_report.py --bench "$ROOT/build/tools/udm1_bench_samplers" --out "$ROOT/report" "$@"
+    udm1_log "done: open report/index.html"
     ;;
 test)
     udm1_bootstrap "$ROOT"
@@ -53,6 +56,8 @@ bench)
     ./build/tools/udm1_bench_seq "$@"
     udm1_log "Python throughput against numpy and scipy (tools/bench_python.py)"
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_python.py
+    udm1_log "every sampler's throughput (tools/bench_samplers.c)"
+    ./build/tools/udm1_bench_samplers throughput
     ;;
 *)
     echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench])" >&2

@@ -229,6 +229,8 @@ def main(argv=None) -> int:
     md = f"""# udm1 sequence report
 
 udm1 {udm1.version()}; {len(ns)} sizes, {args.seeds} randomizations each; made in {time.time() - t0:.0f} s.
+The comparison of every sampler (integration error against N and time, spectra, zone plates, and where
+the paper's sequences win and lose) is in [the sampler report](samplers.html).
 
 ## Points
 ![points]({fig_points})
