@@ -66,6 +66,16 @@ struct udm1_seq {
     void *data;            /* other kinds: their tables (freed with free()) */
 };
 
+/* A noise's tables (noise.c); the patterns (patterns.c) read the wave sources. */
+#define UDM1_NOISE_WAVES 10
+struct udm1_noise {
+    uint32_t kind;
+    uint32_t period[3];
+    uint8_t perm[512];        /* the permutation, twice */
+    double grad[256][3];      /* unit gradients (UDM1_NOISE_CLASSIC) */
+    double wave_source[UDM1_NOISE_WAVES][3];
+};
+
 /* ---- error reporting (status.c) ---- */
 /* Record a one-line message for udm1_last_error() and return status. */
 UDM1_HIDDEN udm1_status udm1_fail(udm1_status status, const char *fmt, ...)

@@ -14,10 +14,12 @@ from .metrics import (
     min_distance,
     star_discrepancy,
 )
+from .noise import Noise, patterns
 from .sequence import Fixed, Preset, Sequence, Sqrt, UDM1Error, check_alphas, presets, version
 
 __all__ = [
     "Fixed",
+    "Noise",
     "Preset",
     "Sequence",
     "Sqrt",
@@ -29,6 +31,7 @@ __all__ = [
     "integrand_exact",
     "integrands",
     "min_distance",
+    "patterns",
     "star_discrepancy",
     "library_path",
     "presets",

@@ -86,6 +86,33 @@ class Cursor(ctypes.Structure):
     ]
 
 
+class NoiseDesc(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("kind", ctypes.c_uint32),
+        ("table", ctypes.c_char_p),
+        ("seed", ctypes.c_uint64),
+        ("period", ctypes.c_uint32 * 3),
+        ("reserved", ctypes.c_uint32),
+    ]
+
+
+class PatternParams(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("pattern", ctypes.c_uint32),
+        ("octaves", ctypes.c_uint32),
+        ("wave", ctypes.c_uint32),
+        ("omega", ctypes.c_double),
+        ("lambda_", ctypes.c_double),
+        ("turbulence", ctypes.c_double * 3),
+        ("frequency", ctypes.c_double),
+        ("phase", ctypes.c_double),
+        ("exponent", ctypes.c_double),
+        ("agate_turb", ctypes.c_double),
+    ]
+
+
 STATUS_NAMES = {
     0: "UDM1_OK",
     1: "UDM1_ERROR_NULL_ARGUMENT",
@@ -192,3 +219,18 @@ _proto("udm1_integration_error", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint32, cty
 _proto("udm1_spectrum_2d", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint64, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_void_p)
 _proto("udm1_zoneplate", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_void_p)
 _proto("udm1_alpha_check", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.c_uint64, ctypes.POINTER(AlphaReport))
+_proto("udm1_noise_desc_init", None, ctypes.POINTER(NoiseDesc))
+_proto("udm1_noise_create", _S, ctypes.POINTER(NoiseDesc), ctypes.POINTER(ctypes.c_void_p))
+_proto("udm1_noise_destroy", None, ctypes.c_void_p)
+_proto("udm1_noise_tables", _S, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_p)
+_proto("udm1_noise_points", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t,
+       ctypes.c_void_p)
+_proto("udm1_noise_3d", ctypes.c_double, ctypes.c_void_p, ctypes.c_double, ctypes.c_double, ctypes.c_double)
+_proto("udm1_pattern_params_init", None, ctypes.POINTER(PatternParams), ctypes.c_uint32)
+_proto("udm1_pattern_name", ctypes.c_char_p, ctypes.c_uint32)
+_proto("udm1_pattern_from_name", ctypes.c_uint32, ctypes.c_char_p)
+_proto("udm1_pattern_points", _S, ctypes.c_void_p, ctypes.POINTER(PatternParams), ctypes.c_void_p, ctypes.c_size_t,
+       ctypes.c_size_t, ctypes.c_void_p)
+_proto("udm1_pattern_grid", _S, ctypes.c_void_p, ctypes.POINTER(PatternParams), ctypes.c_uint32, ctypes.c_uint32,
+       ctypes.c_uint32, ctypes.c_uint32, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
+       ctypes.POINTER(ctypes.c_double), ctypes.c_void_p)

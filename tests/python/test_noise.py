@@ -1,0 +1,87 @@
+"""udm1's noise against an independent transcription of Perlin's reference
+Improved Noise (2002), and the Python wrappers."""
+
+import math
+
+import numpy as np
+import pytest
+
+import udm1
+
+PERLIN = [151, 160, 137, 91, 90, 15, 131, 13, 201, 95, 96, 53, 194, 233, 7, 225, 140, 36, 103, 30, 69, 142, 8, 99, 37,
+          240, 21, 10, 23, 190, 6, 148, 247, 120, 234, 75, 0, 26, 197, 62, 94, 252, 219, 203, 117, 35, 11, 32, 57, 177,
+          33, 88, 237, 149, 56, 87, 174, 20, 125, 136, 171, 168, 68, 175, 74, 165, 71, 134, 139, 48, 27, 166, 77, 146,
+          158, 231, 83, 111, 229, 122, 60, 211, 133, 230, 220, 105, 92, 41, 55, 46, 245, 40, 244, 102, 143, 54, 65, 25,
+          63, 161, 1, 216, 80, 73, 209, 76, 132, 187, 208, 89, 18, 169, 200, 196, 135, 130, 116, 188, 159, 86, 164, 100,
+          109, 198, 173, 186, 3, 64, 52, 217, 226, 250, 124, 123, 5, 202, 38, 147, 118, 126, 255, 82, 85, 212, 207, 206,
+          59, 227, 47, 16, 58, 17, 182, 189, 28, 42, 223, 183, 170, 213, 119, 248, 152, 2, 44, 154, 163, 70, 221, 153,
+          101, 155, 167, 43, 172, 9, 129, 22, 39, 253, 19, 98, 108, 110, 79, 113, 224, 232, 178, 185, 112, 104, 218,
+          246, 97, 228, 251, 34, 242, 193, 238, 210, 144, 12, 191, 179, 162, 241, 81, 51, 145, 235, 249, 14, 239, 107,
+          49, 192, 214, 31, 181, 199, 106, 157, 184, 84, 204, 176, 115, 121, 50, 45, 127, 4, 150, 254, 138, 236, 205,
+          93, 222, 114, 67, 29, 24, 72, 243, 141, 128, 195, 78, 66, 215, 61, 156, 180]
+
+
+def perlin_reference(x, y, z):
+    """ImprovedNoise.java, transcribed."""
+    p = PERLIN + PERLIN
+    fade = lambda t: t * t * t * (t * (t * 6 - 15) + 10)
+    lerp = lambda t, a, b: a + t * (b - a)
+
+    def grad(h, x, y, z):
+        h &= 15
+        u = x if h < 8 else y
+        v = y if h < 4 else (x if h in (12, 14) else z)
+        return (u if h & 1 == 0 else -u) + (v if h & 2 == 0 else -v)
+
+    X, Y, Z = math.floor(x) & 255, math.floor(y) & 255, math.floor(z) & 255
+    x, y, z = x - math.floor(x), y - math.floor(y), z - math.floor(z)
+    u, v, w = fade(x), fade(y), fade(z)
+    A = p[X] + Y; AA = p[A] + Z; AB = p[A + 1] + Z
+    B = p[X + 1] + Y; BA = p[B] + Z; BB = p[B + 1] + Z
+    return lerp(w, lerp(v, lerp(u, grad(p[AA], x, y, z), grad(p[BA], x - 1, y, z)),
+                        lerp(u, grad(p[AB], x, y - 1, z), grad(p[BB], x - 1, y - 1, z))),
+                lerp(v, lerp(u, grad(p[AA + 1], x, y, z - 1), grad(p[BA + 1], x - 1, y, z - 1)),
+                     lerp(u, grad(p[AB + 1], x, y - 1, z - 1), grad(p[BB + 1], x - 1, y - 1, z - 1))))
+
+
+def test_equals_perlin_reference_bit_for_bit():
+    assert sorted(PERLIN) == list(range(256))
+    rng = np.random.default_rng(1)
+    pts = np.vstack([rng.uniform(-300, 300, (3000, 3)), [[3.14, 42, 7], [0.5, 0.5, 0.5], [-4.2, 10, 6]]])
+    ours = udm1.Noise().noise(pts)
+    ref = np.array([perlin_reference(*p) for p in pts])
+    assert np.array_equal(ours, ref)
+    assert ours[-3] == 0.13691995878400012 and ours[-2] == -0.25 and abs(ours[-1] - 0.14208) < 1e-12
+    perm, grad = udm1.Noise().tables()
+    assert list(perm) == PERLIN
+
+
+def test_tileable_textures_have_equal_edges():
+    for P in (3, 8, 17, 256, 300):
+        n = udm1.Noise("wr", seed=2, period=P)
+        img = n.pattern_grid("fbm", 2 * P, P, size=(P, P), octaves=4)  # lambda 2: octaves keep the period
+        # the column of x = 0 and the one of x = P are the same values: compare the noise there directly
+        ys = (np.arange(P) + 0.5)
+        left = n.pattern("fbm", np.column_stack([np.zeros(P), ys, np.zeros(P)]), octaves=4)
+        right = n.pattern("fbm", np.column_stack([np.full(P, float(P)), ys, np.zeros(P)]), octaves=4)
+        assert np.max(np.abs(left - right)) <= 1e-12
+        assert img.shape == (P, 2 * P)
+
+
+def test_wrappers_and_errors():
+    n = udm1.Noise("sobol-owen", seed=1, kind="classic")
+    assert n.noise(np.array([0.3, 1.7])).shape == (2,)
+    assert n.noise(np.zeros((4, 2))).shape == (4,)
+    with pytest.raises(udm1.UDM1Error):
+        n.noise(np.array([[np.nan, 0, 0]]))
+    with pytest.raises(udm1.UDM1Error):
+        udm1.Noise("nope")
+    with pytest.raises(ValueError):
+        udm1.Noise(kind="smooth")
+    with pytest.raises(ValueError):
+        n.pattern_grid("plaid", 4, 4)
+    with pytest.raises(udm1.UDM1Error):
+        n.pattern_grid("marble", 4, 4, octaves=0)
+    img = n.pattern_grid("granite", 32, 16)
+    assert img.shape == (16, 32) and img.dtype == np.float32 and 0 <= img.min() and img.max() <= 1
+    assert "marble" in udm1.patterns() and "waves" in udm1.patterns()
