@@ -9,7 +9,7 @@
 namespace udm1app {
 
 void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
-                 bool srgb)
+                 bool srgb, int bits)
 {
     AtomicFile file(path);
     auto out = OIIO::ImageOutput::create(file.temp_path());
@@ -17,8 +17,12 @@ void write_image(const std::string &path, const std::vector<float> &pixels, int 
     OIIO::TypeDesc type = OIIO::TypeDesc::FLOAT;
     std::string fmt = out->format_name();
     if (fmt == "png" || fmt == "jpeg" || fmt == "bmp" || fmt == "targa") type = OIIO::TypeDesc::UINT8;
+    if (fmt == "png" && bits == 16) type = OIIO::TypeDesc::UINT16;
     if (fmt == "tiff") type = OIIO::TypeDesc::UINT16;
     OIIO::ImageSpec spec(width, height, channels, type);
+    // no time stamp: the same inputs give the same file, byte for byte, on every run
+    spec.attribute("DateTime", "");
+    spec.attribute("Software", "udm1");
     if (fmt == "png") {
         spec.attribute("oiio:ColorSpace", srgb ? "sRGB" : "linear");
         if (!srgb) spec.attribute("oiio:Gamma", 1.0f);

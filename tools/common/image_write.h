@@ -8,10 +8,11 @@
 namespace udm1app {
 
 // Write a width x height image of `channels` floats per pixel (row-major, top
-// row first) to `path`; the format comes from the extension. 8- and 16-bit
-// formats get the values clamped to [0, 1]; PNGs are tagged linear (gamma 1)
-// unless `srgb`. Throws Error naming the path on failure.
+// row first) to `path`; the format comes from the extension: EXR float, PNG
+// 8 or 16 bits (`bits`), TIFF 16 bits. Integer formats get the values clamped
+// to [0, 1]; PNGs are tagged linear (a gAMA chunk of 1.0) unless `srgb`.
+// Throws Error naming the path on failure.
 void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
-                 bool srgb = false);
+                 bool srgb = false, int bits = 8);
 
 }  // namespace udm1app
