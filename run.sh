@@ -35,6 +35,9 @@ report)
     "$PY" tools/report/sequence_report.py --out "$ROOT/report" "$@"
     udm1_log "writing report/: the sampler report (every sampler, about 2 minutes)"
     "$PY" tools/report/sampler_report.py --bench "$ROOT/build/tools/udm1_bench_samplers" --out "$ROOT/report" "$@"
+    udm1_log "writing report/noise/: the paper's Figures 2 and 3 (udm1-noise figures)"
+    mkdir -p "$ROOT/report/noise"
+    ./build/noise/udm1-noise figures -o "$ROOT/report/noise"
     udm1_log "done: open report/index.html"
     ;;
 test)
@@ -58,6 +61,9 @@ bench)
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_python.py
     udm1_log "every sampler's throughput (tools/bench_samplers.c)"
     ./build/tools/udm1_bench_samplers throughput
+    udm1_log "noise against libnoise (tools/bench_noise.cpp) and FastNoise Lite (tools/bench_noise.py)"
+    ./build/tools/udm1_bench_noise
+    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_noise.py
     ;;
 *)
     echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench])" >&2

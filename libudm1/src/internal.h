@@ -72,7 +72,10 @@ struct udm1_noise {
     uint32_t kind;
     uint32_t period[3];
     uint8_t perm[512];        /* the permutation, twice */
-    double grad[256][3];      /* unit gradients (UDM1_NOISE_CLASSIC) */
+    double grad[256][3];      /* the table's unit gradients */
+    double g3[256][3];        /* the gradient the 3D evaluation uses, by corner hash */
+    double g2[256][2];        /* ... the 2D one */
+    double g1[256];           /* ... the 1D one */
     double wave_source[UDM1_NOISE_WAVES][3];
 };
 

@@ -152,6 +152,18 @@ udm1_status udm1_noise_create(const udm1_noise_desc *desc, udm1_noise **out)
         return st;
     }
     memcpy(n->perm + 256, n->perm, 256);
+    /* the gradients the evaluation reads, by corner hash: Perlin's edges for the improved
+     * noise (a dot product with +-1/0 components equals his branches exactly), the
+     * table for the classic noise; 2D and 1D: noise1234's sets */
+    for (int h = 0; h < 256; ++h) {
+        for (int c = 0; c < 3; ++c) n->g3[h][c] = n->kind == UDM1_NOISE_IMPROVED ? EDGES[h & 15][c] : n->grad[h][c];
+        int h7 = h & 7;
+        double u = (h7 & 1) ? -1.0 : 1.0, v = (h7 & 2) ? -2.0 : 2.0; /* +-u +-2v, u = x (h7 < 4) or y */
+        n->g2[h][0] = n->kind == UDM1_NOISE_IMPROVED ? (h7 < 4 ? u : v) : n->grad[h][0];
+        n->g2[h][1] = n->kind == UDM1_NOISE_IMPROVED ? (h7 < 4 ? v : u) : n->grad[h][1];
+        double g = 1.0 + (h & 7);
+        n->g1[h] = n->kind == UDM1_NOISE_IMPROVED ? ((h & 8) ? -g : g) : n->grad[h][0];
+    }
     /* the wave sources of the ripples and waves patterns: normalized DNoise((i, 0, 0)) */
     for (int i = 0; i < UDM1_NOISE_WAVES; ++i) {
         double *s = n->wave_source[i];
@@ -178,13 +190,23 @@ udm1_status udm1_noise_tables(const udm1_noise *noise, uint8_t *perm, double *gr
 
 /* ---- the lattice ---- */
 
+/* floor of a finite double, fast where it fits an int64 (exact both ways) */
+static inline double fast_floor(double x)
+{
+    if (fabs(x) < 0x1p52) {
+        double t = (double)(int64_t)x;
+        return t > x ? t - 1.0 : t;
+    }
+    return x; /* |x| >= 2^52: x is an integer */
+}
+
 /* Cell of x on one axis: lattice indices of the two corners (wrapped by the
  * period, then to 0..255) and the offset t in [0, 1). Exact for every finite x. */
 static inline void cell(double x, uint32_t period, int *i0, int *i1, double *t)
 {
-    double f = floor(x);
+    double f = fast_floor(x);
     *t = x - f; /* exact */
-    if (period) {
+    if (UDM1_UNLIKELY(period)) {
         double m = fmod(f, (double)period); /* exact */
         if (m < 0) m += period;
         uint32_t a = (uint32_t)m, b = a + 1 == period ? 0 : a + 1;
@@ -202,20 +224,15 @@ static inline double fade5(double t) { return t * t * t * (t * (t * 6 - 15) + 10
 static inline double fade3(double t) { return t * t * (3 - 2 * t); }
 static inline double lerp(double t, double a, double b) { return a + t * (b - a); }
 
-static inline double grad3(const udm1_noise *n, int h, double x, double y, double z)
+static inline double dot3(const udm1_noise *n, int h, double x, double y, double z)
 {
-    if (n->kind == UDM1_NOISE_CLASSIC) {
-        const double *g = n->grad[h];
-        return g[0] * x + g[1] * y + g[2] * z;
-    }
-    h &= 15; /* Perlin's branch form of EDGES */
-    double u = h < 8 ? x : y, v = h < 4 ? y : (h == 12 || h == 14 ? x : z);
-    return ((h & 1) ? -u : u) + ((h & 2) ? -v : v);
+    const double *g = n->g3[h];
+    return g[0] * x + g[1] * y + g[2] * z;
 }
 
 double udm1_noise_3d(const udm1_noise *n, double x, double y, double z)
 {
-    if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return NAN;
+    if (UDM1_UNLIKELY(!(fabs(x) + fabs(y) + fabs(z) < INFINITY))) return NAN; /* NaN or infinite */
     int X0, X1, Y0, Y1, Z0, Z1;
     cell(x, n->period[0], &X0, &X1, &x);
     cell(y, n->period[1], &Y0, &Y1, &y);
@@ -235,53 +252,41 @@ double udm1_noise_3d(const udm1_noise *n, double x, double y, double z)
     int AA = p[A] + Z0, AB = p[A1] + Z0, BA = p[B] + Z0, BB = p[B1] + Z0;
     int AA1 = p[A] + Z1, AB1 = p[A1] + Z1, BA1 = p[B] + Z1, BB1 = p[B1] + Z1;
     return lerp(w,
-                lerp(v, lerp(u, grad3(n, p[AA], x, y, z), grad3(n, p[BA], x - 1, y, z)),
-                     lerp(u, grad3(n, p[AB], x, y - 1, z), grad3(n, p[BB], x - 1, y - 1, z))),
-                lerp(v, lerp(u, grad3(n, p[AA1], x, y, z - 1), grad3(n, p[BA1], x - 1, y, z - 1)),
-                     lerp(u, grad3(n, p[AB1], x, y - 1, z - 1), grad3(n, p[BB1], x - 1, y - 1, z - 1))));
+                lerp(v, lerp(u, dot3(n, p[AA], x, y, z), dot3(n, p[BA], x - 1, y, z)),
+                     lerp(u, dot3(n, p[AB], x, y - 1, z), dot3(n, p[BB], x - 1, y - 1, z))),
+                lerp(v, lerp(u, dot3(n, p[AA1], x, y, z - 1), dot3(n, p[BA1], x - 1, y, z - 1)),
+                     lerp(u, dot3(n, p[AB1], x, y - 1, z - 1), dot3(n, p[BB1], x - 1, y - 1, z - 1))));
 }
 
-static inline double grad2(const udm1_noise *n, int h, double x, double y)
+static inline double dot2(const udm1_noise *n, int h, double x, double y)
 {
-    if (n->kind == UDM1_NOISE_CLASSIC) {
-        const double *g = n->grad[h];
-        return g[0] * x + g[1] * y;
-    }
-    h &= 7;
-    double u = h < 4 ? x : y, v = h < 4 ? y : x;
-    return ((h & 1) ? -u : u) + ((h & 2) ? -2.0 * v : 2.0 * v);
+    const double *g = n->g2[h];
+    return g[0] * x + g[1] * y;
 }
 
 double udm1_noise_2d(const udm1_noise *n, double x, double y)
 {
-    if (!isfinite(x) || !isfinite(y)) return NAN;
+    if (UDM1_UNLIKELY(!(fabs(x) + fabs(y) < INFINITY))) return NAN;
     int X0, X1, Y0, Y1;
     cell(x, n->period[0], &X0, &X1, &x);
     cell(y, n->period[1], &Y0, &Y1, &y);
-    double u = n->kind == UDM1_NOISE_CLASSIC ? fade3(x) : fade5(x);
-    double v = n->kind == UDM1_NOISE_CLASSIC ? fade3(y) : fade5(y);
+    int classic = n->kind == UDM1_NOISE_CLASSIC;
+    double u = classic ? fade3(x) : fade5(x), v = classic ? fade3(y) : fade5(y);
     const uint8_t *p = n->perm;
-    double scale = n->kind == UDM1_NOISE_CLASSIC ? 1.0 : 0.507; /* noise1234's range scale */
-    return scale * lerp(v, lerp(u, grad2(n, p[p[X0] + Y0], x, y), grad2(n, p[p[X1] + Y0], x - 1, y)),
-                        lerp(u, grad2(n, p[p[X0] + Y1], x, y - 1), grad2(n, p[p[X1] + Y1], x - 1, y - 1)));
-}
-
-static inline double grad1(const udm1_noise *n, int h, double x)
-{
-    if (n->kind == UDM1_NOISE_CLASSIC) return n->grad[h][0] * x;
-    h &= 15;
-    double g = 1.0 + (h & 7);
-    return ((h & 8) ? -g : g) * x;
+    double scale = classic ? 1.0 : 0.507; /* noise1234's range scale */
+    return scale * lerp(v, lerp(u, dot2(n, p[p[X0] + Y0], x, y), dot2(n, p[p[X1] + Y0], x - 1, y)),
+                        lerp(u, dot2(n, p[p[X0] + Y1], x, y - 1), dot2(n, p[p[X1] + Y1], x - 1, y - 1)));
 }
 
 double udm1_noise_1d(const udm1_noise *n, double x)
 {
-    if (!isfinite(x)) return NAN;
+    if (UDM1_UNLIKELY(!(fabs(x) < INFINITY))) return NAN;
     int X0, X1;
     cell(x, n->period[0], &X0, &X1, &x);
-    double u = n->kind == UDM1_NOISE_CLASSIC ? fade3(x) : fade5(x);
-    double scale = n->kind == UDM1_NOISE_CLASSIC ? 1.0 : 0.188; /* noise1234's range scale */
-    return scale * lerp(u, grad1(n, n->perm[X0], x), grad1(n, n->perm[X1], x - 1));
+    int classic = n->kind == UDM1_NOISE_CLASSIC;
+    double u = classic ? fade3(x) : fade5(x);
+    double scale = classic ? 1.0 : 0.188; /* noise1234's range scale */
+    return scale * lerp(u, n->g1[n->perm[X0]] * x, n->g1[n->perm[X1]] * (x - 1));
 }
 
 udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *xyz, size_t count, size_t stride,

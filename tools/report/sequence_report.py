@@ -230,7 +230,8 @@ def main(argv=None) -> int:
 
 udm1 {udm1.version()}; {len(ns)} sizes, {args.seeds} randomizations each; made in {time.time() - t0:.0f} s.
 The comparison of every sampler (integration error against N and time, spectra, zone plates, and where
-the paper's sequences win and lose) is in [the sampler report](samplers.html).
+the paper's sequences win and lose) is in [the sampler report](samplers.html); the paper's noise figures,
+re-made with udm1 tables beside drand48, in [noise/](noise/figures.md).
 
 ## Points
 ![points]({fig_points})
