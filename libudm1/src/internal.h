@@ -67,17 +67,25 @@ struct udm1_seq {
 };
 
 /* A noise's tables (noise.c); the patterns (patterns.c) read the wave sources. */
+typedef struct udm1_pick { uint8_t iu, iv; double su, sv; } udm1_pick; /* +-c[iu] +-c[iv] */
 #define UDM1_NOISE_WAVES 10
 struct udm1_noise {
     uint32_t kind;
     uint32_t period[3];
     uint8_t perm[512];        /* the permutation, twice */
     double grad[256][3];      /* the table's unit gradients */
+    int32_t perm32[512];      /* the same as 32-bit integers, for vector gathers */
     double g3[256][3];        /* the gradient the 3D evaluation uses, by corner hash */
     double g2[256][2];        /* ... the 2D one */
     double g1[256];           /* ... the 1D one */
+    udm1_pick pick3[256];     /* the improved noise's 3D gradient, as coordinates and signs */
+    udm1_pick pick2[256];     /* ... 2D */
     double wave_source[UDM1_NOISE_WAVES][3];
 };
+
+/* The vector path of udm1_noise_points (noise_simd.c): how many leading points it computed. */
+UDM1_HIDDEN size_t udm1_noise_points_fast(const struct udm1_noise *n, uint32_t dims, const double *xyz, size_t count,
+                                          size_t stride, double *out);
 
 /* ---- error reporting (status.c) ---- */
 /* Record a one-line message for udm1_last_error() and return status. */

@@ -116,6 +116,21 @@ static void tables_from_drand48(udm1_noise *n, uint64_t seed)
     }
 }
 
+/* Perlin's gradient of Improved Noise is +-u +-v: u is x (h < 8) or y; v is y (h < 4), x (h = 12,
+ * 14) or z; the signs from bits 0 and 1. As a table: the coordinates picked and their signs (a
+ * product by +-1 is exact), so the value equals his branches bit for bit, and so does the vector
+ * kernel that blends the same coordinates. */
+static udm1_pick perlin_pick(int h)
+{
+    h &= 15;
+    udm1_pick k;
+    k.iu = h < 8 ? 0 : 1;
+    k.iv = h < 4 ? 1 : (h == 12 || h == 14 ? 0 : 2);
+    k.su = (h & 1) ? -1.0 : 1.0;
+    k.sv = (h & 2) ? -1.0 : 1.0;
+    return k;
+}
+
 udm1_status udm1_noise_create(const udm1_noise_desc *desc, udm1_noise **out)
 {
     static const char fn[] = "udm1_noise_create";
@@ -152,6 +167,13 @@ udm1_status udm1_noise_create(const udm1_noise_desc *desc, udm1_noise **out)
         return st;
     }
     memcpy(n->perm + 256, n->perm, 256);
+    for (int i = 0; i < 512; ++i) n->perm32[i] = n->perm[i];
+    for (int h = 0; h < 256; ++h) {
+        n->pick3[h] = perlin_pick(h);
+        int h7 = h & 7;
+        udm1_pick k2 = {h7 < 4 ? 0 : 1, h7 < 4 ? 1 : 0, (h7 & 1) ? -1.0 : 1.0, (h7 & 2) ? -2.0 : 2.0};
+        n->pick2[h] = k2;
+    }
     /* the gradients the evaluation reads, by corner hash: Perlin's edges for the improved
      * noise (a dot product with +-1/0 components equals his branches exactly), the
      * table for the classic noise; 2D and 1D: noise1234's sets */
@@ -226,6 +248,11 @@ static inline double lerp(double t, double a, double b) { return a + t * (b - a)
 
 static inline double dot3(const udm1_noise *n, int h, double x, double y, double z)
 {
+    if (n->kind == UDM1_NOISE_IMPROVED) {
+        const double c[3] = {x, y, z};
+        const udm1_pick *k = &n->pick3[h];
+        return k->su * c[k->iu] + k->sv * c[k->iv];
+    }
     const double *g = n->g3[h];
     return g[0] * x + g[1] * y + g[2] * z;
 }
@@ -260,6 +287,11 @@ double udm1_noise_3d(const udm1_noise *n, double x, double y, double z)
 
 static inline double dot2(const udm1_noise *n, int h, double x, double y)
 {
+    if (n->kind == UDM1_NOISE_IMPROVED) { /* noise1234: +-u +-2v, u = x (h & 7 < 4) or y */
+        const double c[2] = {x, y};
+        const udm1_pick *k = &n->pick2[h];
+        return k->su * c[k->iu] + k->sv * c[k->iv];
+    }
     const double *g = n->g2[h];
     return g[0] * x + g[1] * y;
 }
@@ -300,7 +332,8 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
         for (uint32_t c = 0; c < dims; ++c)
             if (!isfinite(xyz[i * stride + c]))
                 return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, c);
-    for (size_t i = 0; i < count; ++i) {
+    size_t i = udm1_noise_points_fast(n, dims, xyz, count, stride, out);
+    for (; i < count; ++i) {
         const double *q = xyz + i * stride;
         out[i] = dims == 3 ? udm1_noise_3d(n, q[0], q[1], q[2]) : dims == 2 ? udm1_noise_2d(n, q[0], q[1])
                                                                             : udm1_noise_1d(n, q[0]);

@@ -3,6 +3,7 @@
 #include "internal.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define PI 3.14159265358979323846
@@ -229,12 +230,41 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p,
     for (int c = 0; c < 3; ++c)
         if (!isfinite(origin[c]) || !isfinite(step_x[c]) || !isfinite(step_y[c]))
             return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: origin and steps must be finite", fn);
-    for (uint32_t j = 0; j < rows; ++j)
+    /* noise and fBm rows go through the batch call (vectorized), octave by octave; the sums are
+     * the same as udm1_pattern_eval's, term by term */
+    int batch = p->pattern == UDM1_PATTERN_NOISE || p->pattern == UDM1_PATTERN_FBM;
+    double *xyz = batch ? malloc(sizeof(double) * 4 * width) : NULL;
+    double *val = xyz ? xyz + 3 * (size_t)width : NULL;
+    double *acc = batch ? malloc(sizeof(double) * width) : NULL;
+    if (batch && (!xyz || !acc)) batch = 0;
+    for (uint32_t j = 0; j < rows; ++j) {
+        double b = row0 + j + 0.5;
+        if (batch) {
+            uint32_t octaves = p->pattern == UDM1_PATTERN_NOISE ? 1 : p->octaves;
+            double amp = 1.0, s = 1.0;
+            for (uint32_t o = 0; o < octaves; ++o) {
+                for (uint32_t i = 0; i < width; ++i) {
+                    double a = i + 0.5;
+                    for (int c = 0; c < 3; ++c) xyz[3 * (size_t)i + c] = (origin[c] + a * step_x[c] + b * step_y[c]) * s;
+                }
+                udm1_noise_points(n, 3, xyz, width, 3, val);
+                /* as the per-point sum: v = 0, v += amp t (the raw noise pattern is t itself) */
+                for (uint32_t i = 0; i < width; ++i)
+                    acc[i] = p->pattern == UDM1_PATTERN_NOISE ? val[i] : (o == 0 ? 0.0 : acc[i]) + amp * val[i];
+                amp *= p->omega;
+                s *= p->lambda;
+            }
+            for (uint32_t i = 0; i < width; ++i) out[(size_t)j * width + i] = (float)acc[i];
+            continue;
+        }
         for (uint32_t i = 0; i < width; ++i) {
-            double a = i + 0.5, b = row0 + j + 0.5, q[3];
+            double a = i + 0.5, q[3];
             for (int c = 0; c < 3; ++c) q[c] = origin[c] + a * step_x[c] + b * step_y[c];
             out[(size_t)j * width + i] = (float)udm1_pattern_eval(n, p, q[0], q[1], q[2]);
         }
+    }
+    free(xyz);
+    free(acc);
     return UDM1_OK;
 }
 
