@@ -38,6 +38,8 @@ report)
     udm1_log "writing report/noise/: the paper's Figures 2 and 3 (udm1-noise figures)"
     mkdir -p "$ROOT/report/noise"
     ./build/noise/udm1-noise figures -o "$ROOT/report/noise"
+    udm1_log "writing report/ao.html: the paper's Figure 6 with udm1-ao (every sampler, about 3 minutes the first time)"
+    "$PY" tools/report/ao_report.py --ao "$ROOT/build/ao/udm1-ao" --out "$ROOT/report"
     udm1_log "done: open report/index.html"
     ;;
 test)
@@ -45,10 +47,10 @@ test)
     build build -DCMAKE_BUILD_TYPE=Release
     udm1_log "running every test (ctest in build/)"
     ctest --test-dir build -j "$JOBS" --output-on-failure
-    udm1_log "building and running the C tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
+    udm1_log "building and running the C and C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
     build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON -DUDM1_MULTIVERSION=OFF
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-        ctest --test-dir build-asan -j "$JOBS" -L c --output-on-failure
+        ctest --test-dir build-asan -j "$JOBS" -L "^(c|cpp)$" --output-on-failure
     udm1_log "all tests passed"
     ;;
 bench)
@@ -64,6 +66,8 @@ bench)
     udm1_log "noise against libnoise (tools/bench_noise.cpp) and FastNoise Lite (tools/bench_noise.py)"
     ./build/tools/udm1_bench_noise
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_noise.py
+    udm1_log "udm1-ao against a bare Embree loop over the same rays, and each sampler's cost (tools/bench_ao.cpp)"
+    ./build/tools/udm1_bench_ao
     ;;
 *)
     echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench])" >&2

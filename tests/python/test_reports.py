@@ -12,6 +12,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 BENCH = os.environ.get("UDM1_BENCH_SAMPLERS", "")
+AO = os.environ.get("UDM1_AO_TOOL", "")
 
 
 def run_report(script, out, *extra):
@@ -29,7 +30,7 @@ def test_sequence_report(tmp_path):
     assert r.returncode == 0, r.stderr
     html = (tmp_path / "index.html").read_text()
     for link in links(html):
-        if link not in ("samplers.html", "noise/figures.md"):  # written by the other report steps
+        if link not in ("samplers.html", "noise/figures.md", "ao.html"):  # written by the other report steps
             assert (tmp_path / link).exists(), link
     data = json.loads((tmp_path / "data.json").read_text())
     worst = [c for c in data["check"] if c["preset"] == "wmmr" and c["d"] == 22][0]
@@ -49,6 +50,32 @@ def test_sampler_report(tmp_path):
         assert name in samplers and name in html  # no sampler hidden
     for row in data["verdicts"][:5]:
         assert row[-1] in html
+
+
+@pytest.mark.skipif(not AO, reason="UDM1_AO_TOOL (the udm1-ao binary) is not set")
+def test_ao_report(tmp_path):
+    r = run_report("ao_report.py", tmp_path, "--ao", AO)
+    assert r.returncode == 0, r.stderr
+    html = (tmp_path / "ao.html").read_text()
+    for link in links(html):
+        assert (tmp_path / link).exists(), link
+    data = json.loads((tmp_path / "ao.json").read_text())
+    fig6 = {row["sampler"]: row for row in data["figure6"]}
+    for name in ["pcg32", "cmj", "grps", "hammersley", "lp", "halton", "sobol", "wr-ao", "we", "wgr", "episwr"]:
+        assert name in fig6 and name in html  # the paper's set for AO, none hidden
+        assert (tmp_path / "ao" / fig6[name]["png"]).exists()
+    # at 16 spp the low-discrepancy sets beat independent random points (PSNR over 2 seeds)
+    assert fig6["episwr"]["psnr_mean"] > fig6["pcg32"]["psnr_mean"] + 3
+    assert f"{fig6['episwr']['psnr_seed1']:.2f}" in html
+    spps = sorted({row["spp"] for row in data["sweep"]})
+    assert len(spps) >= 3 and all(row["rmse"] > 0 for row in data["sweep"])
+    for s in ["episwr", "sobol", "pcg32"]:  # error falls with spp in the sweep
+        rm = [row["rmse"] for row in sorted(data["sweep"], key=lambda x: x["spp"]) if row["sampler"] == s]
+        assert rm[-1] < rm[0], (s, rm)
+    assert {row["sampler"] for row in data["equal_time"]} == set(fig6)
+    # a second run reuses the cached references
+    r = run_report("ao_report.py", tmp_path, "--ao", AO)
+    assert r.returncode == 0 and "reused" in (tmp_path / "ao.json").read_text(), r.stderr
 
 
 def test_bad_output_folder(tmp_path):

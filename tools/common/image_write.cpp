@@ -9,7 +9,7 @@
 namespace udm1app {
 
 void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
-                 bool srgb, int bits)
+                 bool srgb, int bits, const std::vector<std::pair<std::string, std::string>> &attributes)
 {
     AtomicFile file(path);
     auto out = OIIO::ImageOutput::create(file.temp_path());
@@ -23,6 +23,7 @@ void write_image(const std::string &path, const std::vector<float> &pixels, int 
     // no time stamp: the same inputs give the same file, byte for byte, on every run
     spec.attribute("DateTime", "");
     spec.attribute("Software", "udm1");
+    for (const auto &kv : attributes) spec.attribute(kv.first, kv.second);
     if (fmt == "png") {
         spec.attribute("oiio:ColorSpace", srgb ? "sRGB" : "linear");
         if (!srgb) spec.attribute("oiio:Gamma", 1.0f);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace udm1app {
@@ -11,8 +12,10 @@ namespace udm1app {
 // row first) to `path`; the format comes from the extension: EXR float, PNG
 // 8 or 16 bits (`bits`), TIFF 16 bits. Integer formats get the values clamped
 // to [0, 1]; PNGs are tagged linear (a gAMA chunk of 1.0) unless `srgb`.
+// `attributes` are stored as string metadata (EXR header, PNG text), e.g. what made the image.
 // Throws Error naming the path on failure.
 void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
-                 bool srgb = false, int bits = 8);
+                 bool srgb = false, int bits = 8,
+                 const std::vector<std::pair<std::string, std::string>> &attributes = {});
 
 }  // namespace udm1app

@@ -231,7 +231,9 @@ def main(argv=None) -> int:
 udm1 {udm1.version()}; {len(ns)} sizes, {args.seeds} randomizations each; made in {time.time() - t0:.0f} s.
 The comparison of every sampler (integration error against N and time, spectra, zone plates, and where
 the paper's sequences win and lose) is in [the sampler report](samplers.html); the paper's noise figures,
-re-made with udm1 tables beside drand48, in [noise/](noise/figures.md).
+re-made with udm1 tables beside drand48, in [noise/](noise/figures.md); the paper's ambient occlusion
+comparison (its Figure 6: every sampler at 64 spp against an 8192-spp reference, equal time, error against
+spp and time) in [the ambient occlusion report](ao.html).
 
 ## Points
 ![points]({fig_points})

@@ -1,0 +1,251 @@
+// ao_render.cpp - see ao_render.h.
+#include "ao_render.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <vector>
+#include <cmath>
+#include <stdexcept>
+
+namespace udm1ao {
+
+using udm1scene::Vec3;
+
+namespace {
+
+const double HALF_SQRT2 = 0.70710678118654752440;
+
+// Duff et al. 2017, "Building an orthonormal basis, revisited"
+struct Frame {
+    Vec3 t, b, n;
+    explicit Frame(Vec3 nn) : n(nn)
+    {
+        double s = std::copysign(1.0, n.z), a = -1.0 / (s + n.z), c = n.x * n.y * a;
+        t = Vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+        b = Vec3(c, s + n.y * n.y * a, -n.y);
+    }
+};
+
+// sin and cos of 2 pi u for u in [0, 1), to about 2e-9: the quadrant from 4u, then Taylor series
+// around pi/4 (|x| <= pi/4, terms to x^10) turned by 45 degrees. Plain arithmetic, so the same on every
+// machine and thread, and several times faster than libm's sincos here.
+inline void sincos_2pi(double u, double *s, double *c)
+{
+    double q4 = 4.0 * u;
+    int q = (int)q4;                                     // quadrant 0..3
+    double x = (q4 - q - 0.5) * 1.57079632679489661923;  // angle in the quadrant minus pi/4
+    double x2 = x * x;
+    double sn = x * (1 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880)))));
+    double cs = 1 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 - x2 / 3628800))));
+    double si = HALF_SQRT2 * (sn + cs), co = HALF_SQRT2 * (cs - sn);  // sin, cos of x + pi/4
+    // turn by q quarter turns, without branches (so that loops over samples vectorize)
+    bool odd = q & 1, neg_s = q >= 2, neg_c = q == 1 || q == 2;
+    double s0 = odd ? co : si, c0 = odd ? si : co;
+    *s = neg_s ? -s0 : s0;
+    *c = neg_c ? -c0 : c0;
+}
+
+struct Scratch {  // per-thread buffers
+    std::vector<float> dirs;
+    std::vector<RTCRay> rays;
+    std::vector<double> uv;
+};
+
+// Directions for `count` points into dx, dy, dz: one loop the compiler vectorizes (the same
+// arithmetic as direction(), so the same bits).
+// Also built for AVX2 (4 doubles a step), chosen at run time; -ffp-contract=off keeps FMA out, so
+// both versions round the same operations the same way and give the same bits.
+__attribute__((target_clones("avx2", "default")))
+void directions(const Frame &f, const double *uv, uint32_t count, float *dx, float *dy, float *dz)
+{
+    const double tx = f.t.x, ty = f.t.y, tz = f.t.z, bx = f.b.x, by = f.b.y, bz = f.b.z, nx = f.n.x, ny = f.n.y,
+                 nz = f.n.z;
+#pragma omp simd
+    for (uint32_t k = 0; k < count; ++k) {
+        double u1 = uv[2 * k], u2 = uv[2 * k + 1];
+        double r = std::sqrt(u1), s, c;
+        sincos_2pi(u2, &s, &c);
+        double x = r * c, y = r * s, z = std::sqrt(std::max(0.0, 1.0 - u1));
+        dx[k] = (float)(tx * x + bx * y + nx * z);
+        dy[k] = (float)(ty * x + by * y + ny * z);
+        dz[k] = (float)(tz * x + bz * y + nz * z);
+    }
+}
+
+// Occlusion rays from o around frame f, one per 2D point (uv: u1, u2 pairs): the number unoccluded.
+// Every method traces the same float rays, so they give the same answer.
+uint32_t unoccluded(const udm1scene::EmbreeScene &rt, Vec3 o, const Frame &f, const double *uv, uint32_t count,
+                    double tfar, Method method, Scratch *scratch)
+{
+    scratch->dirs.resize(3 * (size_t)count);
+    float *dx = scratch->dirs.data(), *dy = dx + count, *dz = dy + count;
+    directions(f, uv, count, dx, dy, dz);
+    uint32_t free_rays = 0;
+    const float far = tfar >= 3e38 ? INFINITY : (float)tfar;
+    const float ox = (float)o.x, oy = (float)o.y, oz = (float)o.z;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    if (method == Method::Single) {
+        for (uint32_t k = 0; k < count; ++k) {
+            RTCRay r;
+            r.org_x = ox, r.org_y = oy, r.org_z = oz, r.dir_x = dx[k], r.dir_y = dy[k], r.dir_z = dz[k];
+            r.tnear = 0.0f, r.tfar = far, r.time = 0, r.mask = 0xFFFFFFFF, r.id = 0, r.flags = 0;
+            rtcOccluded1(rt.handle(), &ctx, &r);
+            free_rays += r.tfar >= 0;
+        }
+        return free_rays;
+    }
+    if (method == Method::Packet) {
+        RTCRay8 r;
+        for (int j = 0; j < 8; ++j) {
+            r.org_x[j] = ox, r.org_y[j] = oy, r.org_z[j] = oz;
+            r.time[j] = 0, r.mask[j] = 0xFFFFFFFF, r.id[j] = 0, r.flags[j] = 0;
+        }
+        for (uint32_t k0 = 0; k0 < count; k0 += 8) {
+            alignas(32) int valid[8];  // Embree reads the mask as one aligned vector
+            for (uint32_t j = 0; j < 8; ++j) {
+                uint32_t k = k0 + j < count ? k0 + j : k0;
+                valid[j] = k0 + j < count ? -1 : 0;
+                r.dir_x[j] = dx[k], r.dir_y[j] = dy[k], r.dir_z[j] = dz[k];
+                r.tnear[j] = 0.0f, r.tfar[j] = far;
+            }
+            rtcOccluded8(valid, rt.handle(), &ctx, &r);
+            for (uint32_t j = 0; j < 8 && k0 + j < count; ++j) free_rays += r.tfar[j] >= 0;
+        }
+        return free_rays;
+    }
+    // Stream: all rays of the pixel in one call
+    std::vector<RTCRay> &rays = scratch->rays;
+    rays.resize(count);
+    for (uint32_t k = 0; k < count; ++k) {
+        RTCRay &r = rays[k];
+        r.org_x = ox, r.org_y = oy, r.org_z = oz, r.dir_x = dx[k], r.dir_y = dy[k], r.dir_z = dz[k];
+        r.tnear = 0.0f, r.tfar = far, r.time = 0, r.mask = 0xFFFFFFFF, r.id = k, r.flags = 0;
+    }
+    ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+    rtcOccluded1M(rt.handle(), &ctx, rays.data(), count, sizeof(RTCRay));
+    for (const RTCRay &r : rays) free_rays += r.tfar >= 0;
+    return free_rays;
+}
+
+}  // namespace
+
+Vec3 cosine_direction(Vec3 n, double u1, double u2)
+{
+    double uv[2] = {u1, u2};
+    float d[3];
+    directions(Frame(n), uv, 1, &d[0], &d[1], &d[2]);
+    return Vec3(d[0], d[1], d[2]);
+}
+
+udm1_seq *make_sampler(const Options &opt)
+{
+    udm1_preset_info info;
+    if (udm1_preset_find(opt.sampler.c_str(), &info) != UDM1_OK)
+        throw std::runtime_error("unknown sampler '" + opt.sampler + "' (udm1-seq list shows them)");
+    uint32_t dims = opt.jitter ? 4 : 2;
+    if (info.max_dimensions < dims)
+        throw std::runtime_error("sampler '" + opt.sampler + "' has " + std::to_string(info.max_dimensions) +
+                                 " dimension(s); AO needs " + std::to_string(dims));
+    udm1_seq_desc d;
+    udm1_seq_desc_init(&d);
+    d.preset = opt.sampler.c_str();
+    d.dimensions = dims;
+    d.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? opt.spp : 0;
+    d.seed = opt.seed;
+    d.randomize = opt.randomize;
+    udm1_seq *s = nullptr;
+    if (udm1_seq_create_desc(&d, &s) != UDM1_OK) throw std::runtime_error(udm1_last_error());
+    return s;
+}
+
+double ao_at(const udm1scene::EmbreeScene &rt, Vec3 p, Vec3 n, const udm1_seq *seq, uint64_t stream, uint32_t spp,
+             uint32_t dim0, double max_distance, Method method)
+{
+    std::vector<double> uv(2 * (size_t)spp);
+    if (udm1_seq_fill_f64(seq, stream, 0, spp, dim0, 2, uv.data(), 2) != UDM1_OK)
+        throw std::runtime_error(udm1_last_error());
+    Scratch scratch;
+    Vec3 o = p + n * udm1scene::ray_offset(p);
+    return (double)unoccluded(rt, o, Frame(n), uv.data(), spp, max_distance, method, &scratch) / spp;
+}
+
+Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)
+{
+    if (opt.spp == 0) throw std::runtime_error("spp must be at least 1");
+    udm1_seq *seq = make_sampler(opt);
+    udm1scene::Scene view = scene;  // the camera at the asked resolution
+    if (opt.width > 0) view.width = opt.width, view.height = opt.height;
+    Image img;
+    img.width = view.width;
+    img.height = view.height;
+    img.values.assign((size_t)img.width * img.height, 0.0f);
+    auto t0 = std::chrono::steady_clock::now();
+    std::atomic<uint64_t> rays{0};
+    std::string error;
+    std::mutex error_mutex;
+    std::atomic<bool> failed{false};
+    tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 16, 0, img.width, 16), [&](const tbb::blocked_range2d<int> &r) {
+        Scratch scratch;
+        std::vector<double> &uv = scratch.uv;
+        uint64_t local_rays = 0;
+        for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+            for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                uint64_t stream = ((uint64_t)y << 32) | (uint32_t)x;
+                uv.resize((size_t)opt.spp * (opt.jitter ? 4 : 2));
+                if (udm1_seq_fill_f64(seq, stream, 0, opt.spp, 0, opt.jitter ? 4 : 2, uv.data(), opt.jitter ? 4 : 2) !=
+                    UDM1_OK) {
+                    std::lock_guard<std::mutex> lock(error_mutex);
+                    error = udm1_last_error();  // per thread: copy it here
+                    failed = true;
+                    continue;
+                }
+                double value = 0;
+                if (!opt.jitter) {  // one primary hit at the pixel centre, spp directions
+                    Vec3 o, d;
+                    udm1scene::camera_ray(view, x + 0.5, y + 0.5, &o, &d);
+                    udm1scene::Hit h;
+                    ++local_rays;
+                    if (!rt.intersect(o, d, 0.0, 1e300, &h)) {
+                        value = 1.0;  // the sky: nothing occludes it
+                    } else {
+                        Vec3 n = dot(h.ng, d) > 0 ? -h.ng : h.ng;
+                        value = (double)unoccluded(rt, rt.spawn_origin(h, d, n), Frame(n), uv.data(), opt.spp,
+                                                   opt.max_distance, opt.method, &scratch) / opt.spp;
+                        local_rays += opt.spp;
+                    }
+                } else {  // a jittered primary ray per sample, one direction each
+                    uint32_t free_rays = 0;
+                    for (uint32_t k = 0; k < opt.spp; ++k) {
+                        Vec3 o, d;
+                        udm1scene::camera_ray(view, x + uv[4 * k], y + uv[4 * k + 1], &o, &d);
+                        udm1scene::Hit h;
+                        ++local_rays;
+                        if (!rt.intersect(o, d, 0.0, 1e300, &h)) {
+                            ++free_rays;
+                            continue;
+                        }
+                        Vec3 n = dot(h.ng, d) > 0 ? -h.ng : h.ng;
+                        free_rays += unoccluded(rt, rt.spawn_origin(h, d, n), Frame(n), &uv[4 * k + 2], 1,
+                                                opt.max_distance, Method::Single, &scratch);
+                        ++local_rays;
+                    }
+                    value = (double)free_rays / opt.spp;
+                }
+                img.values[(size_t)y * img.width + x] = (float)value;
+            }
+        rays += local_rays;
+    });
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    stats->rays = rays;
+    udm1_seq_destroy(seq);
+    if (failed) throw std::runtime_error(error.empty() ? "sampling failed" : error);
+    return img;
+}
+
+}  // namespace udm1ao

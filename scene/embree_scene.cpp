@@ -1,0 +1,116 @@
+// embree_scene.cpp - see embree_scene.h.
+#include "embree_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace udm1scene {
+
+double ray_offset(Vec3 p, double t)
+{
+    double m = std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z), std::fabs(t), 0x1p-24});
+    return m * 0x1p-18;
+}
+
+EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
+{
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw SceneError(scene.source + ": Embree could not create a device");
+    scene_ = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+    if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    for (unsigned k = 0; k < scene.shapes.size(); ++k) {
+        const Shape &s = scene.shapes[k];
+        RTCGeometry g;
+        if (s.kind == Shape::Triangles) {
+            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+            size_t nv = s.P.size() / 3, nt = s.indices.size() / 3;
+            float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), nv);
+            unsigned *i = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                              3 * sizeof(unsigned), nt);
+            if (!v || !i) throw SceneError(scene.source + ": Embree could not allocate a mesh");
+            std::copy(s.P.begin(), s.P.end(), v);
+            std::copy(s.indices.begin(), s.indices.end(), i);
+        } else {
+            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+            float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
+                                                        4 * sizeof(float), 1);
+            if (!v) throw SceneError(scene.source + ": Embree could not allocate a sphere");
+            v[0] = (float)s.center.x, v[1] = (float)s.center.y, v[2] = (float)s.center.z, v[3] = (float)s.radius;
+        }
+        rtcCommitGeometry(g);
+        unsigned id = rtcAttachGeometry(scene_, g);
+        rtcReleaseGeometry(g);
+        if (shape_of_geom_.size() <= id) shape_of_geom_.resize(id + 1);
+        shape_of_geom_[id] = k;
+    }
+    rtcCommitScene(scene_);
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw SceneError(scene.source + ": Embree failed to build the scene");
+    Vec3 lo, hi;
+    scene.bounds(&lo, &hi);
+    scale_ = std::max({1e-6, std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x), std::fabs(hi.y),
+                       std::fabs(hi.z)});
+}
+
+EmbreeScene::~EmbreeScene()
+{
+    if (scene_) rtcReleaseScene(scene_);
+    if (device_) rtcReleaseDevice(device_);
+}
+
+bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit) const
+{
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh;
+    rh.ray.org_x = (float)o.x, rh.ray.org_y = (float)o.y, rh.ray.org_z = (float)o.z;
+    rh.ray.dir_x = (float)d.x, rh.ray.dir_y = (float)d.y, rh.ray.dir_z = (float)d.z;
+    rh.ray.tnear = (float)tnear;
+    rh.ray.tfar = tfar >= 3e38 ? std::numeric_limits<float>::infinity() : (float)tfar;
+    rh.ray.mask = 0xFFFFFFFF;
+    rh.ray.flags = 0;
+    rh.ray.time = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit->t = rh.ray.tfar;
+    hit->shape = shape_of_geom_[rh.hit.geomID];
+    hit->prim = rh.hit.primID;
+    hit->u = rh.hit.u;
+    hit->v = rh.hit.v;
+    hit->p = o + d * hit->t;
+    const Shape &s = src_.shapes[hit->shape];
+    if (s.kind == Shape::Sphere) {
+        hit->ng = normalize(hit->p - s.center);
+    } else {
+        // pbrt's triangle normal: cross(p0 - p2, p1 - p2), flipped by ReverseOrientation / handedness
+        const uint32_t *i = &s.indices[3 * (size_t)hit->prim];
+        Vec3 p0(s.P[3 * i[0]], s.P[3 * i[0] + 1], s.P[3 * i[0] + 2]);
+        Vec3 p1(s.P[3 * i[1]], s.P[3 * i[1] + 1], s.P[3 * i[1] + 2]);
+        Vec3 p2(s.P[3 * i[2]], s.P[3 * i[2] + 1], s.P[3 * i[2] + 2]);
+        hit->ng = normalize(cross(p0 - p2, p1 - p2));
+    }
+    if (s.reverse_orientation) hit->ng = -hit->ng;
+    return true;
+}
+
+bool EmbreeScene::occluded(Vec3 o, Vec3 d, double tnear, double tfar) const
+{
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    r.org_x = (float)o.x, r.org_y = (float)o.y, r.org_z = (float)o.z;
+    r.dir_x = (float)d.x, r.dir_y = (float)d.y, r.dir_z = (float)d.z;
+    r.tnear = (float)tnear;
+    r.tfar = tfar >= 3e38 ? std::numeric_limits<float>::infinity() : (float)tfar;
+    r.mask = 0xFFFFFFFF;
+    r.flags = 0;
+    r.time = 0;
+    rtcOccluded1(scene_, &ctx, &r);
+    return r.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace udm1scene

@@ -1,0 +1,52 @@
+// embree_scene.h - a Scene on Embree 3: one device, one committed scene of
+// triangle meshes and spheres (as Embree sphere points), and the queries the
+// renderers need. Const methods are safe from any number of threads.
+#pragma once
+
+#include "scene.h"
+
+#include <embree3/rtcore.h>
+
+namespace udm1scene {
+
+// How far rays leaving p start from it: 2^-18 (64 float ulps) of the largest magnitude among p's coordinates and the
+// distance t the ray that found p travelled (float intersection errors scale with both), never less
+// than 2^-40. Relative to the point, not the scene: a point near the origin of a 1e5-wide floor still
+// starts its rays a few ulps off the surface, not one unit off it.
+double ray_offset(Vec3 p, double t = 0);
+
+struct Hit {
+    double t = 0;
+    unsigned shape = 0, prim = 0;  // index into Scene::shapes, triangle index
+    Vec3 p, ng;                    // position, unit geometric normal (as the geometry faces it)
+    double u = 0, v = 0;           // barycentrics
+};
+
+class EmbreeScene {
+public:
+    // robust: Embree's robust traversal (RTC_SCENE_FLAG_ROBUST). Without it rays through shared edges
+    // of axis-aligned faces leak out of closed boxes at most scales (tests/cpp/test_ao.cpp); it costs
+    // speed (BENCHMARKS.md). Throws SceneError if Embree fails.
+    explicit EmbreeScene(const Scene &scene, bool robust = true);
+    ~EmbreeScene();
+    EmbreeScene(const EmbreeScene &) = delete;
+    EmbreeScene &operator=(const EmbreeScene &) = delete;
+
+    bool intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit) const;
+    bool occluded(Vec3 o, Vec3 d, double tnear, double tfar) const;
+    // The origin for rays leaving hit h on side n (the side `incoming` came from): offset along n and
+    // back along the incoming ray, so that a hit on an edge or in a concave corner starts strictly on
+    // the visible side of both faces (offsetting along n alone leaves it on the other face's plane).
+    Vec3 spawn_origin(const Hit &h, Vec3 incoming, Vec3 n) const { return h.p + (n - incoming) * ray_offset(h.p, h.t); }
+    RTCScene handle() const { return scene_; }
+    double scale() const { return scale_; }  // the scene's extent
+
+private:
+    const Scene &src_;
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    std::vector<unsigned> shape_of_geom_;
+    double scale_ = 1;
+};
+
+}  // namespace udm1scene

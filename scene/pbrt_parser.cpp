@@ -1,0 +1,478 @@
+// pbrt_parser.cpp - the subset of the pbrt-v4 scene format that udm1's target
+// scenes use (../shared/scenes: cornell-box, veach-mis; the Crown adds more).
+// Anything else is refused with "file:line: ..." naming the directive or
+// parameter: model only what a scene needs.
+#include "pbrt_parser.h"
+
+#include "mesh_io.h"
+
+#include <cctype>
+#include <cerrno>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace udm1scene {
+
+namespace {
+
+struct Token {
+    enum Kind { Word, String, Number, Open, Close, End } kind = End;
+    std::string text;
+    double number = 0;
+    int line = 0;
+};
+
+class Lexer {
+public:
+    Lexer(std::string text, std::string file) : s_(std::move(text)), file_(std::move(file)) {}
+    const std::string &file() const { return file_; }
+    std::string where(int line) const { return file_ + ":" + std::to_string(line); }
+
+    Token peek()
+    {
+        if (!has_peek_) {
+            peek_ = next_token();
+            has_peek_ = true;
+        }
+        return peek_;
+    }
+    Token next()
+    {
+        Token t = peek();
+        has_peek_ = false;
+        return t;
+    }
+
+private:
+    Token next_token()
+    {
+        for (;;) {
+            while (i_ < s_.size() && std::isspace((unsigned char)s_[i_])) {
+                if (s_[i_] == '\n') ++line_;
+                ++i_;
+            }
+            if (i_ < s_.size() && s_[i_] == '#') {
+                while (i_ < s_.size() && s_[i_] != '\n') ++i_;
+                continue;
+            }
+            break;
+        }
+        Token t;
+        t.line = line_;
+        if (i_ >= s_.size()) return t;
+        char c = s_[i_];
+        if (c == '[' || c == ']') {
+            t.kind = c == '[' ? Token::Open : Token::Close;
+            ++i_;
+            return t;
+        }
+        if (c == '"') {
+            size_t j = i_ + 1;
+            while (j < s_.size() && s_[j] != '"' && s_[j] != '\n') ++j;
+            if (j >= s_.size() || s_[j] != '"') throw SceneError(where(line_) + ": unterminated string");
+            t.kind = Token::String;
+            t.text = s_.substr(i_ + 1, j - i_ - 1);
+            i_ = j + 1;
+            return t;
+        }
+        size_t j = i_;
+        while (j < s_.size() && !std::isspace((unsigned char)s_[j]) && s_[j] != '[' && s_[j] != ']' && s_[j] != '"' &&
+               s_[j] != '#')
+            ++j;
+        t.text = s_.substr(i_, j - i_);
+        i_ = j;
+        if (std::isdigit((unsigned char)c) || c == '-' || c == '+' || c == '.') {
+            char *end = nullptr;
+            errno = 0;
+            t.number = std::strtod(t.text.c_str(), &end);
+            if (*end != '\0' || errno == ERANGE || !std::isfinite(t.number))
+                throw SceneError(where(line_) + ": malformed number '" + t.text + "'");
+            t.kind = Token::Number;
+        } else {
+            t.kind = Token::Word;
+        }
+        return t;
+    }
+
+    std::string s_, file_;
+    size_t i_ = 0;
+    int line_ = 1;
+    Token peek_;
+    bool has_peek_ = false;
+};
+
+struct State {
+    Mat4 ctm;
+    int material = -1;
+    int light_template = -1;  // an AreaLightSource of this block (copied per shape)
+    bool reverse = false;
+};
+
+class Parser {
+public:
+    Parser(Scene &scene, Need need) : scene_(scene), geometry_only_(need == Need::Geometry) {}
+
+    void parse_file(const std::string &path, int depth)
+    {
+        if (depth > 8) throw SceneError(path + ": Include nested too deeply");
+        std::ifstream f(path, std::ios::binary);
+        if (!f) throw SceneError(path + ": cannot open the scene file");
+        std::stringstream ss;
+        ss << f.rdbuf();
+        Lexer lex(ss.str(), path);
+        std::string dir = path.find('/') == std::string::npos ? "" : path.substr(0, path.find_last_of('/') + 1);
+        for (;;) {
+            Token t = lex.next();
+            if (t.kind == Token::End) break;
+            if (t.kind != Token::Word)
+                throw SceneError(lex.where(t.line) + ": expected a directive, found '" + t.text + "'");
+            directive(lex, t, dir, depth);
+        }
+    }
+
+    void finish()
+    {
+        if (!camera_set_) { /* pbrt's default camera: at the origin looking down +z */
+            scene_.camera.world_from_camera = Mat4();
+        }
+    }
+
+private:
+    static int line(const Token &t) { return t.line; }
+
+    double number(Lexer &lex)
+    {
+        Token t = lex.next();
+        if (t.kind != Token::Number) throw SceneError(lex.where(t.line) + ": expected a number, found '" + t.text + "'");
+        return t.number;
+    }
+
+    std::string string_arg(Lexer &lex, const std::string &what)
+    {
+        Token t = lex.next();
+        if (t.kind != Token::String)
+            throw SceneError(lex.where(t.line) + ": " + what + " needs a quoted name, found '" + t.text + "'");
+        return t.text;
+    }
+
+    std::vector<double> numbers_in_brackets_or_n(Lexer &lex, size_t n, const std::string &what)
+    {
+        std::vector<double> v;
+        Token t = lex.peek();
+        if (t.kind == Token::Open) {
+            lex.next();
+            while (lex.peek().kind == Token::Number) v.push_back(lex.next().number);
+            Token c = lex.next();
+            if (c.kind != Token::Close) throw SceneError(lex.where(c.line) + ": " + what + ": expected ']'");
+        } else {
+            for (size_t k = 0; k < n; ++k) v.push_back(number(lex));
+        }
+        if (v.size() != n)
+            throw SceneError(lex.where(t.line) + ": " + what + " needs " + std::to_string(n) + " numbers, got " +
+                             std::to_string(v.size()));
+        return v;
+    }
+
+    ParamSet params(Lexer &lex, int directive_line)
+    {
+        ParamSet ps;
+        ps.where = lex.where(directive_line);
+        while (lex.peek().kind == Token::String) {
+            Token decl = lex.next();
+            std::istringstream in(decl.text);
+            Param p;
+            in >> p.type >> p.name;
+            std::string extra;
+            if (p.type.empty() || p.name.empty() || (in >> extra))
+                throw SceneError(lex.where(decl.line) + ": parameter \"" + decl.text + "\" is not \"type name\"");
+            static const char *types[] = {"integer", "float",  "point2", "vector2", "point3", "vector3", "normal",
+                                          "normal3", "point",  "vector", "rgb",     "string", "bool",    "texture",
+                                          "spectrum", "blackbody"};
+            bool known = false;
+            for (const char *k : types) known |= p.type == k;
+            if (!known) throw SceneError(lex.where(decl.line) + ": unknown parameter type '" + p.type + "'");
+            p.where = lex.where(decl.line);
+            bool textual = p.type == "string" || p.type == "bool" || p.type == "texture";
+            auto take = [&](const Token &v) {
+                if (v.kind == Token::Number) {
+                    if (textual) throw SceneError(lex.where(v.line) + ": '" + p.name + "' needs quoted values");
+                    p.numbers.push_back(v.number);
+                } else if (v.kind == Token::String) {
+                    if (!textual && p.type != "spectrum")
+                        throw SceneError(lex.where(v.line) + ": '" + p.name + "' needs numbers, found \"" + v.text + "\"");
+                    p.strings.push_back(v.text);
+                } else if (v.kind == Token::Word && p.type == "bool" && (v.text == "true" || v.text == "false")) {
+                    p.strings.push_back(v.text);
+                } else {
+                    throw SceneError(lex.where(v.line) + ": bad value '" + v.text + "' for '" + p.name + "'");
+                }
+            };
+            Token v = lex.next();
+            if (v.kind == Token::Open) {
+                while (lex.peek().kind != Token::Close) {
+                    Token e = lex.next();
+                    if (e.kind == Token::End) throw SceneError(lex.where(e.line) + ": '" + p.name + "': missing ']'");
+                    take(e);
+                }
+                lex.next();
+            } else {
+                take(v);
+            }
+            ps.params.push_back(std::move(p));
+        }
+        return ps;
+    }
+
+    void only(const ParamSet &ps, std::initializer_list<const char *> allowed, const std::string &what,
+              bool appearance = false)
+    {
+        for (const Param &p : ps.params) {
+            bool ok = false;
+            for (const char *a : allowed) ok |= p.name == a;
+            if (ok) continue;
+            if (appearance && geometry_only_) ignore(p.where, what + " '" + p.name + "'");
+            else throw SceneError(p.where + ": " + what + ": unsupported parameter '" + p.name + "'");
+        }
+    }
+
+    // A geometry-only load leaves this out: note the first place of each kind.
+    void ignore(const std::string &where, const std::string &what)
+    {
+        if (ignored_kinds_.insert(what).second) scene_.ignored.push_back(where + ": " + what);
+    }
+
+    // Appearance directives a geometry-only load skips: quoted arguments, then parameters.
+    void skip(Lexer &lex, const Token &t)
+    {
+        while (lex.peek().kind == Token::String && lex.peek().text.find(' ') == std::string::npos) lex.next();
+        params(lex, t.line);
+        ignore(lex.where(t.line), t.text);
+    }
+
+    void transform(const Mat4 &t) { st_.ctm = st_.ctm * t; }
+
+    void directive(Lexer &lex, const Token &t, const std::string &dir, int depth)
+    {
+        const std::string &d = t.text;
+        const std::string here = lex.where(t.line);
+        if (d == "LookAt") {
+            std::vector<double> v;
+            for (int k = 0; k < 9; ++k) v.push_back(number(lex));
+            bool ok;
+            Mat4 m = Mat4::look_at(Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), Vec3(v[6], v[7], v[8]), &ok);
+            if (!ok) throw SceneError(here + ": LookAt: degenerate eye, target and up");
+            transform(m);
+        } else if (d == "Translate") {
+            std::vector<double> v = numbers_in_brackets_or_n(lex, 3, "Translate");
+            transform(Mat4::translate(Vec3(v[0], v[1], v[2])));
+        } else if (d == "Scale") {
+            std::vector<double> v = numbers_in_brackets_or_n(lex, 3, "Scale");
+            transform(Mat4::scale(Vec3(v[0], v[1], v[2])));
+        } else if (d == "Rotate") {
+            std::vector<double> v = numbers_in_brackets_or_n(lex, 4, "Rotate");
+            if (v[1] == 0 && v[2] == 0 && v[3] == 0) throw SceneError(here + ": Rotate: zero axis");
+            transform(Mat4::rotate(v[0], Vec3(v[1], v[2], v[3])));
+        } else if (d == "Transform" || d == "ConcatTransform") {
+            std::vector<double> v = numbers_in_brackets_or_n(lex, 16, d);
+            Mat4 m;  // pbrt lists the matrix column by column
+            for (int i = 0; i < 4; ++i)
+                for (int j = 0; j < 4; ++j) m.m[i][j] = v[j * 4 + i];
+            if (d == "Transform") st_.ctm = m;
+            else transform(m);
+        } else if (d == "Identity") {
+            st_.ctm = Mat4();
+        } else if (d == "Camera") {
+            std::string type = string_arg(lex, "Camera");
+            ParamSet ps = params(lex, t.line);
+            if (type != "perspective") throw SceneError(here + ": Camera \"" + type + "\" is not supported (perspective only)");
+            only(ps, {"fov", "lensradius", "focaldistance"}, "Camera", true);
+            scene_.camera.fov = ps.get_float("fov", 90);
+            scene_.camera.lens_radius = ps.get_float("lensradius", 0);
+            scene_.camera.focal_distance = ps.get_float("focaldistance", 1e6);
+            if (!(scene_.camera.fov > 0 && scene_.camera.fov < 180)) throw SceneError(here + ": Camera fov outside (0, 180)");
+            if (!st_.ctm.inverse(&scene_.camera.world_from_camera)) throw SceneError(here + ": Camera: singular transform");
+            camera_set_ = true;
+        } else if (d == "Film") {
+            std::string type = string_arg(lex, "Film");
+            ParamSet ps = params(lex, t.line);
+            if (type != "rgb") throw SceneError(here + ": Film \"" + type + "\" is not supported (rgb only)");
+            only(ps, {"xresolution", "yresolution", "filename"}, "Film", true);
+            scene_.width = ps.get_int("xresolution", 1280);
+            scene_.height = ps.get_int("yresolution", 720);
+            scene_.film_filename = ps.get_string("filename", "");
+            if (scene_.width < 1 || scene_.height < 1 || scene_.width > 65536 || scene_.height > 65536)
+                throw SceneError(here + ": Film resolution outside 1..65536");
+        } else if (d == "Sampler") {
+            scene_.sampler = string_arg(lex, "Sampler");
+            ParamSet ps = params(lex, t.line);
+            scene_.pixel_samples = ps.get_int("pixelsamples", 16);
+        } else if (d == "Integrator") {
+            scene_.integrator = string_arg(lex, "Integrator");
+            ParamSet ps = params(lex, t.line);
+            scene_.max_depth = ps.get_int("maxdepth", 5);
+        } else if (d == "PixelFilter") {
+            string_arg(lex, "PixelFilter");
+            params(lex, t.line);  // the renderers use their own box filter
+        } else if (d == "WorldBegin") {
+            st_ = State();
+            in_world_ = true;
+        } else if (d == "AttributeBegin" || d == "TransformBegin") {
+            stack_.push_back(st_);
+        } else if (d == "AttributeEnd" || d == "TransformEnd") {
+            if (stack_.empty()) throw SceneError(here + ": " + d + " without a matching begin");
+            State s = stack_.back();
+            stack_.pop_back();
+            if (d == "TransformEnd") s.material = st_.material, s.light_template = st_.light_template, s.reverse = st_.reverse;
+            st_ = s;
+        } else if (d == "ReverseOrientation") {
+            st_.reverse = !st_.reverse;
+        } else if (d == "Material") {
+            Material m;
+            m.type = string_arg(lex, "Material");
+            m.params = params(lex, t.line);
+            scene_.materials.push_back(m);
+            st_.material = (int)scene_.materials.size() - 1;
+        } else if (d == "MakeNamedMaterial") {
+            std::string name = string_arg(lex, "MakeNamedMaterial");
+            Material m;
+            m.params = params(lex, t.line);
+            m.type = m.params.get_string("type", "");
+            if (m.type.empty()) throw SceneError(here + ": MakeNamedMaterial \"" + name + "\" has no \"string type\"");
+            scene_.materials.push_back(m);
+            named_[name] = (int)scene_.materials.size() - 1;
+        } else if (d == "NamedMaterial") {
+            std::string name = string_arg(lex, "NamedMaterial");
+            auto it = named_.find(name);
+            if (it == named_.end()) throw SceneError(here + ": NamedMaterial \"" + name + "\" was not made");
+            st_.material = it->second;
+        } else if (d == "AreaLightSource" && geometry_only_) {
+            skip(lex, t);  // the emitter's shapes are kept as geometry
+        } else if (d == "AreaLightSource") {
+            std::string type = string_arg(lex, "AreaLightSource");
+            ParamSet ps = params(lex, t.line);
+            if (type != "diffuse") throw SceneError(here + ": AreaLightSource \"" + type + "\" is not supported (diffuse only)");
+            only(ps, {"L", "scale", "twosided"}, "AreaLightSource");
+            AreaLight l;
+            if (ps.find("L") && !ps.get_rgb("L", &l.L))
+                throw SceneError(ps.find("L")->where + ": AreaLightSource: only \"rgb L\" is supported");
+            l.scale = ps.get_float("scale", 1.0);
+            l.twosided = ps.get_bool("twosided", false);
+            l.where = here;
+            if (!(l.scale >= 0) || l.L.x < 0 || l.L.y < 0 || l.L.z < 0)
+                throw SceneError(here + ": AreaLightSource: negative emission");
+            templates_.push_back(l);
+            st_.light_template = (int)templates_.size() - 1;
+        } else if (d == "Shape") {
+            shape(lex, t, dir);
+        } else if (d == "Include" || d == "Import") {
+            std::string file = string_arg(lex, d);
+            parse_file(file.size() && file[0] == '/' ? file : dir + file, depth + 1);
+        } else if (geometry_only_ && (d == "Texture" || d == "MakeNamedMedium" || d == "MediumInterface" ||
+                                      d == "LightSource" || d == "ColorSpace" || d == "Option" || d == "Attribute")) {
+            skip(lex, t);
+        } else {
+            throw SceneError(here + ": unsupported directive '" + d + "'");
+        }
+    }
+
+    void shape(Lexer &lex, const Token &t, const std::string &dir)
+    {
+        const std::string here = lex.where(t.line);
+        if (!in_world_) throw SceneError(here + ": Shape before WorldBegin");
+        std::string type = string_arg(lex, "Shape");
+        ParamSet ps = params(lex, t.line);
+        Shape s;
+        s.where = here;
+        s.material = st_.material;
+        s.reverse_orientation = st_.reverse;
+        if (st_.light_template >= 0) { /* every shape of the block gets its own emitter */
+            scene_.lights.push_back(templates_[st_.light_template]);
+            s.light = (int)scene_.lights.size() - 1;
+        }
+        // a transform that swaps handedness flips the geometric normal too (pbrt)
+        const Mat4 &m = st_.ctm;
+        double det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
+                     m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
+                     m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
+        if (det < 0) s.reverse_orientation = !s.reverse_orientation;
+        if (type == "trianglemesh") {
+            only(ps, {"indices", "P", "N", "uv", "st"}, "trianglemesh");
+            const Param *P = ps.find("P"), *I = ps.find("indices");
+            if (!P || P->numbers.size() % 3 || P->numbers.empty())
+                throw SceneError(here + ": trianglemesh needs \"point3 P\" with 3 numbers per vertex");
+            size_t nv = P->numbers.size() / 3;
+            std::vector<double> idx;
+            if (I) idx = I->numbers;
+            else if (nv == 3) idx = {0, 1, 2};
+            else throw SceneError(here + ": trianglemesh needs \"integer indices\"");
+            if (idx.size() % 3) throw SceneError(I->where + ": trianglemesh: the indices are not a multiple of 3");
+            for (double v : idx)
+                if (v < 0 || v >= (double)nv || v != (double)(uint32_t)v)
+                    throw SceneError((I ? I->where : here) + ": trianglemesh: index " + std::to_string((long long)v) +
+                                     " out of range (" + std::to_string(nv) + " vertices)");
+            for (size_t k = 0; k < nv; ++k) {
+                Vec3 p = m.point(Vec3(P->numbers[3 * k], P->numbers[3 * k + 1], P->numbers[3 * k + 2]));
+                s.P.insert(s.P.end(), {(float)p.x, (float)p.y, (float)p.z});
+            }
+            for (double v : idx) s.indices.push_back((uint32_t)v);
+            if (const Param *N = ps.find("N")) {
+                if (N->numbers.size() != 3 * nv) throw SceneError(N->where + ": trianglemesh: N needs one normal per vertex");
+                for (size_t k = 0; k < nv; ++k) {
+                    Vec3 n = normalize(m.normal(Vec3(N->numbers[3 * k], N->numbers[3 * k + 1], N->numbers[3 * k + 2])));
+                    s.N.insert(s.N.end(), {(float)n.x, (float)n.y, (float)n.z});
+                }
+            }
+            const Param *uv = ps.find("uv") ? ps.find("uv") : ps.find("st");
+            if (uv) {
+                if (uv->numbers.size() != 2 * nv) throw SceneError(uv->where + ": trianglemesh: uv needs 2 numbers per vertex");
+                for (double v : uv->numbers) s.UV.push_back((float)v);
+            }
+        } else if (type == "plymesh") {
+            only(ps, {"filename", "displacement", "edgelength"}, "plymesh");
+            if (const Param *disp = ps.find("displacement")) {
+                if (!geometry_only_) throw SceneError(disp->where + ": plymesh displacement is not supported");
+                ignore(disp->where, "plymesh displacement (the mesh is used undisplaced)");
+            }
+            std::string file = ps.get_string("filename", "");
+            if (file.empty()) throw SceneError(here + ": plymesh needs \"string filename\"");
+            read_ply(file[0] == '/' ? file : dir + file, m, &s);
+        } else if (type == "sphere") {
+            only(ps, {"radius"}, "sphere");
+            s.kind = Shape::Sphere;
+            double r = ps.get_float("radius", 1.0);
+            if (!(r > 0)) throw SceneError(here + ": sphere radius must be positive");
+            s.center = m.point(Vec3(0, 0, 0));
+            s.radius = r * m.scale_factor();
+        } else {
+            throw SceneError(here + ": Shape \"" + type + "\" is not supported (trianglemesh, plymesh, sphere)");
+        }
+        if (s.kind == Shape::Triangles && s.indices.empty()) throw SceneError(here + ": the shape has no triangles");
+        scene_.shapes.push_back(std::move(s));
+    }
+
+    Scene &scene_;
+    State st_;
+    std::vector<State> stack_;
+    std::map<std::string, int> named_;
+    std::vector<AreaLight> templates_;  // AreaLightSource of the blocks; each shape gets a copy
+    bool camera_set_ = false, in_world_ = false;
+    bool geometry_only_ = false;
+    std::set<std::string> ignored_kinds_;
+};
+
+}  // namespace
+
+Scene parse_pbrt(const std::string &path, Need need)
+{
+    Scene scene;
+    scene.source = path;
+    Parser p(scene, need);
+    p.parse_file(path, 0);
+    p.finish();
+    if (scene.shapes.empty()) throw SceneError(path + ": the scene has no shapes");
+    return scene;
+}
+
+}  // namespace udm1scene

@@ -1,0 +1,155 @@
+// scene.cpp - parameter lookups, bounds, the camera, and load_scene's dispatch.
+#include "scene.h"
+
+#include "builtin.h"
+#include "mesh_io.h"
+#include "pbrt_parser.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+namespace udm1scene {
+
+const Param *ParamSet::find(const std::string &name) const
+{
+    for (const Param &p : params)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+double ParamSet::get_float(const std::string &name, double fallback) const
+{
+    const Param *p = find(name);
+    if (!p) return fallback;
+    if (p->numbers.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one number");
+    return p->numbers[0];
+}
+
+int ParamSet::get_int(const std::string &name, int fallback) const
+{
+    double v = get_float(name, fallback);
+    if (v != (double)(int)v) throw SceneError(find(name)->where + ": '" + name + "' needs a whole number");
+    return (int)v;
+}
+
+bool ParamSet::get_bool(const std::string &name, bool fallback) const
+{
+    const Param *p = find(name);
+    if (!p) return fallback;
+    if (p->strings.size() != 1 || (p->strings[0] != "true" && p->strings[0] != "false"))
+        throw SceneError(p->where + ": '" + name + "' needs true or false");
+    return p->strings[0] == "true";
+}
+
+std::string ParamSet::get_string(const std::string &name, const std::string &fallback) const
+{
+    const Param *p = find(name);
+    if (!p) return fallback;
+    if (p->strings.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one string");
+    return p->strings[0];
+}
+
+bool ParamSet::get_rgb(const std::string &name, Vec3 *rgb) const
+{
+    const Param *p = find(name);
+    if (!p) return false;
+    if (p->type != "rgb" || p->numbers.size() != 3)
+        throw SceneError(p->where + ": '" + name + "' needs an rgb value (3 numbers)");
+    *rgb = Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
+    return true;
+}
+
+size_t Scene::triangle_count() const
+{
+    size_t n = 0;
+    for (const Shape &s : shapes) n += s.indices.size() / 3;
+    return n;
+}
+
+void Scene::bounds(Vec3 *lo, Vec3 *hi) const
+{
+    const double inf = std::numeric_limits<double>::infinity();
+    *lo = Vec3(inf, inf, inf);
+    *hi = Vec3(-inf, -inf, -inf);
+    auto grow = [&](Vec3 p, double r) {
+        for (int a = 0; a < 3; ++a) {
+            (*lo)[a] = std::min((*lo)[a], p[a] - r);
+            (*hi)[a] = std::max((*hi)[a], p[a] + r);
+        }
+    };
+    for (const Shape &s : shapes) {
+        if (s.kind == Shape::Sphere) grow(s.center, s.radius);
+        for (size_t i = 0; i + 2 < s.P.size(); i += 3) grow(Vec3(s.P[i], s.P[i + 1], s.P[i + 2]), 0);
+    }
+}
+
+namespace {
+struct Fnv1a {
+    uint64_t h = 0xcbf29ce484222325ull;
+    void bytes(const void *p, size_t n)
+    {
+        for (size_t i = 0; i < n; ++i) h = (h ^ ((const unsigned char *)p)[i]) * 0x100000001b3ull;
+    }
+    template <class T> void value(T v) { bytes(&v, sizeof v); }
+    template <class T> void vec(const std::vector<T> &v)
+    {
+        value((uint64_t)v.size());
+        if (!v.empty()) bytes(v.data(), v.size() * sizeof(T));
+    }
+};
+}  // namespace
+
+uint64_t Scene::digest() const
+{
+    Fnv1a f;
+    f.value(width), f.value(height);
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) f.value(camera.world_from_camera.m[r][c]);
+    f.value(camera.fov), f.value(camera.lens_radius), f.value(camera.focal_distance);
+    f.value((uint64_t)shapes.size());
+    for (const Shape &s : shapes) {
+        f.value((int)s.kind), f.vec(s.P), f.vec(s.N), f.vec(s.indices);
+        f.value(s.center.x), f.value(s.center.y), f.value(s.center.z), f.value(s.radius);
+        f.value(s.material), f.value(s.light), f.value(s.reverse_orientation);
+    }
+    for (const Material &m : materials) {
+        f.vec(std::vector<char>(m.type.begin(), m.type.end()));
+        for (const Param &p : m.params.params) {
+            f.vec(std::vector<char>(p.name.begin(), p.name.end())), f.vec(p.numbers);
+            for (const std::string &t : p.strings) f.vec(std::vector<char>(t.begin(), t.end()));
+        }
+    }
+    for (const AreaLight &l : lights) f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.scale), f.value(l.twosided);
+    return f.h;
+}
+
+void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir)
+{
+    // pbrt's perspective camera: the screen window spans [-1, 1] along the shorter axis
+    double aspect = (double)s.width / s.height;
+    double sx0 = aspect > 1 ? -aspect : -1, sx1 = -sx0, sy0 = aspect > 1 ? -1 : -1 / aspect, sy1 = -sy0;
+    double sx = sx0 + (px / s.width) * (sx1 - sx0);
+    double sy = sy1 - (py / s.height) * (sy1 - sy0);
+    double t = std::tan(s.camera.fov * 3.14159265358979323846 / 360.0);
+    Vec3 d = normalize(Vec3(sx * t, sy * t, 1.0));
+    *origin = s.camera.world_from_camera.point(Vec3(0, 0, 0));
+    *dir = normalize(s.camera.world_from_camera.vector(d));
+}
+
+Scene load_scene(const std::string &path, Need need)
+{
+    if (path.rfind("builtin:", 0) == 0) return builtin_scene(path.substr(8));
+    auto ends = [&](const char *ext) {
+        size_t n = std::strlen(ext);
+        if (path.size() < n) return false;
+        std::string tail = path.substr(path.size() - n);
+        std::transform(tail.begin(), tail.end(), tail.begin(), ::tolower);
+        return tail == ext;
+    };
+    if (ends(".pbrt")) return parse_pbrt(path, need);
+    if (ends(".ply") || ends(".obj")) return mesh_scene(path);
+    throw SceneError(path + ": not a .pbrt, .ply or .obj file, nor builtin:NAME");
+}
+
+}  // namespace udm1scene

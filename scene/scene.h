@@ -1,0 +1,108 @@
+// scene.h - a scene as udm1's renderers need it: triangle meshes and spheres
+// in world space, materials and area lights as their parameters, a camera and
+// a film. Loaded from the subset of the pbrt-v4 format that the target scenes
+// use (pbrt_parser.h), from PLY and OBJ meshes, or built in (builtin.h).
+#pragma once
+
+#include "math.h"
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace udm1scene {
+
+// A scene error: "file:line: message" (or "file: message"), one line.
+struct SceneError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// One parameter of a pbrt directive: "type name" [values].
+struct Param {
+    std::string type, name;
+    std::vector<double> numbers;
+    std::vector<std::string> strings;  // string, bool (as "true"/"false"), texture, spectrum names
+    std::string where;                 // "file:line"
+};
+
+struct ParamSet {
+    std::vector<Param> params;
+    std::string where;  // the directive's "file:line"
+    const Param *find(const std::string &name) const;
+    double get_float(const std::string &name, double fallback) const;
+    int get_int(const std::string &name, int fallback) const;
+    bool get_bool(const std::string &name, bool fallback) const;
+    std::string get_string(const std::string &name, const std::string &fallback) const;
+    bool get_rgb(const std::string &name, Vec3 *rgb) const;
+};
+
+struct Material {
+    std::string type;  // "diffuse", "coateddiffuse", ...
+    ParamSet params;
+};
+
+struct AreaLight {
+    Vec3 L{1, 1, 1};
+    double scale = 1;
+    bool twosided = false;
+    std::string where;
+};
+
+struct Shape {
+    enum Kind { Triangles, Sphere } kind = Triangles;
+    std::vector<float> P;            // xyz per vertex, world space
+    std::vector<float> N;            // optional per-vertex normals, world space
+    std::vector<float> UV;           // optional
+    std::vector<uint32_t> indices;   // 3 per triangle
+    Vec3 center;                     // sphere
+    double radius = 0;               // sphere
+    int material = -1;               // index into Scene::materials
+    int light = -1;                  // index into Scene::lights (an emitter), or -1
+    bool reverse_orientation = false;
+    std::string where;               // "file:line" of its Shape directive
+};
+
+struct Camera {
+    Mat4 world_from_camera;  // pbrt camera space: +z forward, +y up
+    double fov = 90;         // degrees, along the shorter image axis (pbrt)
+    double lens_radius = 0, focal_distance = 1e6;
+};
+
+struct Scene {
+    Camera camera;
+    int width = 256, height = 256;
+    std::string film_filename;
+    std::string sampler;  // the scene's Sampler directive, for information
+    int pixel_samples = 16;
+    std::string integrator = "path";
+    int max_depth = 5;
+    std::vector<Material> materials;
+    std::vector<AreaLight> lights;
+    std::vector<Shape> shapes;
+    std::string source;  // file name, or "built-in NAME"
+    // What a geometry-only load left out, one "file:line: what" per kind of directive or parameter.
+    std::vector<std::string> ignored;
+
+    size_t triangle_count() const;
+    // Axis-aligned bounds of all shapes (for ray offsets and default cameras).
+    void bounds(Vec3 *lo, Vec3 *hi) const;
+    // A 64-bit FNV-1a digest of what a render sees: geometry, materials, lights, camera, film size. Two scenes with
+    // the same digest render the same image (cached references are keyed by it).
+    uint64_t digest() const;
+};
+
+// Raster (px, py) in [0, width) x [0, height), y down, to a world-space ray (pbrt's perspective camera).
+void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir);
+
+// What a renderer needs of a scene. Everything: the supported subset exactly, anything else is an
+// error. Geometry (ambient occlusion): shapes, transforms, camera and film size; appearance
+// (materials, textures, media, lights' emission, film and camera extras) is read for syntax and
+// left out, and each kind left out is listed in Scene::ignored.
+enum class Need { Everything, Geometry };
+
+// Load a scene by file name: .pbrt (pbrt-v4 subset), .ply or .obj (a mesh with a default camera and a
+// grey diffuse material), or "builtin:NAME". Throws SceneError naming the file (and line).
+Scene load_scene(const std::string &path, Need need = Need::Everything);
+
+}  // namespace udm1scene

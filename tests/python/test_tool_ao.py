@@ -1,0 +1,232 @@
+"""udm1-ao from the command line: runs with no arguments, closed forms through
+the whole pipeline, bit-identical images across thread counts and ray methods,
+the reference mode (written once, reused), compare, meshes from PLY and OBJ,
+the shared pbrt scenes, and every bad input failing with one line and no file."""
+
+import os
+import pathlib
+import re
+import struct
+import subprocess
+
+import numpy as np
+import pytest
+
+TOOL = os.environ.get("UDM1_AO_TOOL", "")
+pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_AO_TOOL (the udm1-ao binary) is not set")
+SCENES = pathlib.Path(__file__).resolve().parents[2].parent / "shared" / "scenes"
+
+
+def run(*args, cwd=None):
+    return subprocess.run([TOOL, *args], capture_output=True, text=True, cwd=cwd, timeout=600)
+
+
+def ok(*args, cwd=None):
+    r = run(*args, cwd=cwd)
+    assert r.returncode == 0, r.stderr
+    return r
+
+
+def read_png(path):
+    import matplotlib.image as mpimg
+
+    img = mpimg.imread(path)
+    return img if img.ndim == 2 else img[..., 0]
+
+
+def compare(image, reference):
+    r = ok("compare", str(image), str(reference))
+    m = re.fullmatch(r"mse (\S+) rmse (\S+) psnr (\S+)\n", r.stdout)
+    assert m, r.stdout
+    return float(m.group(1)), float(m.group(3))
+
+
+def test_runs_with_no_arguments(tmp_path):
+    r = ok(cwd=tmp_path)
+    assert re.match(r"sampler episwr spp 64 size 256x256 seconds \S+ rays \d+ rays_per_second \S+\nwrote ao.png\n$", r.stdout)
+    img = read_png(tmp_path / "ao.png")
+    assert img.shape == (256, 256)
+    assert 0.2 < img.mean() < 0.8 and img.min() < 0.1 and img.max() > 0.9  # the Cornell box, not a blank
+
+
+@pytest.mark.parametrize("scene,value", [("plane", 1.0), ("box", 0.0)])
+def test_closed_forms(scene, value, tmp_path):
+    for sampler in ("episwr", "halton", "cmj"):
+        out = tmp_path / f"{scene}-{sampler}.png"
+        ok("--scene", f"builtin:{scene}", "--sampler", sampler, "--spp", "32", "--size", "40x30", "--png", str(out))
+        assert np.all(read_png(out) == value), (scene, sampler)
+
+
+def test_infinite_wall_is_one_half(tmp_path):
+    # builtin:wall is a floor meeting a wall that is (for the rays) infinitely tall and wide: from any floor
+    # point the wall hides exactly half of the cosine-weighted hemisphere, and from any wall point the
+    # floor does, so every pixel is 1/2
+    png = tmp_path / "wall.png"
+    ok("--scene", "builtin:wall", "--sampler", "sobol-owen", "--spp", "1024", "--size", "48x32", "--png", str(png))
+    img = read_png(png)
+    assert np.abs(img - 0.5).max() < 0.05 and abs(img.mean() - 0.5) < 0.01, (img.min(), img.max(), img.mean())
+
+
+def test_identical_across_threads_and_methods(tmp_path):
+    outs = []
+    for threads, method in (("1", "packet"), ("2", "packet"), ("8", "packet"), ("2", "single"), ("2", "stream")):
+        out = tmp_path / f"t{threads}{method}.exr"
+        ok("--sampler", "sobol-owen", "--spp", "16", "--size", "96x64", "--threads", threads, "--method", method,
+           "-o", str(out))
+        outs.append(out.read_bytes())
+    assert all(o == outs[0] for o in outs)
+    again = tmp_path / "again.exr"
+    ok("--sampler", "sobol-owen", "--spp", "16", "--size", "96x64", "-o", str(again))
+    assert again.read_bytes() == outs[0]
+    other = tmp_path / "other.exr"
+    ok("--sampler", "sobol-owen", "--spp", "16", "--size", "96x64", "--seed", "2", "-o", str(other))
+    assert other.read_bytes() != outs[0]
+
+
+def test_reference_written_once_and_reused(tmp_path):
+    ref = tmp_path / "ref.exr"
+    r = ok("reference", "--spp", "256", "--size", "48x48", "-o", str(ref))
+    assert r.stdout.startswith("sampler sobol-owen spp 256 size 48x48")
+    stamp = ref.stat().st_mtime_ns
+    r = ok("reference", "--spp", "256", "--size", "48x48", "-o", str(ref))
+    assert r.stdout.startswith(f"reference {ref} reused") and ref.stat().st_mtime_ns == stamp
+    # other settings make another reference
+    r = ok("reference", "--spp", "128", "--size", "48x48", "-o", str(ref))
+    assert r.stdout.startswith("sampler sobol-owen spp 128")
+    # an image against its reference: the error falls as spp grows
+    psnr = []
+    for spp in ("4", "64"):
+        img = tmp_path / f"a{spp}.exr"
+        ok("--spp", spp, "--size", "48x48", "--sampler", "episwr", "-o", str(img))
+        psnr.append(compare(img, ref)[1])
+    assert 10 < psnr[0] < psnr[1] < 60, psnr
+
+
+def test_compare(tmp_path):
+    a, b = tmp_path / "a.exr", tmp_path / "b.exr"
+    ok("--spp", "8", "--size", "32x32", "-o", str(a))
+    ok("--spp", "8", "--size", "32x32", "--seed", "9", "-o", str(b))
+    assert compare(a, a) == (0.0, float("inf"))
+    mse, psnr = compare(a, b)
+    assert mse > 0 and abs(psnr - 10 * np.log10(1 / mse)) < 1e-3
+    diff = tmp_path / "d.png"
+    ok("compare", str(a), str(b), "--diff", str(diff))
+    assert read_png(diff).shape == (32, 32) and read_png(diff).max() > 0
+    c = tmp_path / "c.exr"
+    ok("--spp", "8", "--size", "32x16", "-o", str(c))
+    r = run("compare", str(a), str(c))
+    assert r.returncode == 2 and "differ in size" in r.stderr
+
+
+def write_corner_obj(path):
+    # a floor and a wall meeting at z = 1: a concave corner, occluded near the seam
+    v = [(0, 0, 0), (1, 0, 0), (1, 0, 1), (0, 0, 1), (0, 1, 1), (1, 1, 1)]
+    lines = [f"v {x} {y} {z}" for x, y, z in v] + ["vt 0 0", "vn 0 1 0"]
+    lines += ["f 1/1/1 2/1/1 3/1/1 4/1/1", "usemtl grey", "f 4//1 3//1 6//1 5//1"]
+    path.write_text("# a corner\n" + "\n".join(lines) + "\n")
+
+
+def write_plane_ply(path, binary):
+    verts = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1), (0, 0.5, 0), (0.3, 0.5, 0), (0, 0.5, 0.3)]
+    faces = [(0, 1, 2, 3), (4, 5, 6)]
+    head = (f"ply\nformat {'binary_little_endian' if binary else 'ascii'} 1.0\nelement vertex {len(verts)}\n"
+            "property float x\nproperty float y\nproperty float z\n"
+            f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
+    if binary:
+        body = b"".join(struct.pack("<3f", *p) for p in verts)
+        body += b"".join(struct.pack("<B", len(f)) + struct.pack(f"<{len(f)}i", *f) for f in faces)
+        path.write_bytes(head.encode() + body)
+    else:
+        path.write_text(head + "".join(" ".join(map(str, p)) + "\n" for p in verts)
+                        + "".join(f"{len(f)} " + " ".join(map(str, f)) + "\n" for f in faces))
+
+
+def test_meshes(tmp_path):
+    obj = tmp_path / "corner.obj"
+    write_corner_obj(obj)
+    out = tmp_path / "corner.png"
+    ok("--scene", str(obj), "--spp", "64", "--size", "64x64", "--png", str(out))
+    img = read_png(out)
+    assert img.min() < 0.7 and (img < 1).sum() > 300, (img.min(), (img < 1).sum())  # the seam is darker than 1
+    for binary in (False, True):
+        ply = tmp_path / f"plane{int(binary)}.ply"
+        write_plane_ply(ply, binary)
+        out = tmp_path / f"plane{int(binary)}.exr"
+        ok("--scene", str(ply), "--spp", "16", "--size", "64x64", "-o", str(out))
+    assert (tmp_path / "plane0.exr").read_bytes() == (tmp_path / "plane1.exr").read_bytes()
+    png = tmp_path / "plane.png"
+    ok("--scene", str(tmp_path / "plane0.ply"), "--spp", "16", "--size", "64x64", "--png", str(png))
+    assert (read_png(png) < 1).sum() > 100  # the triangle above the square shades it
+
+
+@pytest.mark.skipif(not SCENES.is_dir(), reason=f"{SCENES} is absent: the shared test scenes are not here")
+@pytest.mark.parametrize("name,maxdist", [("cornell-box", None), ("veach-mis", None), ("crown", "3")])
+def test_shared_scenes(name, maxdist, tmp_path):
+    out = tmp_path / f"{name}.png"
+    args = ["--scene", str(SCENES / name / f"{name}.pbrt"), "--spp", "8", "--size", "60x80", "--png", str(out)]
+    r = ok(*args, *(["--maxdist", maxdist] if maxdist else []))
+    img = read_png(out)
+    assert img.shape == (80, 60) and 0.05 < img.mean() < 0.98 and img.std() > 0.05, (img.mean(), img.std())
+    if name == "crown":  # the paper's scene: its appearance is left out, and said so in one line
+        assert re.fullmatch(r"udm1-ao: note: \d+ kind\(s\) of appearance left out, first \S+crown.pbrt:\d+: .*\n",
+                            r.stderr)
+
+
+BAD_SCENE = """LookAt 0 0 -5  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 45 ]
+WorldBegin
+Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 ] "integer indices" [ 0 1 2 ]
+"""
+
+
+@pytest.mark.parametrize(
+    "args,code,words",
+    [
+        (["--scene", "nope.pbrt"], 1, "nope.pbrt: cannot open"),
+        (["--scene", "bad.pbrt"], 1, "bad.pbrt:4:"),
+        (["--scene", "bad.obj"], 1, "bad.obj:2:"),
+        (["--scene", "trunc.ply"], 1, "trunc.ply"),
+        (["--scene", "scene.txt"], 1, "scene.txt"),
+        (["--scene", "builtin:teapot"], 1, "builtin:teapot"),
+        (["--sampler", "nope"], 2, "'nope'"),
+        (["--sampler", "golden"], 2, "'golden' has 1 dimension"),
+        (["--sampler", "wr-ao", "--jitter"], 2, "AO needs 4"),
+        (["--spp", "0"], 2, "--spp '0'"),
+        (["--spp", "-3"], 2, "--spp '-3'"),
+        (["--size", "0x10"], 2, "--size '0'"),
+        (["--size", "100000x10"], 2, "--size '100000'"),
+        (["--size", "16384x16384"], 2, "more than 67108864 pixels"),
+        (["--size", "12"], 2, "--size '12'"),
+        (["--maxdist", "-1"], 2, "--maxdist '-1'"),
+        (["--method", "warp"], 2, "'warp'"),
+        (["--threads", "0"], 2, "--threads '0'"),
+        (["--frobnicate"], 2, "'--frobnicate'"),
+        (["reference"], 2, "reference needs -o"),
+        (["compare", "a.exr"], 2, "compare needs"),
+        (["compare", "a.exr", "b.exr"], 1, "'a.exr'"),
+    ],
+)
+def test_bad_input(args, code, words, tmp_path):
+    (tmp_path / "bad.pbrt").write_text(BAD_SCENE)
+    (tmp_path / "bad.obj").write_text("v 0 0 0\nv 1 0 zero\n")
+    (tmp_path / "trunc.ply").write_bytes(b"ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                                         b"property float x\nproperty float y\nproperty float z\nend_header\n\0\0")
+    (tmp_path / "scene.txt").write_text("hello\n")
+    before = set(tmp_path.iterdir())
+    r = run(*args, "--png", "out.png", cwd=tmp_path) if args[0] not in ("reference", "compare") else run(*args, cwd=tmp_path)
+    assert r.returncode == code, (r.returncode, r.stderr)
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("udm1-ao: ") and words in lines[0], r.stderr
+    assert set(tmp_path.iterdir()) == before  # no output, not even a temporary file
+
+
+def test_unwritable_output(tmp_path):
+    for flag, name in (("-o", "x.exr"), ("--png", "x.png")):
+        r = run("--spp", "1", "--size", "8x8", flag, str(tmp_path / "missing" / name))
+        assert r.returncode == 1 and "missing" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    r = run("--spp", "1", "--size", "8x8", "-o", str(tmp_path / "x.unknownext"))
+    assert r.returncode == 2 and "x.unknownext" in r.stderr
+    # a good image and a bad one: neither is written (the bad path is found before rendering)
+    r = run("--spp", "1", "--size", "8x8", "-o", str(tmp_path / "good.exr"), "--png", str(tmp_path / "no" / "x.png"))
+    assert r.returncode == 1
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,27 @@
+// image_read.h - reading an image's first channel through OpenImageIO, and the
+// image comparison the renderers report (one definition everywhere).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace udm1app {
+
+struct LoadedImage {
+    int width = 0, height = 0, channels = 0;
+    std::vector<float> pixels;  // all channels, row-major
+    std::map<std::string, std::string> attributes;  // the string metadata whose names start with "udm1:"
+};
+
+// Throws Error naming the file if it cannot be read.
+LoadedImage read_image(const std::string &path);
+
+// MSE over every channel of every pixel, and PSNR = 10 log10(1 / MSE): the peak is 1 on linear
+// values (AO lies in [0, 1]; radiance images are compared after clamping to [0, 1], see compare()).
+struct Comparison {
+    double mse = 0, rmse = 0, psnr = 0;
+};
+Comparison compare(const LoadedImage &a, const LoadedImage &reference, bool clamp01, std::vector<float> *abs_diff);
+
+}  // namespace udm1app
