@@ -220,6 +220,42 @@ def test_bad_input(args, code, words, tmp_path):
     assert set(tmp_path.iterdir()) == before  # no output, not even a temporary file
 
 
+HEAD = 'LookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective" "float fov" [ 45 ]\nWorldBegin\n'
+TRI = 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
+
+
+@pytest.mark.parametrize(
+    "text,line,words",
+    [
+        (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0 1 ]\n', 4, "3 numbers per vertex"),
+        (HEAD + TRI.replace("0 1 2 ]", "0 1 7 ]"), 4, "index 7 out of range"),
+        (HEAD + 'Shape "sphere" "float radius" [ -1 ]\n', 4, "radius"),
+        (HEAD + 'Shape "plymesh" "string filename" "missing.ply"\n', 0, "missing.ply"),
+        (HEAD + 'Shape "nurbs"\n', 4, "'nurbs' is not supported".replace("'", '"')),
+        (HEAD + "Frobnicate 3\n", 4, "unsupported directive 'Frobnicate'"),
+        (HEAD + "AttributeEnd\n" + TRI, 4, "without a matching begin"),
+        (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 x ]\n', 4, "x"),
+        (HEAD + 'Shape "trianglemesh "point3 P" [ 0 0 0 ]\n', 4, ""),
+        ('LookAt 0 0 0  0 0 0  0 1 0\n' + TRI, 1, "degenerate"),
+        ('Camera "perspective" "float fov" [ 200 ]\nWorldBegin\n' + TRI, 1, "fov"),
+        ('Film "rgb" "integer xresolution" [ 0 ]\nWorldBegin\n' + TRI, 1, "resolution"),
+        (HEAD + 'Include "nothere.pbrt"\n', 0, "nothere.pbrt"),
+        (HEAD, 0, "no shapes"),
+        (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 0 ] "integer indices" [ 0 1 2 \n', 0, "missing ']'"),
+    ],
+)
+def test_malformed_scenes_name_file_and_line(text, line, words, tmp_path):
+    scene = tmp_path / "s.pbrt"
+    scene.write_text(text)
+    before = set(tmp_path.iterdir())
+    r = run("--scene", str(scene), "--png", "out.png", cwd=tmp_path)
+    assert r.returncode == 1, r.stderr
+    lines = r.stderr.strip().splitlines()
+    where = f"{scene}:{line}:" if line else str(tmp_path)
+    assert len(lines) == 1 and where in lines[0] and words in lines[0], (where, words, r.stderr)
+    assert set(tmp_path.iterdir()) == before
+
+
 def test_unwritable_output(tmp_path):
     for flag, name in (("-o", "x.exr"), ("--png", "x.png")):
         r = run("--spp", "1", "--size", "8x8", flag, str(tmp_path / "missing" / name))
