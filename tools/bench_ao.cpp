@@ -225,7 +225,7 @@ int main(int argc, char **argv)
     }
 
     std::printf("\n2. the time each sampler adds per sample (its 2D points for the whole image, one thread), and\n"
-                "   the whole render with it (all threads, packets, robust) against the bare loop\n");
+                "   the whole render with it (all threads, streams, robust) against the bare loop over episwr's rays\n");
     std::printf("%-12s %12s %16s %16s %10s\n", "sampler", "ns/sample", "render ns/sample", "bare ns/sample", "render/bare");
     EmbreeScene rt(scene);
     udm1ao::Options base;
@@ -250,7 +250,7 @@ int main(int argc, char **argv)
                         udm1_seq_fill_f64(seq, ((uint64_t)y << 32) | (uint32_t)x, 0, spp, 0, 2, uv.data(), 2);
             }
             double t1 = now();
-            bare_loop(rt.handle(), rays, udm1ao::Method::Packet);
+            bare_loop(rt.handle(), rays, udm1ao::Method::Stream);
             double t2 = now();
             udm1ao::Stats st;
             udm1ao::render(scene, rt, o, &st);
