@@ -303,19 +303,10 @@ int run_render(Options o)
 
 int main(int argc, char **argv)
 {
-    try {
+    return udm1app::run_tool("udm1-ao", [&] {
         Options o = parse(argc, argv);
         std::unique_ptr<tbb::global_control> limit;
         if (o.threads) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
         return o.compare ? run_compare(o) : run_render(o);
-    } catch (const Error &e) {
-        std::fprintf(stderr, "udm1-ao: %s\n", e.what());
-        return e.code;
-    } catch (const udm1scene::SceneError &e) {
-        std::fprintf(stderr, "udm1-ao: %s\n", e.what());
-        return 1;
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "udm1-ao: %s\n", e.what());
-        return 1;
-    }
+    });
 }

@@ -295,18 +295,12 @@ void run_figures(const Options &o)
 
 int main(int argc, char **argv)
 {
-    try {
+    return udm1app::run_tool("udm1-noise", [&] {
         Options o = parse(argc, argv);
         std::unique_ptr<tbb::global_control> limit;
         if (o.threads) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
         if (o.figures) run_figures(o);
         else run_single(o);
         return 0;
-    } catch (const Error &e) {
-        std::fprintf(stderr, "udm1-noise: %s\n", e.what());
-        return e.code;
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "udm1-noise: %s\n", e.what());
-        return 1;
-    }
+    });
 }

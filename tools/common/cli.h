@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <exception>
 #include <stdexcept>
 #include <string>
 
@@ -20,5 +22,20 @@ double parse_double(const std::string &text, const std::string &what, double lo,
 
 // udm1_randomize from "none", "default", "shift", "permute", "owen".
 uint32_t parse_randomize(const std::string &text);
+
+// A tool's main: run `body` (returning the exit code); an Error prints "<tool>: <message>" and exits
+// with its code, any other exception prints the same and exits 1.
+template <class F> int run_tool(const char *tool, F &&body)
+{
+    try {
+        return body();
+    } catch (const Error &e) {
+        std::fprintf(stderr, "%s: %s\n", tool, e.what());
+        return e.code;
+    } catch (const std::exception &e) {
+        std::fprintf(stderr, "%s: %s\n", tool, e.what());
+        return 1;
+    }
+}
 
 }  // namespace udm1app

@@ -323,7 +323,7 @@ void cmd_check(const Options &o)
 
 int main(int argc, char **argv)
 {
-    try {
+    return udm1app::run_tool("udm1-seq", [&] {
         Options o = parse(argc, argv);
         if (o.command == "list") cmd_list();
         else if (o.command == "help" || o.command == "--help") std::fputs(USAGE, stdout);
@@ -335,11 +335,5 @@ int main(int argc, char **argv)
         else if (o.command == "check") cmd_check(o);
         else throw Error("unknown command '" + o.command + "' (udm1-seq help lists them)");
         return 0;
-    } catch (const Error &e) {
-        std::fprintf(stderr, "udm1-seq: %s\n", e.what());
-        return e.code;
-    } catch (const std::exception &e) {
-        std::fprintf(stderr, "udm1-seq: %s\n", e.what());
-        return 1;
-    }
+    });
 }
