@@ -224,6 +224,10 @@ def main(argv=None) -> int:
     eq_table = [[r["sampler"], r["spp"], f"{r['seconds'] * 1e3:.1f}", f"{r['psnr_seed1']:.2f}", f"{r['psnr_mean']:.2f}"]
                 for r in sorted(eq, key=lambda r: -r["psnr_mean"])]
     epis = next(r for r in fig6 if r["sampler"] == "episwr")
+    paper_rank = {r["sampler"]: k + 1 for k, r in enumerate(sorted((r for r in fig6 if r["paper_set"]),
+                                                                    key=lambda r: -r["psnr_mean"]))}
+    eq_rank = {r["sampler"]: k + 1 for k, r in enumerate(sorted((r for r in eq if r["sampler"] in PAPER_SET),
+                                                                 key=lambda r: -r["psnr_mean"]))}
     md = f"""# udm1 ambient occlusion report
 
 The paper's Figure 6 (section 4.2) on `{args.scene}` at {args.size}: AO = (1/pi) * integral of V cos(theta),
@@ -237,7 +241,11 @@ the library provides it (each sampler's default), compared with a {args.ref_spp}
 At {args.spp} spp the best mean PSNR over {args.seeds} seeds is **{best['sampler']}** ({best['psnr_mean']:.2f} dB);
 EPISWR, the paper's choice, is {epis['psnr_mean']:.2f} dB (rank {rank_of['episwr']} of {len(fig6)}). At equal time
 ({budget * 1e3:.0f} ms) the best is **{best_eq['sampler']}** ({best_eq['psnr_mean']:.2f} dB at {best_eq['spp']} spp).
-The paper reports EPISWR first and Halton and Sobol last; the table says where that holds here.
+The paper (Figure 6) reports EPISWR first of its {len(PAPER_SET)} and Halton and Sobol last; here, among the same
+{len(PAPER_SET)}, EPISWR ranks {paper_rank['episwr']}, Halton {paper_rank['halton']} and Sobol {paper_rank['sobol']} at equal spp, and
+EPISWR ranks {eq_rank['episwr']}, Halton {eq_rank['halton']} and Sobol {eq_rank['sobol']} at equal time. The paper's Weyl pairs
+WR (sqrt2, sqrt13) and WE rank {paper_rank['wr-ao']} and {paper_rank['we']}: without the EPIS first coordinate
+(a stratified 1D set), a 2D Weyl sequence is a lattice-like set whose quality depends on its pair.
 
 ![Figure 6](ao_figure6.png)
 
