@@ -86,14 +86,9 @@ bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit)
     if (s.kind == Shape::Sphere) {
         hit->ng = normalize(hit->p - s.center);
     } else {
-        // pbrt's triangle normal: cross(p0 - p2, p1 - p2), flipped by ReverseOrientation / handedness
-        const uint32_t *i = &s.indices[3 * (size_t)hit->prim];
-        Vec3 p0(s.P[3 * i[0]], s.P[3 * i[0] + 1], s.P[3 * i[0] + 2]);
-        Vec3 p1(s.P[3 * i[1]], s.P[3 * i[1] + 1], s.P[3 * i[1] + 2]);
-        Vec3 p2(s.P[3 * i[2]], s.P[3 * i[2] + 1], s.P[3 * i[2] + 2]);
-        hit->ng = normalize(cross(p0 - p2, p1 - p2));
+        hit->ng = triangle_normal(s, hit->prim);
     }
-    if (s.reverse_orientation) hit->ng = -hit->ng;
+    if (s.kind == Shape::Sphere && s.reverse_orientation) hit->ng = -hit->ng;
     return true;
 }
 

@@ -124,6 +124,20 @@ uint64_t Scene::digest() const
     return f.h;
 }
 
+Vec3 triangle_normal(const Shape &s, unsigned prim)
+{
+    const uint32_t *i = &s.indices[3 * (size_t)prim];
+    auto P = [&](uint32_t k) { return Vec3(s.P[3 * k], s.P[3 * k + 1], s.P[3 * k + 2]); };
+    Vec3 n = normalize(cross(P(i[0]) - P(i[2]), P(i[1]) - P(i[2])));
+    if (!s.N.empty()) {
+        auto N = [&](uint32_t k) { return Vec3(s.N[3 * k], s.N[3 * k + 1], s.N[3 * k + 2]); };
+        if (dot(n, N(i[0]) + N(i[1]) + N(i[2])) < 0) n = -n;
+    } else if (s.reverse_orientation) {
+        n = -n;
+    }
+    return n;
+}
+
 void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir)
 {
     // pbrt's perspective camera: the screen window spans [-1, 1] along the shorter axis

@@ -92,6 +92,11 @@ struct Scene {
     uint64_t digest() const;
 };
 
+// The unit geometric normal of triangle `prim` of a triangle shape, oriented as pbrt-v4 orients it:
+// cross(p0 - p2, p1 - p2), towards the shading normals if the mesh has them, else flipped by
+// ReverseOrientation (and by a transform that swaps handedness, folded into reverse_orientation).
+Vec3 triangle_normal(const Shape &s, unsigned prim);
+
 // Raster (px, py) in [0, width) x [0, height), y down, to a world-space ray (pbrt's perspective camera).
 void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir);
 

@@ -1,0 +1,450 @@
+// bsdf.cpp - see bsdf.h. Formulas follow pbrt-v4 (Pharr, Jakob, Humphreys, 4th ed., chapters 9
+// and 14): Trowbridge-Reitz with visible-normal sampling, the rough dielectric, and the layered
+// random walk without a medium.
+#include "bsdf.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace udm1pt {
+
+namespace {
+
+const double PI = 3.14159265358979323846;
+const double ONE_MINUS_EPS = 0x1.fffffffffffffp-1;
+
+inline double sqr(double x) { return x * x; }
+inline double cos2(Vec3 w) { return w.z * w.z; }
+inline double sin2(Vec3 w) { return std::max(0.0, 1 - cos2(w)); }
+inline double tan2(Vec3 w) { return sin2(w) / cos2(w); }
+inline double cos_phi(Vec3 w)
+{
+    double s = std::sqrt(sin2(w));
+    return s == 0 ? 1 : std::clamp(w.x / s, -1.0, 1.0);
+}
+inline double sin_phi(Vec3 w)
+{
+    double s = std::sqrt(sin2(w));
+    return s == 0 ? 0 : std::clamp(w.y / s, -1.0, 1.0);
+}
+inline bool same_hemisphere(Vec3 a, Vec3 b) { return a.z * b.z > 0; }
+inline Vec3 face_forward(Vec3 n, Vec3 v) { return udm1scene::dot(n, v) < 0 ? -n : n; }
+inline Vec3 reflect(Vec3 wo, Vec3 n) { return -wo + n * (2 * udm1scene::dot(wo, n)); }
+inline Vec3 scale(Vec3 v, double s) { return v * s; }
+
+// Refraction of wi through a surface with normal n and relative eta; false on total internal reflection.
+bool refract(Vec3 wi, Vec3 n, double eta, double *etap, Vec3 *wt)
+{
+    double cos_i = udm1scene::dot(n, wi);
+    if (cos_i < 0) eta = 1 / eta, cos_i = -cos_i, n = -n;
+    double sin2_i = std::max(0.0, 1 - cos_i * cos_i), sin2_t = sin2_i / (eta * eta);
+    if (sin2_t >= 1) return false;
+    double cos_t = std::sqrt(1 - sin2_t);
+    *wt = -wi * (1 / eta) + n * (cos_i / eta - cos_t);
+    if (etap) *etap = eta;
+    return true;
+}
+
+// A small deterministic generator for the layered random walk, seeded from the directions.
+struct Rng {
+    uint64_t s;
+    static uint64_t mix(uint64_t z)
+    {
+        z += 0x9e3779b97f4a7c15ull;
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    }
+    static uint64_t hash(Vec3 v, uint64_t h)
+    {
+        for (double c : {v.x, v.y, v.z}) {
+            uint64_t b;
+            std::memcpy(&b, &c, 8);
+            h = mix(h ^ b);
+        }
+        return h;
+    }
+    Rng(uint64_t a, uint64_t b) : s(mix(a ^ mix(b))) {}
+    double operator()()
+    {
+        s += 0x9e3779b97f4a7c15ull;
+        return std::min(ONE_MINUS_EPS, (mix(s) >> 11) * 0x1p-53);
+    }
+};
+
+// Transmittance through the layer of thickness dz along w (no medium: pbrt's Tr with sigma_t = 1).
+inline double Tr(double dz, Vec3 w)
+{
+    if (std::fabs(dz) <= 1e-300) return 1;
+    return std::exp(-std::fabs(dz / w.z));
+}
+
+inline double power_heuristic(double f, double g) { return f * f + g * g > 0 ? f * f / (f * f + g * g) : 0; }
+
+}  // namespace
+
+// ---- Trowbridge-Reitz ----
+
+double Microfacets::D(Vec3 wm) const
+{
+    double t2 = tan2(wm);
+    if (std::isinf(t2) || std::isnan(t2)) return 0;
+    double c4 = sqr(cos2(wm));
+    if (c4 < 1e-16) return 0;
+    double e = t2 * (sqr(cos_phi(wm) / ax) + sqr(sin_phi(wm) / ay));
+    return 1 / (PI * ax * ay * c4 * sqr(1 + e));
+}
+
+double Microfacets::lambda(Vec3 w) const
+{
+    double t2 = tan2(w);
+    if (std::isinf(t2) || std::isnan(t2)) return 0;
+    double a2 = sqr(cos_phi(w) * ax) + sqr(sin_phi(w) * ay);
+    return (std::sqrt(1 + a2 * t2) - 1) / 2;
+}
+
+double Microfacets::pdf(Vec3 w, Vec3 wm) const
+{
+    return G1(w) / std::fabs(w.z) * D(wm) * std::fabs(udm1scene::dot(w, wm));
+}
+
+Vec3 Microfacets::sample_wm(Vec3 w, double u1, double u2) const
+{
+    Vec3 wh = udm1scene::normalize(Vec3(ax * w.x, ay * w.y, w.z));
+    if (wh.z < 0) wh = -wh;
+    Vec3 t1 = wh.z < 0.99999 ? udm1scene::normalize(udm1scene::cross(Vec3(0, 0, 1), wh)) : Vec3(1, 0, 0);
+    Vec3 t2 = udm1scene::cross(wh, t1);
+    double r = std::sqrt(u1), phi = 2 * PI * u2;  // uniform disk, polar
+    double px = r * std::cos(phi), py = r * std::sin(phi);
+    double h = std::sqrt(1 - px * px);
+    py = (1 - (1 + wh.z) / 2) * h + (1 + wh.z) / 2 * py;
+    double pz = std::sqrt(std::max(0.0, 1 - px * px - py * py));
+    Vec3 nh = t1 * px + t2 * py + wh * pz;
+    return udm1scene::normalize(Vec3(ax * nh.x, ay * nh.y, std::max(1e-6, nh.z)));
+}
+
+double fresnel_dielectric(double cos_i, double eta)
+{
+    cos_i = std::clamp(cos_i, -1.0, 1.0);
+    if (cos_i < 0) eta = 1 / eta, cos_i = -cos_i;
+    double sin2_i = 1 - cos_i * cos_i, sin2_t = sin2_i / (eta * eta);
+    if (sin2_t >= 1) return 1;
+    double cos_t = std::sqrt(std::max(0.0, 1 - sin2_t));
+    double r_parl = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    double r_perp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return (r_parl * r_parl + r_perp * r_perp) / 2;
+}
+
+// ---- dielectric interface ----
+
+Vec3 Dielectric::f(Vec3 wo, Vec3 wi, Mode mode) const
+{
+    if (specular()) return Vec3();
+    double co = wo.z, ci = wi.z;
+    bool refl = co * ci > 0;
+    double etap = 1;
+    if (!refl) etap = co > 0 ? eta : 1 / eta;
+    Vec3 wm = wi * etap + wo;
+    if (ci == 0 || co == 0 || udm1scene::dot(wm, wm) == 0) return Vec3();
+    wm = face_forward(udm1scene::normalize(wm), Vec3(0, 0, 1));
+    if (udm1scene::dot(wm, wi) * ci < 0 || udm1scene::dot(wm, wo) * co < 0) return Vec3();
+    double F = fresnel_dielectric(udm1scene::dot(wo, wm), eta);
+    double v;
+    if (refl) {
+        v = mf.D(wm) * mf.G(wo, wi) * F / std::fabs(4 * ci * co);
+    } else {
+        double denom = sqr(udm1scene::dot(wi, wm) + udm1scene::dot(wo, wm) / etap) * ci * co;
+        v = mf.D(wm) * (1 - F) * mf.G(wo, wi) * std::fabs(udm1scene::dot(wi, wm) * udm1scene::dot(wo, wm) / denom);
+        if (mode == Mode::Radiance) v /= etap * etap;
+    }
+    return Vec3(v, v, v);
+}
+
+double Dielectric::pdf(Vec3 wo, Vec3 wi, Mode, unsigned lobes) const
+{
+    if (specular()) return 0;
+    double co = wo.z, ci = wi.z;
+    bool refl = co * ci > 0;
+    double etap = 1;
+    if (!refl) etap = co > 0 ? eta : 1 / eta;
+    Vec3 wm = wi * etap + wo;
+    if (ci == 0 || co == 0 || udm1scene::dot(wm, wm) == 0) return 0;
+    wm = face_forward(udm1scene::normalize(wm), Vec3(0, 0, 1));
+    if (udm1scene::dot(wm, wi) * ci < 0 || udm1scene::dot(wm, wo) * co < 0) return 0;
+    double R = fresnel_dielectric(udm1scene::dot(wo, wm), eta), T = 1 - R;
+    if (!(lobes & Reflect)) R = 0;
+    if (!(lobes & Transmit)) T = 0;
+    if (R == 0 && T == 0) return 0;
+    if (refl) return mf.pdf(wo, wm) / (4 * std::fabs(udm1scene::dot(wo, wm))) * R / (R + T);
+    double denom = sqr(udm1scene::dot(wi, wm) + udm1scene::dot(wo, wm) / etap);
+    return mf.pdf(wo, wm) * std::fabs(udm1scene::dot(wi, wm)) / denom * T / (R + T);
+}
+
+bool Dielectric::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, unsigned lobes, Sample *s) const
+{
+    if (specular()) {
+        double R = fresnel_dielectric(wo.z, eta), T = 1 - R;
+        if (!(lobes & Reflect)) R = 0;
+        if (!(lobes & Transmit)) T = 0;
+        if (R == 0 && T == 0) return false;
+        s->specular = true;
+        if (uc < R / (R + T)) {
+            s->wi = Vec3(-wo.x, -wo.y, wo.z);
+            double v = R / std::fabs(s->wi.z);
+            s->f = Vec3(v, v, v), s->pdf = R / (R + T), s->reflection = true;
+            return true;
+        }
+        double etap;
+        Vec3 wi;
+        if (!refract(wo, Vec3(0, 0, 1), eta, &etap, &wi)) return false;
+        double v = T / std::fabs(wi.z);
+        if (mode == Mode::Radiance) v /= etap * etap;
+        s->wi = wi, s->f = Vec3(v, v, v), s->pdf = T / (R + T), s->reflection = false;
+        return true;
+    }
+    Vec3 wm = mf.sample_wm(wo, u1, u2);
+    double R = fresnel_dielectric(udm1scene::dot(wo, wm), eta), T = 1 - R;
+    if (!(lobes & Reflect)) R = 0;
+    if (!(lobes & Transmit)) T = 0;
+    if (R == 0 && T == 0) return false;
+    s->specular = false;
+    if (uc < R / (R + T)) {
+        Vec3 wi = reflect(wo, wm);
+        if (!same_hemisphere(wo, wi)) return false;
+        s->pdf = mf.pdf(wo, wm) / (4 * std::fabs(udm1scene::dot(wo, wm))) * R / (R + T);
+        double v = mf.D(wm) * mf.G(wo, wi) * R / (4 * wi.z * wo.z);
+        s->wi = wi, s->f = Vec3(v, v, v), s->reflection = true;
+        return s->pdf > 0;
+    }
+    double etap;
+    Vec3 wi;
+    if (!refract(wo, wm, eta, &etap, &wi) || same_hemisphere(wo, wi) || wi.z == 0) return false;
+    double denom = sqr(udm1scene::dot(wi, wm) + udm1scene::dot(wo, wm) / etap);
+    double dwm_dwi = std::fabs(udm1scene::dot(wi, wm)) / denom;
+    s->pdf = mf.pdf(wo, wm) * dwm_dwi * T / (R + T);
+    double v = T * mf.D(wm) * mf.G(wo, wi) *
+               std::fabs(udm1scene::dot(wi, wm) * udm1scene::dot(wo, wm) / (wi.z * wo.z * denom));
+    if (mode == Mode::Radiance) v /= etap * etap;
+    s->wi = wi, s->f = Vec3(v, v, v), s->reflection = false;
+    return s->pdf > 0;
+}
+
+// ---- Lambertian ----
+
+Vec3 Lambert::f(Vec3 wo, Vec3 wi) const { return same_hemisphere(wo, wi) ? R * (1 / PI) : Vec3(); }
+
+double Lambert::pdf(Vec3 wo, Vec3 wi, unsigned lobes) const
+{
+    if (!(lobes & Reflect) || !same_hemisphere(wo, wi)) return 0;
+    return std::fabs(wi.z) / PI;
+}
+
+bool Lambert::sample(Vec3 wo, double u1, double u2, unsigned lobes, Sample *s) const
+{
+    if (!(lobes & Reflect)) return false;
+    double r = std::sqrt(u1), phi = 2 * PI * u2;
+    Vec3 wi(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
+    if (wo.z < 0) wi.z = -wi.z;
+    s->wi = wi, s->f = R * (1 / PI), s->pdf = std::fabs(wi.z) / PI, s->specular = false, s->reflection = true;
+    s->pdf_is_proportional = false;
+    return s->pdf > 0;
+}
+
+// ---- layered: dielectric coat over a diffuse base, two-sided, no medium ----
+
+namespace {
+
+// The interface at the top (the coat) or the bottom (the base) of the layers.
+struct Interface {
+    const Coated *c;
+    bool top;
+    Vec3 f(Vec3 wo, Vec3 wi, Mode mode) const { return top ? c->top.f(wo, wi, mode) : c->bottom.f(wo, wi); }
+    double pdf(Vec3 wo, Vec3 wi, Mode mode, unsigned lobes = Both) const
+    {
+        return top ? c->top.pdf(wo, wi, mode, lobes) : c->bottom.pdf(wo, wi, lobes);
+    }
+    bool sample(Vec3 wo, double uc, double u1, double u2, Mode mode, unsigned lobes, Sample *s) const
+    {
+        return top ? c->top.sample(wo, uc, u1, u2, mode, lobes, s) : c->bottom.sample(wo, u1, u2, lobes, s);
+    }
+    bool specular() const { return top && c->top.specular(); }
+};
+
+inline Mode flip(Mode m) { return m == Mode::Radiance ? Mode::Importance : Mode::Radiance; }
+inline double max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
+inline bool nonzero(Vec3 v) { return v.x != 0 || v.y != 0 || v.z != 0; }
+
+}  // namespace
+
+Vec3 Coated::f(Vec3 wo, Vec3 wi, Mode mode) const
+{
+    if (wo.z < 0) wo = -wo, wi = -wi;  // two-sided
+    Interface top_i{this, true}, bottom_i{this, false};
+    // light enters through the top; it leaves through the top (reflection) or, for
+    // transmission, the bottom (the diffuse base transmits nothing)
+    bool refl = same_hemisphere(wo, wi);
+    Interface enter = top_i, exit = refl ? top_i : bottom_i, non_exit = refl ? bottom_i : top_i;
+    double exit_z = refl ? thickness : 0;
+    Vec3 f;
+    if (refl) f = enter.f(wo, wi, mode) * samples;
+    Rng rng(Rng::hash(wo, 1), Rng::hash(wi, 2));
+    for (int sidx = 0; sidx < samples; ++sidx) {
+        Sample wos, wis;
+        double uc = rng(), a = rng(), b = rng();
+        if (!enter.sample(wo, uc, a, b, mode, Transmit, &wos) || !nonzero(wos.f) || wos.pdf == 0 || wos.wi.z == 0)
+            continue;
+        uc = rng(), a = rng(), b = rng();
+        if (!exit.sample(wi, uc, a, b, flip(mode), Transmit, &wis) || !nonzero(wis.f) || wis.pdf == 0 || wis.wi.z == 0)
+            continue;
+        Vec3 beta = wos.f * (std::fabs(wos.wi.z) / wos.pdf);
+        double z = thickness;
+        Vec3 w = wos.wi;
+        for (int depth = 0; depth < max_depth; ++depth) {
+            if (depth > 3 && max_component(beta) < 0.25) {
+                double q = std::max(0.0, 1 - max_component(beta));
+                if (rng() < q) break;
+                beta = beta * (1 / (1 - q));
+            }
+            z = z == thickness ? 0 : thickness;
+            beta = beta * Tr(thickness, w);
+            if (z == exit_z) {
+                Sample bs;
+                uc = rng(), a = rng(), b = rng();
+                if (!exit.sample(-w, uc, a, b, mode, Reflect, &bs) || !nonzero(bs.f) || bs.pdf == 0 || bs.wi.z == 0)
+                    break;
+                beta = mul(beta, bs.f) * (std::fabs(bs.wi.z) / bs.pdf);
+                w = bs.wi;
+            } else {
+                if (!non_exit.specular()) {  // next-event estimate along the presampled exit direction
+                    double wt = 1;
+                    if (!exit.specular()) wt = power_heuristic(wis.pdf, non_exit.pdf(-w, -wis.wi, mode));
+                    f = f + mul(mul(beta, non_exit.f(-w, -wis.wi, mode)), wis.f) *
+                                (std::fabs(wis.wi.z) * wt * Tr(thickness, wis.wi) / wis.pdf);
+                }
+                Sample bs;
+                uc = rng(), a = rng(), b = rng();
+                if (!non_exit.sample(-w, uc, a, b, mode, Reflect, &bs) || !nonzero(bs.f) || bs.pdf == 0 ||
+                    bs.wi.z == 0)
+                    break;
+                beta = mul(beta, bs.f) * (std::fabs(bs.wi.z) / bs.pdf);
+                w = bs.wi;
+                if (!exit.specular()) {
+                    Vec3 fexit = exit.f(-w, wi, mode);
+                    if (nonzero(fexit)) {
+                        double wt = 1;
+                        if (!non_exit.specular()) wt = power_heuristic(bs.pdf, exit.pdf(-w, wi, mode, Transmit));
+                        f = f + mul(beta, fexit) * (Tr(thickness, bs.wi) * wt);
+                    }
+                }
+            }
+        }
+    }
+    return f * (1.0 / samples);
+}
+
+double Coated::pdf(Vec3 wo, Vec3 wi, Mode mode) const
+{
+    if (wo.z < 0) wo = -wo, wi = -wi;
+    Interface top_i{this, true}, bottom_i{this, false};
+    Rng rng(Rng::hash(wi, 3), Rng::hash(wo, 4));
+    double sum = 0;
+    if (same_hemisphere(wo, wi)) sum += samples * top_i.pdf(wo, wi, mode, Reflect);
+    for (int sidx = 0; sidx < samples; ++sidx) {
+        if (same_hemisphere(wo, wi)) {  // TRT: through the coat, off the base, back out
+            Interface r_i = bottom_i, t_i = top_i;
+            Sample wos, wis;
+            double a = rng(), b = rng(), c = rng();
+            bool ok_o = t_i.sample(wo, a, b, c, mode, Transmit, &wos);
+            a = rng(), b = rng(), c = rng();
+            bool ok_i = t_i.sample(wi, a, b, c, flip(mode), Transmit, &wis);
+            if (ok_o && nonzero(wos.f) && wos.pdf > 0 && ok_i && nonzero(wis.f) && wis.pdf > 0) {
+                if (t_i.specular()) {
+                    sum += r_i.pdf(-wos.wi, -wis.wi, mode);
+                } else {
+                    Sample rs;
+                    a = rng(), b = rng(), c = rng();
+                    if (r_i.sample(-wos.wi, a, b, c, mode, Both, &rs) && nonzero(rs.f) && rs.pdf > 0) {
+                        double r_pdf = r_i.pdf(-wos.wi, -wis.wi, mode);
+                        sum += power_heuristic(wis.pdf, r_pdf) * r_pdf;
+                        double t_pdf = t_i.pdf(-rs.wi, wi, mode);
+                        sum += power_heuristic(rs.pdf, t_pdf) * t_pdf;
+                    }
+                }
+            }
+        }
+        // TT (transmission through both layers) is impossible: the base does not transmit
+    }
+    return 0.1 * (1 / (4 * PI)) + 0.9 * (sum / samples);  // mixed with a uniform density, as pbrt
+}
+
+bool Coated::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, Sample *out) const
+{
+    bool flip_wi = false;
+    if (wo.z < 0) wo = -wo, flip_wi = true;
+    Sample bs;
+    if (!top.sample(wo, uc, u1, u2, mode, Both, &bs) || !nonzero(bs.f) || bs.pdf == 0 || bs.wi.z == 0) return false;
+    if (bs.reflection) {
+        if (flip_wi) bs.wi = -bs.wi;
+        bs.pdf_is_proportional = true;
+        *out = bs;
+        return true;
+    }
+    Vec3 w = bs.wi;
+    bool specular_path = bs.specular;
+    Rng rng(Rng::hash(wo, 5), Rng::mix((uint64_t)(uc * 0x1p53) ^ Rng::mix((uint64_t)(u1 * 0x1p53)) ^
+                                        Rng::mix(Rng::mix((uint64_t)(u2 * 0x1p53)))));
+    Vec3 f = bs.f * std::fabs(bs.wi.z);
+    double pdf = bs.pdf, z = thickness;
+    Interface top_i{this, true}, bottom_i{this, false};
+    for (int depth = 0; depth < max_depth; ++depth) {
+        double rr = max_component(f) / pdf;
+        if (depth > 3 && rr < 0.25) {
+            double q = std::max(0.0, 1 - rr);
+            if (rng() < q) return false;
+            pdf *= 1 - q;
+        }
+        if (w.z == 0) return false;
+        z = z == thickness ? 0 : thickness;
+        f = f * Tr(thickness, w);
+        Interface in = z == 0 ? bottom_i : top_i;
+        Sample s;
+        double c = rng(), a = rng(), b = rng();
+        if (!in.sample(-w, c, a, b, mode, Both, &s) || !nonzero(s.f) || s.pdf == 0 || s.wi.z == 0) return false;
+        f = mul(f, s.f);
+        pdf *= s.pdf;
+        specular_path = specular_path && s.specular;
+        w = s.wi;
+        if (!s.reflection) {  // left the layers
+            out->reflection = same_hemisphere(wo, w);
+            out->specular = specular_path;
+            out->wi = flip_wi ? -w : w;
+            out->f = f;
+            out->pdf = pdf;
+            out->pdf_is_proportional = true;
+            return true;
+        }
+        f = f * std::fabs(s.wi.z);
+    }
+    return false;
+}
+
+// ---- the material ----
+
+Vec3 Bsdf::f(Vec3 wo, Vec3 wi, Mode mode) const
+{
+    return kind == Diffuse ? diffuse.f(wo, wi) : coated.f(wo, wi, mode);
+}
+
+double Bsdf::pdf(Vec3 wo, Vec3 wi, Mode mode) const
+{
+    return kind == Diffuse ? diffuse.pdf(wo, wi, Both) : coated.pdf(wo, wi, mode);
+}
+
+bool Bsdf::sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode) const
+{
+    *s = Sample();
+    return kind == Diffuse ? diffuse.sample(wo, u1, u2, Both, s) : coated.sample(wo, uc, u1, u2, mode, s);
+}
+
+}  // namespace udm1pt

@@ -1,0 +1,86 @@
+// bsdf.h - the scattering functions the target scenes use, in RGB, in a local
+// frame whose z axis is the shading normal (pbrt-v4's conventions):
+//   diffuse        Lambertian reflection on both sides (pbrt-v4 DiffuseBxDF)
+//   coateddiffuse  a dielectric coat (Trowbridge-Reitz microfacets, or smooth) over a
+//                  diffuse base, two-sided, evaluated by pbrt-v4's stochastic layered
+//                  random walk (LayeredBxDF) for the case the scenes use: no medium
+//                  between the layers (albedo 0), thickness t, maxdepth, nsamples.
+// f() and pdf() of coateddiffuse are themselves unbiased random estimates, drawn from a
+// generator seeded by a hash of the directions (as pbrt does), so they are deterministic.
+#pragma once
+
+#include "math.h"
+
+#include <cstdint>
+
+namespace udm1pt {
+
+using udm1scene::Vec3;
+using udm1scene::mul;
+
+enum class Mode { Radiance, Importance };  // which way light is carried (refraction scaling)
+
+struct Sample {
+    Vec3 f;            // BSDF value (no cosine)
+    Vec3 wi;           // local direction
+    double pdf = 0;    // solid-angle density; 0 means no sample
+    bool specular = false, reflection = true;
+    bool pdf_is_proportional = false;  // layered sampling: use pdf() for MIS weights
+};
+
+// Trowbridge-Reitz (GGX) microfacets with visible-normal sampling.
+struct Microfacets {
+    double ax = 0, ay = 0;
+    bool smooth() const { return ax < 1e-3 && ay < 1e-3; }
+    double D(Vec3 wm) const;
+    double lambda(Vec3 w) const;
+    double G1(Vec3 w) const { return 1 / (1 + lambda(w)); }
+    double G(Vec3 wo, Vec3 wi) const { return 1 / (1 + lambda(wo) + lambda(wi)); }
+    double pdf(Vec3 w, Vec3 wm) const;  // visible normals
+    Vec3 sample_wm(Vec3 w, double u1, double u2) const;
+};
+
+// Which lobes a sample may take.
+enum Lobes : unsigned { Reflect = 1, Transmit = 2, Both = 3 };
+
+struct Dielectric {
+    double eta = 1.5;
+    Microfacets mf;
+    Vec3 f(Vec3 wo, Vec3 wi, Mode mode) const;
+    double pdf(Vec3 wo, Vec3 wi, Mode mode, unsigned lobes) const;
+    bool sample(Vec3 wo, double uc, double u1, double u2, Mode mode, unsigned lobes, Sample *s) const;
+    bool specular() const { return eta == 1 || mf.smooth(); }
+};
+
+struct Lambert {
+    Vec3 R;
+    Vec3 f(Vec3 wo, Vec3 wi) const;
+    double pdf(Vec3 wo, Vec3 wi, unsigned lobes) const;
+    bool sample(Vec3 wo, double u1, double u2, unsigned lobes, Sample *s) const;
+};
+
+struct Coated {
+    Dielectric top;
+    Lambert bottom;
+    double thickness = 0.01;
+    int max_depth = 10, samples = 1;
+    Vec3 f(Vec3 wo, Vec3 wi, Mode mode) const;
+    double pdf(Vec3 wo, Vec3 wi, Mode mode) const;
+    bool sample(Vec3 wo, double uc, double u1, double u2, Mode mode, Sample *s) const;
+};
+
+// A material at a point: one of the above.
+struct Bsdf {
+    enum Kind { Diffuse, CoatedDiffuse } kind = Diffuse;
+    Lambert diffuse;
+    Coated coated;
+    Vec3 f(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
+    double pdf(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
+    bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode = Mode::Radiance) const;
+    bool has_non_specular() const { return true; }  // both kinds have a diffuse part
+};
+
+// Fresnel reflectance of a dielectric interface (cos of the incident angle, relative eta).
+double fresnel_dielectric(double cos_i, double eta);
+
+}  // namespace udm1pt

@@ -1,0 +1,73 @@
+// integrator.h - unidirectional path tracing with next-event estimation and
+// multiple importance sampling (power heuristic), Russian roulette and a maximum
+// depth, as pbrt-v4's "path" integrator, in RGB.
+//
+// Dimension layout: one sampler point per path. For pixel p and sample index i the
+// udm1 cursor starts at (stream p, index i, dimension 0) and hands out, in order:
+//   0, 1            position in the pixel (box filter)
+//   then for each path vertex that scatters (depth 0, 1, ..., maxdepth - 1), 7 values:
+//   +0              light choice            (next-event estimation)
+//   +1, +2          point on the light
+//   +3              BSDF lobe / layer choice
+//   +4, +5          BSDF direction
+//   +6              Russian roulette
+// so a path of depth d uses 2 + 7d dimensions and depth 5 uses 37. A sampler with fewer
+// dimensions D (WMMR and HWMMR have 22) gives dimensions >= D by the library's padding
+// rule: independent hashed uniforms of (seed, pixel, index, dimension) - random, not
+// low-discrepancy, and never a reuse of the set's own dimensions.
+#pragma once
+
+#include "bsdf.h"
+#include "embree_scene.h"
+#include "lights.h"
+#include "scene.h"
+
+#include <udm1/udm1.h>
+
+#include <string>
+#include <vector>
+
+namespace udm1pt {
+
+enum class Strategy { Mis, Nee, Bsdf };  // how light is found: both (MIS), light sampling only, BSDF sampling only
+
+struct Options {
+    std::string sampler = "sobol-owen";
+    uint32_t spp = 16;        // the whole render's samples per pixel (point sets use K = spp)
+    uint64_t first = 0;       // this run's range of sample indices: [first, first + count)
+    uint64_t count = 0;       // 0: all of [first, spp)
+    uint64_t seed = 1;
+    uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
+    int width = 0, height = 0;  // 0: the scene's film
+    int max_depth = -1;         // -1: the scene's Integrator maxdepth (pbrt's default 5)
+    Strategy strategy = Strategy::Mis;
+    bool roulette = true;
+};
+
+// Per-pixel sums of the samples in fixed point (2^-24 units, int64), so that sums of
+// disjoint sample ranges add up exactly: split and whole runs give the same image bit for bit.
+struct Accumulator {
+    static constexpr double SCALE = 16777216.0;  // 2^24
+    static constexpr double MAX_SAMPLE = 1e9;    // larger sample values are clamped (and counted)
+    int width = 0, height = 0;
+    uint64_t first = 0, count = 0;   // the sample range summed
+    std::vector<int64_t> sum;        // 3 per pixel
+    uint64_t nonfinite = 0, clamped = 0;
+    std::vector<float> mean() const;  // RGB per pixel: sum / SCALE / count
+};
+
+struct Stats {
+    double seconds = 0;
+    uint64_t paths = 0, rays = 0;  // camera paths; all rays (camera, continuation, shadow)
+    uint32_t dimensions = 0;       // the sampler's own dimensions (the rest padded)
+    uint32_t path_dimensions = 0;  // what a path of maximum depth uses
+};
+
+// Throws std::runtime_error with a one-line message (unknown sampler, bad range, material).
+Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats);
+
+// The materials of the scene as BSDFs (validated: unknown types and parameters give errors with
+// the material's file:line).
+std::vector<Bsdf> materials(const udm1scene::Scene &scene);
+
+}  // namespace udm1pt

@@ -1,0 +1,63 @@
+// lights.h - the scene's area lights for the path tracer: every emitting triangle
+// and sphere, chosen in proportion to its power, sampled by area (triangles) or by
+// the cone of directions they subtend (spheres seen from outside, as pbrt-v4).
+// Emission is pbrt-v4's diffuse area light: radiance L * scale on the side the
+// surface normal faces, or on both sides if twosided.
+#pragma once
+
+#include "embree_scene.h"
+#include "scene.h"
+
+#include <map>
+#include <vector>
+
+namespace udm1pt {
+
+using udm1scene::Vec3;
+
+struct LightSample {
+    Vec3 wi;          // unit direction from the shading point to the light
+    Vec3 L;           // emitted radiance arriving along -wi
+    double pdf = 0;   // solid-angle density, including the choice of the light
+    double dist = 0;  // distance to the sampled point
+};
+
+class Lights {
+public:
+    // Throws udm1scene::SceneError (file:line of the Shape) for a light of zero area.
+    explicit Lights(const udm1scene::Scene &scene);
+
+    bool empty() const { return lights_.empty(); }
+    size_t count() const { return lights_.size(); }
+
+    // Sample a light for point p: u_select picks the light, (u1, u2) the point on it.
+    bool sample(Vec3 p, double u_select, double u1, double u2, LightSample *s) const;
+
+    // Radiance leaving hit h towards w (unit, pointing away from the surface); zero if h is not on a light.
+    Vec3 emitted(const udm1scene::Hit &h, Vec3 w) const;
+
+    // The density (solid angle, including the choice) with which sample() would give the direction
+    // from p to the light point h.
+    double pdf(Vec3 p, const udm1scene::Hit &h) const;
+
+    // The light of a hit, or -1.
+    int light_of(const udm1scene::Hit &h) const;
+
+private:
+    struct Light {
+        bool sphere = false;
+        Vec3 p0, p1, p2, n;  // triangle: vertices, unit normal (emitting side for one-sided lights)
+        Vec3 center;
+        double radius = 0, area = 0;
+        Vec3 L;
+        bool twosided = false;
+    };
+    Vec3 radiance(const Light &l, Vec3 n, Vec3 w) const;
+    double pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const;  // solid angle, without the choice
+    std::vector<Light> lights_;
+    std::vector<double> cdf_;                // power CDF
+    std::vector<double> prob_;               // choice probability of each light
+    std::vector<int> first_of_shape_;        // light index of a shape's first triangle, or -1
+};
+
+}  // namespace udm1pt

@@ -1,0 +1,372 @@
+// udm1-pt - an Embree path tracer in which the sampler is one switch (paper, section 5).
+//
+//   udm1-pt [options] [-o IMAGE.exr] [--png IMAGE.png]      render (default: built-in Cornell box)
+//   udm1-pt reference -o REF.exr [options]                  high spp (default sobol-owen, 4096 spp); reused
+//                                                           if REF.exr was made by the same scene and settings
+//   udm1-pt merge A.exr B.exr ... -o OUT.exr [--png P]      add sample ranges of one render, exactly
+//   udm1-pt compare IMAGE REFERENCE [--diff DIFF.png]       MSE, RMSE, PSNR (peak 1 on clamped linear RGB)
+//   udm1-pt sweep --against REF.exr [--samplers ..] [--spps ..] [--seeds K] [--images DIR] [options]
+//   udm1-pt export DIR [--scene S] [--size WxH]             the parsed scene as PLY files + scene.json
+//
+// Errors are one line, "udm1-pt: ...", exit 2 for bad arguments and 1 for failures (a bad scene
+// names its file and line); images are written under temporary names and renamed, so a failure
+// leaves no partial image.
+#include "../tools/common/atomic_file.h"
+#include "../tools/common/cli.h"
+#include "../tools/common/image_read.h"
+#include "../tools/common/image_write.h"
+#include "embree_scene.h"
+#include "film_io.h"
+#include "integrator.h"
+#include "scene_export.h"
+#include "scene.h"
+
+#include <tbb/global_control.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+using udm1app::Error;
+
+namespace {
+
+const char *USAGE =
+    "usage: udm1-pt [options] [-o IMAGE.exr] [--png IMAGE.png]   (neither: writes pt.png)\n"
+    "       udm1-pt reference -o REF.exr [options]   (defaults: --sampler sobol-owen --spp 4096; reuses REF.exr\n"
+    "                                                if the same scene and settings made it)\n"
+    "       udm1-pt merge A.exr B.exr ... -o OUT.exr [--png OUT.png]   (sample ranges of one render)\n"
+    "       udm1-pt compare IMAGE REFERENCE [--diff DIFF.png]\n"
+    "       udm1-pt sweep --against REF.exr [--samplers A,B,...] [--spps N,M,...] [--seeds K] [--images DIR]\n"
+    "                     [options]: one CSV line per render (sampler,spp,seed,seconds,paths,rays,rmse,psnr,mean)\n"
+    "       udm1-pt export DIR [--scene S] [--size WxH] [--maxdepth D]   (PLY files + scene.json, for Mitsuba)\n"
+    "options:\n"
+    "  --scene S         a .pbrt file or builtin:cornell|furnace (default builtin:cornell)\n"
+    "  --sampler S       any udm1 sampler (udm1-seq list); default sobol-owen\n"
+    "  --spp N           samples per pixel of the whole render (default 16)\n"
+    "  --spp-first F     render only sample indices [F, F + C) of it ...\n"
+    "  --spp-count C     ... (merge joins such ranges; the merged image equals the whole render)\n"
+    "  --seed S          sampler seed (default 1)   --randomize none|default|shift|permute|owen\n"
+    "  --size WxH        image size (default: 256x256 for built-in scenes, else the scene's film)\n"
+    "  --maxdepth D      maximum bounces (default: the scene's, pbrt's 5)\n"
+    "  --strategy S      mis|nee|bsdf: light found by both (MIS), light sampling, or BSDF sampling\n"
+    "  --no-roulette     no Russian roulette\n"
+    "  --threads N       default: all cores\n";
+
+const uint64_t MAX_PIXELS = 1ull << 26;
+
+struct Options {
+    udm1pt::Options pt;
+    std::string command = "render", scene = "builtin:cornell", output, png, diff, against, images;
+    std::vector<std::string> positional, samplers;
+    std::vector<uint32_t> spps;
+    uint32_t threads = 0, seeds = 1;
+    bool size_given = false, sampler_given = false, spp_given = false;
+};
+
+std::vector<std::string> split(const std::string &text, const std::string &flag)
+{
+    std::vector<std::string> parts;
+    size_t start = 0;
+    for (;;) {
+        size_t comma = text.find(',', start);
+        parts.push_back(text.substr(start, comma - start));
+        if (parts.back().empty()) throw Error(flag + " '" + text + "' has an empty item");
+        if (comma == std::string::npos) return parts;
+        start = comma + 1;
+    }
+}
+
+Options parse(int argc, char **argv)
+{
+    Options o;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    size_t i = 0;
+    if (!args.empty() && (args[0] == "help" || args[0] == "--help")) {
+        std::fputs(USAGE, stdout);
+        std::exit(0);
+    }
+    if (!args.empty() && (args[0] == "reference" || args[0] == "merge" || args[0] == "compare" || args[0] == "sweep" ||
+                          args[0] == "export"))
+        o.command = args[0], i = 1;
+    auto value = [&](const std::string &flag) -> std::string {
+        if (i + 1 >= args.size()) throw Error(flag + " needs a value");
+        return args[++i];
+    };
+    auto sweep_only = [&](const std::string &flag) {
+        if (o.command != "sweep") throw Error(flag + " is an option of udm1-pt sweep");
+    };
+    for (; i < args.size(); ++i) {
+        const std::string &a = args[i];
+        if (a == "--scene") o.scene = value(a);
+        else if (a == "--sampler") o.pt.sampler = value(a), o.sampler_given = true;
+        else if (a == "--spp") o.pt.spp = (uint32_t)udm1app::parse_u64(value(a), a, 1, 1u << 24), o.spp_given = true;
+        else if (a == "--spp-first") o.pt.first = udm1app::parse_u64(value(a), a, 0, (1u << 24) - 1);
+        else if (a == "--spp-count") o.pt.count = udm1app::parse_u64(value(a), a, 1, 1u << 24);
+        else if (a == "--seed") o.pt.seed = udm1app::parse_u64(value(a), a, 0, UINT64_MAX);
+        else if (a == "--randomize") o.pt.randomize = udm1app::parse_randomize(value(a));
+        else if (a == "--size") {
+            std::string v = value(a);
+            size_t x = v.find('x');
+            if (x == std::string::npos) throw Error("--size '" + v + "' is not WxH");
+            o.pt.width = (int)udm1app::parse_u64(v.substr(0, x), a, 1, 16384);
+            o.pt.height = (int)udm1app::parse_u64(v.substr(x + 1), a, 1, 16384);
+            if ((uint64_t)o.pt.width * o.pt.height > MAX_PIXELS)
+                throw Error("--size '" + v + "' has more than " + std::to_string(MAX_PIXELS) + " pixels");
+            o.size_given = true;
+        } else if (a == "--maxdepth") o.pt.max_depth = (int)udm1app::parse_u64(value(a), a, 0, 1000);
+        else if (a == "--strategy") {
+            std::string s = value(a);
+            if (s == "mis") o.pt.strategy = udm1pt::Strategy::Mis;
+            else if (s == "nee") o.pt.strategy = udm1pt::Strategy::Nee;
+            else if (s == "bsdf") o.pt.strategy = udm1pt::Strategy::Bsdf;
+            else throw Error("--strategy '" + s + "' is not mis, nee or bsdf");
+        } else if (a == "--no-roulette") o.pt.roulette = false;
+        else if (a == "--threads") o.threads = (uint32_t)udm1app::parse_u64(value(a), a, 1, 1024);
+        else if (a == "-o") o.output = value(a);
+        else if (a == "--png") o.png = value(a);
+        else if (a == "--diff") o.diff = value(a);
+        else if (a == "--against") sweep_only(a), o.against = value(a);
+        else if (a == "--images") sweep_only(a), o.images = value(a);
+        else if (a == "--samplers") sweep_only(a), o.samplers = split(value(a), a);
+        else if (a == "--spps") {
+            sweep_only(a);
+            for (const std::string &n : split(value(a), a)) o.spps.push_back((uint32_t)udm1app::parse_u64(n, a, 1, 1u << 24));
+        } else if (a == "--seeds") sweep_only(a), o.seeds = (uint32_t)udm1app::parse_u64(value(a), a, 1, 100000);
+        else if (!a.empty() && a[0] == '-') throw Error("unknown option '" + a + "'");
+        else o.positional.push_back(a);
+    }
+    if (o.command == "compare" && o.positional.size() != 2) throw Error("compare needs IMAGE and REFERENCE");
+    if (o.command == "merge" && o.positional.empty()) throw Error("merge needs the images to merge");
+    if (o.command == "export" && o.positional.size() != 1) throw Error("export needs one folder");
+    if (o.command != "compare" && o.command != "merge" && o.command != "export" && !o.positional.empty())
+        throw Error("unexpected argument '" + o.positional[0] + "'");
+    if (o.command == "merge" && o.output.empty()) throw Error("merge needs -o OUT.exr");
+    if (o.command == "reference") {
+        if (o.output.empty()) throw Error("reference needs -o REF.exr");
+        if (!o.sampler_given) o.pt.sampler = "sobol-owen";
+        if (!o.spp_given) o.pt.spp = 4096;
+        if (o.pt.first || o.pt.count) throw Error("reference renders every sample: no --spp-first/--spp-count");
+    }
+    if (o.command == "sweep") {
+        if (o.against.empty()) throw Error("sweep needs --against REF.exr");
+        if (!o.output.empty() || !o.png.empty()) throw Error("sweep writes no -o/--png image (use --images DIR)");
+        if (o.samplers.empty()) o.samplers = {o.pt.sampler};
+        if (o.spps.empty()) o.spps = {o.pt.spp};
+    }
+    if (o.command == "render" && o.output.empty() && o.png.empty()) o.png = "pt.png";
+    if (o.pt.first >= o.pt.spp) throw Error("--spp-first " + std::to_string(o.pt.first) + " is not below --spp " + std::to_string(o.pt.spp));
+    if (o.pt.count && o.pt.first + o.pt.count > o.pt.spp)
+        throw Error("--spp-first + --spp-count (" + std::to_string(o.pt.first + o.pt.count) + ") exceeds --spp " +
+                    std::to_string(o.pt.spp));
+    return o;
+}
+
+const char *strategy_name(udm1pt::Strategy s)
+{
+    return s == udm1pt::Strategy::Mis ? "mis" : s == udm1pt::Strategy::Nee ? "nee" : "bsdf";
+}
+
+// What made an image (without its sample range); a reference is reused only if this matches.
+std::string description(const udm1scene::Scene &scene, const udm1pt::Options &p, int max_depth)
+{
+    char buf[512];
+    std::snprintf(buf, sizeof buf,
+                  "udm1-pt %s scene %016llx size %dx%d sampler %s spp %u seed %llu randomize %u maxdepth %d strategy %s "
+                  "roulette %d",
+                  udm1_version_string(), (unsigned long long)scene.digest(), p.width, p.height, p.sampler.c_str(), p.spp,
+                  (unsigned long long)p.seed, p.randomize, max_depth, strategy_name(p.strategy), (int)p.roulette);
+    return buf;
+}
+
+// PNGs are for looking at: clamped to [0, 1] and sRGB-encoded (the EXR keeps the linear radiance).
+void write_png(const std::string &path, const udm1pt::Accumulator &a)
+{
+    std::vector<float> v = a.mean();
+    for (float &x : v) {
+        double c = std::clamp((double)x, 0.0, 1.0);
+        x = (float)(c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1 / 2.4) - 0.055);
+    }
+    udm1app::write_image(path, v, a.width, a.height, 3, true);
+}
+
+std::string mean_text(const udm1pt::Accumulator &a)
+{
+    std::vector<float> m = a.mean();
+    double s[3] = {0, 0, 0};
+    for (size_t i = 0; i < m.size(); ++i) s[i % 3] += m[i];
+    size_t n = m.size() / 3;
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%.6g %.6g %.6g", s[0] / n, s[1] / n, s[2] / n);
+    return buf;
+}
+
+int run_compare(const Options &o)
+{
+    udm1app::LoadedImage a = udm1app::read_image(o.positional[0]), ref = udm1app::read_image(o.positional[1]);
+    std::vector<float> diff;
+    udm1app::Comparison c = udm1app::compare(a, ref, true, o.diff.empty() ? nullptr : &diff);
+    std::printf("mse %.6g rmse %.6g psnr %.4f\n", c.mse, c.rmse, c.psnr);
+    if (!o.diff.empty()) {
+        std::vector<float> rgb(diff.size() * 3);
+        for (size_t i = 0; i < diff.size(); ++i) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = std::min(1.0f, 10.0f * diff[i]);
+        udm1app::write_image(o.diff, rgb, a.width, a.height, 3, true);
+    }
+    return 0;
+}
+
+int run_merge(const Options &o)
+{
+    for (const std::string &path : {o.output, o.png})
+        if (!path.empty()) udm1app::AtomicFile probe(path);
+    udm1pt::Partial p = udm1pt::merge_partials(o.positional);
+    udm1pt::write_partial(o.output, p);
+    if (!o.png.empty()) write_png(o.png, p.acc);
+    std::printf("merged %zu image(s): samples [%llu, %llu) of %llu\n", o.positional.size(),
+                (unsigned long long)p.acc.first, (unsigned long long)(p.acc.first + p.acc.count),
+                (unsigned long long)p.spp);
+    return 0;
+}
+
+int run_sweep(const Options &o, const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt)
+{
+    udm1app::LoadedImage ref = udm1app::read_image(o.against);
+    if (ref.width != o.pt.width || ref.height != o.pt.height)
+        throw Error("'" + o.against + "' is " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
+                        ", the renders " + std::to_string(o.pt.width) + "x" + std::to_string(o.pt.height),
+                    2);
+    std::vector<std::string> samplers = o.samplers;
+    if (samplers.size() == 1 && samplers[0] == "all") {
+        samplers.clear();
+        for (size_t k = 0; k < udm1_preset_count(); ++k) {
+            udm1_preset_info info;
+            if (udm1_preset_get(k, &info) == UDM1_OK && info.max_dimensions >= 2) samplers.push_back(info.name);
+        }
+    }
+    for (const std::string &s : samplers) {
+        udm1_preset_info info;
+        if (udm1_preset_find(s.c_str(), &info) != UDM1_OK)
+            throw Error("unknown sampler '" + s + "' (udm1-seq list shows them)");
+    }
+    if (!o.images.empty() && (!std::filesystem::is_directory(o.images) || access(o.images.c_str(), W_OK) != 0))
+        throw Error("--images '" + o.images + "' is not a writable folder", 1);
+    std::printf("sampler,spp,seed,seconds,paths,rays,rmse,psnr,mean_r,mean_g,mean_b\n");
+    for (const std::string &s : samplers)
+        for (uint32_t spp : o.spps)
+            for (uint32_t seed = 1; seed <= o.seeds; ++seed) {
+                udm1pt::Options p = o.pt;
+                p.sampler = s, p.spp = spp, p.seed = seed, p.first = 0, p.count = 0;
+                udm1pt::Stats st;
+                udm1pt::Accumulator acc;
+                try {
+                    acc = udm1pt::render(scene, rt, p, &st);
+                } catch (const udm1scene::SceneError &e) {
+                    throw Error(e.what(), 1);
+                } catch (const std::runtime_error &e) {
+                    throw Error(e.what(), 2);
+                }
+                udm1app::LoadedImage mine;
+                mine.width = acc.width, mine.height = acc.height, mine.channels = 3, mine.pixels = acc.mean();
+                udm1app::Comparison c = udm1app::compare(mine, ref, true, nullptr);
+                std::string m = mean_text(acc);
+                for (char &ch : m) ch = ch == ' ' ? ',' : ch;
+                std::printf("%s,%u,%u,%.6f,%llu,%llu,%.8g,%.6f,%s\n", s.c_str(), spp, seed, st.seconds,
+                            (unsigned long long)st.paths, (unsigned long long)st.rays, c.rmse, c.psnr, m.c_str());
+                std::fflush(stdout);
+                if (!o.images.empty() && seed == 1) write_png(o.images + "/" + s + "-" + std::to_string(spp) + "spp.png", acc);
+            }
+    return 0;
+}
+
+int run_render(Options o)
+{
+    udm1scene::Scene scene;
+    std::vector<udm1pt::Bsdf> check;
+    try {
+        scene = udm1scene::load_scene(o.scene);
+        check = udm1pt::materials(scene);  // unsupported materials fail here, before any work
+        udm1pt::Lights lights(scene);      // and zero-area lights
+    } catch (const udm1scene::SceneError &e) {
+        throw Error(e.what(), 1);
+    }
+    if (!o.size_given && scene.source.rfind("builtin:", 0) == 0) o.pt.width = o.pt.height = 256;
+    if (o.pt.width == 0) o.pt.width = scene.width, o.pt.height = scene.height;
+    if ((uint64_t)o.pt.width * o.pt.height > MAX_PIXELS)
+        throw Error(o.scene + ": the film (" + std::to_string(o.pt.width) + "x" + std::to_string(o.pt.height) +
+                    ") has more than " + std::to_string(MAX_PIXELS) + " pixels; pass --size", 2);
+    int max_depth = o.pt.max_depth >= 0 ? o.pt.max_depth : scene.max_depth;
+    if (o.command == "export") {
+        udm1pt::export_scene(scene, o.pt.width, o.pt.height, max_depth, o.positional[0]);
+        std::printf("wrote %s/scene.json\n", o.positional[0].c_str());
+        return 0;
+    }
+    udm1pt::Partial part;
+    part.made_by = description(scene, o.pt, max_depth);
+    part.spp = o.pt.spp;
+    if (o.command == "reference") {
+        std::FILE *f = std::fopen(o.output.c_str(), "rb");
+        if (f) {
+            std::fclose(f);
+            try {
+                udm1pt::Partial old = udm1pt::read_partial(o.output);
+                if (old.made_by == part.made_by && old.acc.first == 0 && old.acc.count == old.spp) {
+                    std::printf("reference %s reused (%s)\n", o.output.c_str(), part.made_by.c_str());
+                    if (!o.png.empty()) write_png(o.png, old.acc), std::printf("wrote %s\n", o.png.c_str());
+                    return 0;
+                }
+            } catch (const Error &) {  // not a reference of ours: render it again
+            }
+        }
+    }
+    for (const std::string &path : {o.output, o.png})
+        if (!path.empty()) udm1app::AtomicFile probe(path);
+    if (!o.output.empty()) {
+        std::string lower = o.output;
+        std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+        if (lower.size() < 4 || lower.compare(lower.size() - 4, 4, ".exr") != 0)
+            throw Error("-o '" + o.output + "': udm1-pt writes OpenEXR (.exr); use --png for a PNG", 2);
+    }
+    udm1scene::EmbreeScene rt(scene);
+    if (o.command == "sweep") return run_sweep(o, scene, rt);
+    udm1pt::Stats st;
+    try {
+        part.acc = udm1pt::render(scene, rt, o.pt, &st);
+    } catch (const udm1scene::SceneError &e) {
+        throw Error(e.what(), 1);
+    } catch (const std::runtime_error &e) {
+        throw Error(e.what(), 2);
+    }
+    if (!o.output.empty()) udm1pt::write_partial(o.output, part);
+    if (!o.png.empty()) write_png(o.png, part.acc);
+    std::printf("sampler %s spp %u samples [%llu, %llu) size %dx%d dimensions %u of %u seconds %.4f paths %llu "
+                "rays %llu paths_per_second %.4g rays_per_second %.4g mean %s\n",
+                o.pt.sampler.c_str(), o.pt.spp, (unsigned long long)part.acc.first,
+                (unsigned long long)(part.acc.first + part.acc.count), part.acc.width, part.acc.height, st.dimensions,
+                st.path_dimensions, st.seconds, (unsigned long long)st.paths, (unsigned long long)st.rays,
+                st.paths / std::max(st.seconds, 1e-9), st.rays / std::max(st.seconds, 1e-9), mean_text(part.acc).c_str());
+    if (part.acc.nonfinite || part.acc.clamped)
+        std::printf("warning: %llu non-finite and %llu clamped sample values\n", (unsigned long long)part.acc.nonfinite,
+                    (unsigned long long)part.acc.clamped);
+    for (const std::string &path : {o.output, o.png})
+        if (!path.empty()) std::printf("wrote %s\n", path.c_str());
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    return udm1app::run_tool("udm1-pt", [&] {
+        Options o = parse(argc, argv);
+        std::unique_ptr<tbb::global_control> limit;
+        if (o.threads) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+        if (o.command == "compare") return run_compare(o);
+        if (o.command == "merge") return run_merge(o);
+        return run_render(o);
+    });
+}
