@@ -62,9 +62,13 @@ Partial read_partial(const std::string &path)
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error("cannot read '" + path + "': " + OIIO::geterror(), 1);
     const OIIO::ImageSpec &spec = in->spec();
-    bool ok = spec.nchannels == 9 && spec.channelformats.size() == 9;
-    for (int c = 0; ok && c < 6; ++c)
-        ok = spec.channelnames[3 + c] == SUM_NAMES[c] && spec.channelformats[3 + c] == OIIO::TypeDesc::UINT;
+    // OpenEXR keeps channels in name order: find the sums by name
+    int where[6];
+    bool ok = spec.channelformats.size() == (size_t)spec.nchannels;
+    for (int c = 0; c < 6; ++c) {
+        where[c] = spec.channelindex(SUM_NAMES[c]);
+        ok = ok && where[c] >= 0 && spec.channelformats[where[c]] == OIIO::TypeDesc::UINT;
+    }
     std::string made_by = spec.get_string_attribute("udm1:render");
     if (!ok || made_by.empty()) throw Error("'" + path + "' is not an udm1-pt image (no exact sums)", 2);
     Partial p;
@@ -81,15 +85,18 @@ Partial read_partial(const std::string &path)
     a.width = spec.width, a.height = spec.height;
     a.first = number("udm1:first"), a.count = number("udm1:count");
     a.nonfinite = number("udm1:nonfinite"), a.clamped = number("udm1:clamped");
-    std::vector<unsigned char> buf((size_t)a.width * a.height * PIXEL_BYTES);
-    if (!in->read_image(0, 0, 0, 9, OIIO::TypeDesc::UNKNOWN, buf.data()))
+    std::vector<size_t> offset(spec.nchannels + 1, 0);  // byte offset of each channel in a native pixel
+    for (int c = 0; c < spec.nchannels; ++c) offset[c + 1] = offset[c] + spec.channelformats[c].size();
+    size_t pixel_bytes = offset[spec.nchannels];
+    std::vector<unsigned char> buf((size_t)a.width * a.height * pixel_bytes);
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, buf.data()))
         throw Error("cannot read '" + path + "': " + in->geterror(), 1);
     a.sum.resize((size_t)a.width * a.height * 3);
     for (size_t i = 0; i < (size_t)a.width * a.height; ++i)
         for (int c = 0; c < 3; ++c) {
             uint32_t hi, lo;
-            std::memcpy(&hi, &buf[i * PIXEL_BYTES + 12 + 8 * c], 4);
-            std::memcpy(&lo, &buf[i * PIXEL_BYTES + 16 + 8 * c], 4);
+            std::memcpy(&hi, &buf[i * pixel_bytes + offset[where[2 * c]]], 4);
+            std::memcpy(&lo, &buf[i * pixel_bytes + offset[where[2 * c + 1]]], 4);
             a.sum[3 * i + c] = (int64_t)(((uint64_t)hi << 32) | lo);
         }
     return p;

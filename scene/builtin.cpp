@@ -108,7 +108,7 @@ Scene plane()
 Scene box(bool emitting)
 {
     Scene s;
-    s.source = emitting ? "builtin:furnace" : "builtin:box";
+    s.source = emitting ? "builtin:furnace-box" : "builtin:box";
     look(s, Vec3(0, 0, -0.5), Vec3(0, 0, 1), Vec3(0, 1, 0), 90);
     int grey = add_material(s, "diffuse", Vec3(0.5, 0.5, 0.5));
     Vec3 c[8];
@@ -128,6 +128,26 @@ Scene box(bool emitting)
     return s;
 }
 
+Scene furnace_sphere()
+{
+    Scene s;
+    s.source = "builtin:furnace";
+    look(s, Vec3(0, 0, 0), Vec3(0, 0, 1), Vec3(0, 1, 0), 90);
+    int grey = add_material(s, "diffuse", Vec3(0.5, 0.5, 0.5));
+    AreaLight l;
+    l.twosided = true;
+    l.where = s.source;
+    s.lights.push_back(l);
+    Shape sh;
+    sh.where = s.source;
+    sh.kind = Shape::Sphere;
+    sh.radius = 1;
+    sh.material = grey;
+    sh.light = 0;
+    s.shapes.push_back(sh);
+    return s;
+}
+
 Scene wall()
 {
     Scene s;
@@ -142,16 +162,17 @@ Scene wall()
 
 }  // namespace
 
-std::vector<std::string> builtin_names() { return {"cornell", "plane", "box", "wall", "furnace"}; }
+std::vector<std::string> builtin_names() { return {"cornell", "plane", "box", "wall", "furnace", "furnace-box"}; }
 
 Scene builtin_scene(const std::string &name)
 {
     if (name == "cornell") return cornell();
     if (name == "plane") return plane();
     if (name == "box") return box(false);
-    if (name == "furnace") return box(true);
+    if (name == "furnace") return furnace_sphere();
+    if (name == "furnace-box") return box(true);
     if (name == "wall") return wall();
-    throw SceneError("builtin:" + name + ": no such built-in scene (cornell, plane, box, wall, furnace)");
+    throw SceneError("builtin:" + name + ": no such built-in scene (cornell, plane, box, wall, furnace, furnace-box)");
 }
 
 Scene mesh_scene(const std::string &path)

@@ -3,7 +3,10 @@
 //   plane    a large floor seen from above, nothing else (ambient occlusion = 1)
 //   box      a closed box with the camera inside (ambient occlusion = 0)
 //   wall     a floor meeting a tall, wide wall (ambient occlusion 1/2 at the wall's foot)
-//   furnace  a closed box lit by its own emitting walls (the path tracer's furnace test)
+//   furnace      the inside of a sphere that emits L = 1 (both sides) and reflects 0.5: radiance
+//                L / (1 - a) = 2 everywhere (the path tracer's furnace test; no edges, so light
+//                sampling has finite variance)
+//   furnace-box  the same with a closed box (edges: light sampling converges slowly there)
 #pragma once
 
 #include "scene.h"
