@@ -129,7 +129,16 @@ struct Tracer {
                         Vec3 q = h.p + ls.wi * ls.dist;
                         double len = udm1scene::length(q - so) - 2 * udm1scene::ray_offset(q);
                         ++*rays;
-                        if (len > 0 && !rt.occluded(so, ls.wi, 0.0, len)) {
+                        bool visible;
+                        if (ls.sphere) {
+                            // a ray that grazes a sphere meets Embree's float sphere up to ~1e-4 of the radius
+                            // before the exact point: a hit on the light's own sphere is the light itself
+                            Hit sh;
+                            visible = len > 0 && (!rt.intersect(so, ls.wi, 0.0, len, &sh) || (int)sh.shape == ls.shape);
+                        } else {
+                            visible = len > 0 && !rt.occluded(so, ls.wi, 0.0, len);
+                        }
+                        if (visible) {
                             double w = strategy == Strategy::Mis ? power_heuristic(ls.pdf, bsdf.pdf(wo_l, wi_l)) : 1;
                             L = L + mul(mul(beta, f), ls.L) * (w / ls.pdf);
                         }

@@ -36,7 +36,7 @@ Lights::Lights(const udm1scene::Scene &scene)
         if (s.kind == udm1scene::Shape::Sphere) {
             Light l;
             l.sphere = true, l.center = s.center, l.radius = s.radius, l.area = 4 * PI * s.radius * s.radius;
-            l.L = L, l.twosided = al.twosided;
+            l.L = L, l.twosided = al.twosided, l.shape = (int)k;
             lights_.push_back(l);
             continue;
         }
@@ -49,7 +49,7 @@ Lights::Lights(const udm1scene::Scene &scene)
             l.p2 = Vec3(s.P[3 * i[2]], s.P[3 * i[2] + 1], s.P[3 * i[2] + 2]);
             l.area = 0.5 * length(cross(l.p1 - l.p0, l.p2 - l.p0));
             l.n = l.area > 0 ? udm1scene::triangle_normal(s, t) : Vec3(0, 0, 1);
-            l.L = L, l.twosided = al.twosided;
+            l.L = L, l.twosided = al.twosided, l.shape = (int)k;
             total += l.area;
             lights_.push_back(l);  // zero-area triangles stay (indices match) with zero power
         }
@@ -118,6 +118,7 @@ bool Lights::sample(Vec3 p, double u_select, double u1, double u2, LightSample *
     if (i >= lights_.size()) i = lights_.size() - 1;
     while (prob_[i] == 0 && i > 0) --i;  // (only with a zero-power light at the very end)
     const Light &l = lights_[i];
+    s->shape = l.shape, s->sphere = l.sphere;
     Vec3 q, nq;
     if (l.sphere) {
         Vec3 dc = l.center - p;

@@ -20,6 +20,8 @@ struct LightSample {
     Vec3 L;           // emitted radiance arriving along -wi
     double pdf = 0;   // solid-angle density, including the choice of the light
     double dist = 0;  // distance to the sampled point
+    int shape = -1;   // the light's shape (Scene::shapes index)
+    bool sphere = false;
 };
 
 class Lights {
@@ -51,6 +53,7 @@ private:
         double radius = 0, area = 0;
         Vec3 L;
         bool twosided = false;
+        int shape = -1;
     };
     Vec3 radiance(const Light &l, Vec3 n, Vec3 w) const;
     double pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const;  // solid angle, without the choice
