@@ -291,6 +291,8 @@ int run_render(Options o)
         scene = udm1scene::load_scene(o.scene);
         check = udm1pt::materials(scene);  // unsupported materials fail here, before any work
         udm1pt::Lights lights(scene);      // and zero-area lights
+        if (lights.empty() && o.command != "export")
+            std::fprintf(stderr, "udm1-pt: note: %s has no area lights: the image is black\n", o.scene.c_str());
     } catch (const udm1scene::SceneError &e) {
         throw Error(e.what(), 1);
     }

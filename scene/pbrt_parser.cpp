@@ -311,7 +311,16 @@ private:
         } else if (d == "Integrator") {
             scene_.integrator = string_arg(lex, "Integrator");
             ParamSet ps = params(lex, t.line);
+            if (geometry_only_) {
+                ignore(here, "Integrator");
+            } else {  // udm1-pt is a unidirectional path tracer; volpath without media is the same
+                if (scene_.integrator != "path" && scene_.integrator != "volpath")
+                    throw SceneError(here + ": Integrator \"" + scene_.integrator + "\" is not supported (path)");
+                only(ps, {"maxdepth"}, "Integrator");
+            }
             scene_.max_depth = ps.get_int("maxdepth", 5);
+            if (scene_.max_depth < 0 || scene_.max_depth > 1000)
+                throw SceneError(here + ": Integrator: maxdepth " + std::to_string(scene_.max_depth) + " outside 0..1000");
         } else if (d == "PixelFilter") {
             string_arg(lex, "PixelFilter");
             params(lex, t.line);  // the renderers use their own box filter
@@ -368,7 +377,9 @@ private:
             shape(lex, t, dir);
         } else if (d == "Include" || d == "Import") {
             std::string file = string_arg(lex, d);
-            parse_file(file.size() && file[0] == '/' ? file : dir + file, depth + 1);
+            std::string full = file.size() && file[0] == '/' ? file : dir + file;
+            if (!std::ifstream(full, std::ios::binary)) throw SceneError(here + ": " + d + ": " + full + ": cannot open the scene file");
+            parse_file(full, depth + 1);
         } else if (geometry_only_ && (d == "Texture" || d == "MakeNamedMedium" || d == "MediumInterface" ||
                                       d == "LightSource" || d == "ColorSpace" || d == "Option" || d == "Attribute")) {
             skip(lex, t);
@@ -437,7 +448,11 @@ private:
             }
             std::string file = ps.get_string("filename", "");
             if (file.empty()) throw SceneError(here + ": plymesh needs \"string filename\"");
-            read_ply(file[0] == '/' ? file : dir + file, m, &s);
+            try {  // the PLY's own complaint, and where the scene asked for it
+                read_ply(file[0] == '/' ? file : dir + file, m, &s);
+            } catch (const SceneError &e) {
+                throw SceneError(here + ": plymesh: " + e.what());
+            }
         } else if (type == "sphere") {
             only(ps, {"radius"}, "sphere");
             s.kind = Shape::Sphere;

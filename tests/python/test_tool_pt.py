@@ -1,0 +1,284 @@
+"""udm1-pt from the command line: runs with no arguments, the furnace through the whole
+pipeline, the Cornell box against Mitsuba 3, the three strategies agree, bit-identical
+images across runs, thread counts and merged sample ranges, merge refusing what does
+not belong together, the shared pbrt-v4 scenes, and every bad input failing with one
+line (file and line for scene files), a non-zero exit and no file."""
+
+import os
+import pathlib
+import re
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+TOOL = os.environ.get("UDM1_PT_TOOL", "")
+pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SCENES = ROOT.parent / "shared" / "scenes"
+RENDER_LINE = re.compile(
+    r"sampler (\S+) spp (\d+) samples \[(\d+), (\d+)\) size (\d+)x(\d+) dimensions (\d+) of (\d+) seconds \S+ "
+    r"paths (\d+) rays (\d+) paths_per_second \S+ rays_per_second \S+ mean (\S+) (\S+) (\S+)\n")
+
+
+def run(*args, cwd=None):
+    return subprocess.run([TOOL, *args], capture_output=True, text=True, cwd=cwd, timeout=900)
+
+
+def ok(*args, cwd=None):
+    r = run(*args, cwd=cwd)
+    assert r.returncode == 0, r.stderr
+    return r
+
+
+def mean_of(result):
+    m = RENDER_LINE.match(result.stdout)
+    assert m, result.stdout
+    return np.array([float(m.group(i)) for i in (11, 12, 13)])
+
+
+def read_png(path):
+    import matplotlib.image as mpimg
+
+    return mpimg.imread(path)
+
+
+def test_runs_with_no_arguments(tmp_path):
+    r = ok(cwd=tmp_path)
+    m = RENDER_LINE.match(r.stdout)
+    assert m and r.stdout.endswith("wrote pt.png\n"), r.stdout
+    assert (m.group(1), m.group(2), m.group(5), m.group(6)) == ("sobol-owen", "16", "256", "256")
+    img = read_png(tmp_path / "pt.png")
+    assert img.shape[:2] == (256, 256)
+    # the Cornell box: a light that saturates, dark corners, and the coloured walls where pbrt puts
+    # them: its LookAt is left-handed (camera x = up x dir), so the red wall at world x = 550 is on
+    # the right and the green one on the left, as in pbrt-v4's render of the same data
+    assert img[..., :3].max() == 1.0 and img[..., :3].min() < 0.05
+    left, right = img[128, 10, :3], img[128, 245, :3]
+    assert left[1] > 1.5 * left[0] and right[0] > 2 * right[1], (left, right)
+
+
+@pytest.mark.parametrize("scene", ["builtin:furnace", "builtin:furnace-box"])
+def test_furnace_through_the_tool(scene, tmp_path):
+    # an enclosure of albedo 1/2 that emits 1 everywhere: every pixel sees 1 / (1 - 1/2) = 2
+    # (roulette and the depth limit: maxdepth 60 leaves 2^-60 out). Light sampling alone is left out
+    # in the box: in its corners the geometry term of two faces meeting at an edge has an infinite
+    # second moment, so its finite-sample mean runs low (1.977 here); MIS bounds it by BSDF sampling
+    for strategy in ("mis", "nee", "bsdf") if scene == "builtin:furnace" else ("mis", "bsdf"):
+        r = ok("--scene", scene, "--spp", "64", "--size", "24x16", "--maxdepth", "60", "--strategy", strategy,
+               "--sampler", "sobol-owen", "-o", str(tmp_path / f"{strategy}.exr"))
+        assert np.all(np.abs(mean_of(r) - 2.0) < 0.02), (strategy, r.stdout)
+
+
+def test_identical_across_runs_threads_and_ranges(tmp_path):
+    common = ["--sampler", "wmmr", "--spp", "12", "--size", "40x30"]
+    outs = []
+    for threads in ("1", "2", "8"):
+        out = tmp_path / f"t{threads}.exr"
+        ok(*common, "--threads", threads, "-o", str(out))
+        outs.append(out.read_bytes())
+    ok(*common, "-o", str(tmp_path / "again.exr"))
+    outs.append((tmp_path / "again.exr").read_bytes())
+    assert all(o == outs[0] for o in outs)
+    # three uneven ranges, each with its own thread count, merged in any order: the whole render, bit for bit
+    for first, count, threads in ((0, 5, "1"), (5, 1, "2"), (6, 6, "8")):
+        ok(*common, "--spp-first", str(first), "--spp-count", str(count), "--threads", threads,
+           "-o", str(tmp_path / f"r{first}.exr"))
+    ok("merge", str(tmp_path / "r6.exr"), str(tmp_path / "r0.exr"), str(tmp_path / "r5.exr"),
+       "-o", str(tmp_path / "merged.exr"), "--png", str(tmp_path / "merged.png"))
+    assert (tmp_path / "merged.exr").read_bytes() == outs[0]
+    ok(*common, "--png", str(tmp_path / "whole.png"))
+    assert (tmp_path / "merged.png").read_bytes() == (tmp_path / "whole.png").read_bytes()
+    # merging parts of a merge works as well: ((0..5) + (5..6)) + (6..12)
+    ok("merge", str(tmp_path / "r0.exr"), str(tmp_path / "r5.exr"), "-o", str(tmp_path / "half.exr"))
+    ok("merge", str(tmp_path / "half.exr"), str(tmp_path / "r6.exr"), "-o", str(tmp_path / "merged2.exr"))
+    assert (tmp_path / "merged2.exr").read_bytes() == outs[0]
+    r = ok("compare", str(tmp_path / "merged.exr"), str(tmp_path / "t1.exr"))
+    assert r.stdout == "mse 0 rmse 0 psnr inf\n"
+
+
+def test_merge_refuses_what_does_not_belong_together(tmp_path):
+    base = ["--sampler", "halton", "--spp", "8", "--size", "16x16"]
+    ok(*base, "--spp-first", "0", "--spp-count", "4", "-o", str(tmp_path / "a.exr"))
+    ok(*base, "--spp-first", "4", "--spp-count", "4", "-o", str(tmp_path / "b.exr"))
+    ok(*base, "--spp-first", "2", "--spp-count", "4", "-o", str(tmp_path / "overlap.exr"))
+    ok(*base, "--spp-first", "6", "--spp-count", "2", "-o", str(tmp_path / "late.exr"))
+    ok(*base, "--spp-first", "4", "--spp-count", "4", "--seed", "2", "-o", str(tmp_path / "seed2.exr"))
+    ok("--sampler", "halton", "--spp", "8", "--size", "16x8", "--spp-first", "4", "--spp-count", "4",
+       "-o", str(tmp_path / "size.exr"))
+    (tmp_path / "junk.exr").write_bytes(b"not an image")
+    cases = [
+        (["a.exr", "a.exr"], "a.exr"),            # the same range twice
+        (["a.exr", "overlap.exr"], "overlap.exr"),  # overlapping ranges
+        (["a.exr", "late.exr"], "late.exr"),       # a gap
+        (["a.exr", "seed2.exr"], "seed2.exr"),     # another render (seed)
+        (["a.exr", "size.exr"], "size.exr"),       # another render (size)
+        (["a.exr", "junk.exr"], "junk.exr"),       # not an image
+        (["a.exr", "nothere.exr"], "nothere.exr"),
+    ]
+    for inputs, words in cases:
+        before = set(tmp_path.iterdir())
+        r = run("merge", *inputs, "-o", "out.exr", "--png", "out.png", cwd=tmp_path)
+        lines = r.stderr.strip().splitlines()
+        assert r.returncode != 0 and len(lines) == 1 and words in lines[0], (inputs, r.stderr)
+        assert set(tmp_path.iterdir()) == before, inputs
+
+
+def test_strategies_agree_on_the_cornell_box(tmp_path):
+    # next-event estimation, BSDF sampling and their MIS combination estimate the same integral;
+    # BSDF sampling alone is the noisiest (it finds the light only by chance): 4 seeds, 2 %
+    means = {}
+    for strategy in ("mis", "nee", "bsdf"):
+        m = [mean_of(ok("--strategy", strategy, "--sampler", "pcg32", "--seed", str(s), "--spp", "64",
+                        "--size", "64x64", "-o", str(tmp_path / "x.exr"))) for s in range(1, 5)]
+        means[strategy] = np.mean(m, axis=0)
+    for strategy in ("nee", "bsdf"):
+        rel = np.abs(means[strategy] / means["mis"] - 1)
+        assert np.all(rel < 0.02), (strategy, means)
+
+
+def test_cornell_box_mean_matches_mitsuba(tmp_path):
+    """The built-in Cornell box, exported by `udm1-pt export` (world-space PLY and scene.json) and
+    rendered by Mitsuba 3 scalar_rgb's path integrator (tools/mitsuba_scene.py states how the scenes
+    are matched): the mean radiance agrees within 1 % per channel."""
+    pytest.importorskip("mitsuba")
+    sys.path.insert(0, str(ROOT / "tools"))
+    import mitsuba_scene
+
+    ok("export", str(tmp_path / "scene"), "--size", "96x96")
+    img, _ = mitsuba_scene.render(tmp_path / "scene", spp=256, sampler="independent", seed=3)
+    theirs = np.asarray(img, dtype=np.float64).reshape(-1, img.shape[-1])[:, :3].mean(axis=0)
+    ours = mean_of(ok("--spp", "256", "--size", "96x96", "-o", str(tmp_path / "ours.exr")))
+    rel = np.abs(ours / theirs - 1)
+    assert np.all(rel < 0.01), (ours, theirs)
+
+
+@pytest.mark.skipif(not SCENES.is_dir(), reason=f"{SCENES} is absent: the shared test scenes are not here")
+@pytest.mark.parametrize("name", ["cornell-box", "veach-mis"])
+def test_shared_scenes(name, tmp_path):
+    scene = str(SCENES / name / f"{name}.pbrt")
+    png = tmp_path / f"{name}.png"
+    r = ok("--scene", scene, "--spp", "16", "--size", "96x72", "--png", str(png))
+    assert r.stderr == "", r.stderr  # nothing in these scenes is left out
+    img = read_png(png)[..., :3]
+    assert img.shape == (72, 96, 3) and 0.05 < img.mean() < 0.9 and img.std() > 0.05, (img.mean(), img.std())
+    # the three strategies agree in the mean (veach-mis: glossy plates lit by lights of four sizes)
+    means = {st: np.mean([mean_of(ok("--scene", scene, "--strategy", st, "--sampler", "pcg32", "--seed", str(s),
+                                      "--spp", "64", "--size", "64x48", "-o", str(tmp_path / "x.exr")))
+                          for s in (1, 2, 3, 4)], axis=0)
+             for st in ("mis", "nee", "bsdf")}
+    for st in ("nee", "bsdf"):
+        assert np.all(np.abs(means[st] / means["mis"] - 1) < 0.03), (name, means)
+
+
+HEAD = 'LookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective" "float fov" [ 45 ]\nWorldBegin\n'
+TRI = 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
+LIGHT = ('AttributeBegin\nAreaLightSource "diffuse" "rgb L" [ 1 1 1 ]\n'
+         'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  2 0 0 ] "integer indices" [ 0 1 2 ]\nAttributeEnd\n')
+PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+            b"property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n")
+
+
+@pytest.mark.parametrize(
+    "text,line,words",
+    [
+        (HEAD + "Frobnicate 3\n" + TRI, 4, "unsupported directive 'Frobnicate'"),
+        (HEAD + 'LightSource "infinite"\n' + TRI, 4, "unsupported directive 'LightSource'"),
+        (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 x ]\n', 4, "x"),
+        (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 1e999 ]\n', 4, "1e999"),
+        (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0 1 ]\n', 4, "3 numbers per vertex"),
+        (HEAD + TRI.replace("0 1 2 ]", "0 1 7 ]"), 4, "index 7 out of range"),
+        (HEAD + TRI.replace("0 1 2 ]", "0 1 -1 ]"), 4, "out of range"),
+        (HEAD + 'Shape "plymesh" "string filename" "missing.ply"\n', 4, "missing.ply: cannot open"),
+        (HEAD + 'Shape "plymesh" "string filename" "trunc.ply"\n', 0, "trunc.ply"),
+        (HEAD + 'Shape "plymesh" "string filename" "badindex.ply"\n', 0, "badindex.ply"),
+        (HEAD + LIGHT + TRI, 6, "an area light of zero area"),
+        (HEAD + 'Material "conductor"\n' + TRI, 4, 'Material "conductor" is not supported'),
+        (HEAD + 'Material "diffuse" "texture reflectance" "checks"\n' + TRI, 4, "reflectance"),
+        (HEAD + 'Material "coateddiffuse" "rgb albedo" [ 0.3 0.3 0.3 ]\n' + TRI, 4, "albedo"),
+        (HEAD + 'NamedMaterial "nope"\n' + TRI, 4, 'NamedMaterial "nope"'),
+        (HEAD + 'AreaLightSource "diffuse" "blackbody L" [ 3000 ]\n' + TRI, 4, "L"),
+        ('Integrator "bdpt"\n' + HEAD + TRI, 1, 'Integrator "bdpt" is not supported'),
+        ('Film "gbuffer"\n' + HEAD + TRI, 1, 'Film "gbuffer"'),
+        ('Camera "orthographic"\n' + HEAD + TRI, 1, "orthographic"),
+        (HEAD + 'Include "nothere.pbrt"\n', 4, "nothere.pbrt: cannot open"),
+        (HEAD + TRI.replace(" ]\n", "\n"), 0, "missing ']'"),
+    ],
+)
+def test_bad_scenes_name_file_and_line(text, line, words, tmp_path):
+    scene = tmp_path / "s.pbrt"
+    scene.write_text(text)
+    (tmp_path / "trunc.ply").write_bytes(PLY_HEAD + b"\0" * 20)
+    (tmp_path / "badindex.ply").write_bytes(PLY_HEAD + np.zeros(9, "<f4").tobytes() + b"\3"
+                                            + np.array([0, 1, 3], "<i4").tobytes())
+    before = set(tmp_path.iterdir())
+    r = run("--scene", str(scene), "--spp", "1", "--size", "8x8", "-o", "out.exr", "--png", "out.png", cwd=tmp_path)
+    assert r.returncode == 1, r.stderr
+    lines = r.stderr.strip().splitlines()
+    where = f"{scene}:{line}:" if line else str(tmp_path)
+    assert len(lines) == 1 and lines[0].startswith("udm1-pt: ") and where in lines[0] and words in lines[0], \
+        (where, words, r.stderr)
+    assert set(tmp_path.iterdir()) == before  # no image, not even a temporary file
+
+
+@pytest.mark.parametrize(
+    "args,code,words",
+    [
+        (["--scene", "nope.pbrt"], 1, "nope.pbrt"),
+        (["--scene", "builtin:teapot"], 1, "builtin:teapot"),
+        (["--sampler", "nope"], 2, "'nope'"),
+        (["--sampler", "golden"], 2, "golden"),
+        (["--spp", "0"], 2, "--spp '0'"),
+        (["--spp", "many"], 2, "--spp 'many'"),
+        (["--spp", "8", "--spp-first", "6", "--spp-count", "4"], 2, "exceeds --spp 8"),
+        (["--spp-count", "0"], 2, "--spp-count '0'"),
+        (["--size", "0x10"], 2, "--size '0"),
+        (["--strategy", "bdpt"], 2, "'bdpt'"),
+        (["--maxdepth", "-1"], 2, "--maxdepth '-1'"),
+        (["--randomize", "sideways"], 2, "'sideways'"),
+        (["--threads", "0"], 2, "--threads '0'"),
+        (["--frobnicate"], 2, "'--frobnicate'"),
+        (["-o", "out.png"], 2, "'out.png'"),
+        (["-o", "missing/out.exr"], 1, "missing"),
+        (["--png", "missing/out.png"], 1, "missing"),
+        (["-o", "good.exr", "--png", "missing/out.png"], 1, "missing"),
+        (["reference"], 2, "reference needs -o"),
+        (["merge", "-o", "out.exr"], 2, "merge needs"),
+        (["compare", "a.exr"], 2, "compare needs"),
+        (["compare", "a.exr", "b.exr"], 1, "'a.exr'"),
+    ],
+)
+def test_bad_arguments(args, code, words, tmp_path):
+    before = set(tmp_path.iterdir())
+    r = run(*args, "--size", "8x8", cwd=tmp_path) if args[0] not in ("merge", "compare", "reference") \
+        else run(*args, cwd=tmp_path)
+    assert r.returncode == code, (r.returncode, r.stderr)
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("udm1-pt: ") and words in lines[0], r.stderr
+    assert set(tmp_path.iterdir()) == before
+
+
+def test_reference_written_once_and_reused(tmp_path):
+    ref = tmp_path / "ref.exr"
+    r = ok("reference", "-o", str(ref), "--spp", "8", "--size", "16x16")
+    assert RENDER_LINE.match(r.stdout), r.stdout
+    stamp = ref.stat().st_mtime_ns
+    r = ok("reference", "-o", str(ref), "--spp", "8", "--size", "16x16")
+    assert r.stdout.startswith(f"reference {ref} reused") and ref.stat().st_mtime_ns == stamp
+    r = ok("reference", "-o", str(ref), "--spp", "16", "--size", "16x16")  # other settings: rendered again
+    assert RENDER_LINE.match(r.stdout) and ref.stat().st_mtime_ns != stamp
+
+
+def test_sweep_against_a_reference(tmp_path):
+    ref = tmp_path / "ref.exr"
+    ok("reference", "-o", str(ref), "--spp", "256", "--size", "24x24")
+    r = ok("sweep", "--against", str(ref), "--samplers", "pcg32,sobol-owen,wmmr", "--spps", "4,16",
+           "--size", "24x24", "--images", str(tmp_path))
+    rows = [line.split(",") for line in r.stdout.strip().splitlines()]
+    assert rows[0] == ["sampler", "spp", "seed", "seconds", "paths", "rays", "rmse", "psnr", "mean_r", "mean_g", "mean_b"]
+    assert [(x[0], x[1]) for x in rows[1:]] == [(s, n) for s in ("pcg32", "sobol-owen", "wmmr") for n in ("4", "16")]
+    for s in ("pcg32", "sobol-owen", "wmmr"):
+        e4, e16 = (float(x[6]) for x in rows[1:] if x[0] == s)
+        assert e16 < e4, (s, e4, e16)  # more samples, less error
+    assert (tmp_path / "wmmr-16spp.png").exists()
