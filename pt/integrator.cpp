@@ -21,7 +21,7 @@ using udm1scene::SceneError;
 
 namespace {
 
-const int DIMS_PER_VERTEX = 7;
+const int DIMS_PER_VERTEX = 6;
 
 inline double max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline bool nonzero(Vec3 v) { return v.x != 0 || v.y != 0 || v.z != 0; }
@@ -85,6 +85,7 @@ struct Tracer {
     int max_depth;
     Strategy strategy;
     bool roulette;
+    int rr_depth;
 
     Vec3 trace(Vec3 o, Vec3 d, udm1_cursor *c, uint64_t *rays) const
     {
@@ -107,12 +108,10 @@ struct Tracer {
                 }
             }
             if (depth == max_depth) break;
-            // this vertex's 7 dimensions, always drawn, so that the layout does not depend on what happens
-            double u_light = udm1_cursor_1d_f64(c), u_lp[2], u_lobe, u_dir[2], u_rr;
-            udm1_cursor_2d_f64(c, u_lp);
-            u_lobe = udm1_cursor_1d_f64(c);
-            udm1_cursor_2d_f64(c, u_dir);
-            u_rr = udm1_cursor_1d_f64(c);
+            // this vertex's 6 dimensions, always drawn, so that the layout does not depend on what happens
+            double u[DIMS_PER_VERTEX];
+            udm1_cursor_fill_f64(c, DIMS_PER_VERTEX, u);
+            const double u_lp[2] = {u[0], u[1]}, u_lobe = u[2], u_rr = u[3], u_dir[2] = {u[4], u[5]};
 
             const udm1scene::Shape &shape = scene.shapes[h.shape];
             const Bsdf &bsdf = shape.material >= 0 ? bsdfs[shape.material] : default_bsdf;
@@ -121,7 +120,7 @@ struct Tracer {
             if (wo_l.z == 0) break;
             if (strategy != Strategy::Bsdf) {  // next-event estimation
                 LightSample ls;
-                if (lights.sample(h.p, u_light, u_lp[0], u_lp[1], &ls)) {
+                if (lights.sample(h.p, u_lp[0], u_lp[1], &ls)) {
                     Vec3 wi_l = frame.to_local(ls.wi);
                     Vec3 f = bsdf.f(wo_l, wi_l) * std::fabs(wi_l.z);
                     if (nonzero(f)) {
@@ -153,7 +152,7 @@ struct Tracer {
             specular_bounce = bs.specular;
             prev_p = h.p;
             if (!(max_component(beta) > 0) || !std::isfinite(max_component(beta))) break;
-            if (roulette && depth > 0) {  // pbrt: from the second bounce, when the throughput is below 1
+            if (roulette && depth >= rr_depth) {  // when the throughput is below 1
                 double rr = max_component(beta);
                 if (rr < 1) {
                     double q = std::max(0.0, 1 - rr);
@@ -250,7 +249,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     Accumulator acc;
     acc.width = view.width, acc.height = view.height, acc.first = opt.first, acc.count = count;
     acc.sum.assign((size_t)acc.width * acc.height * 3, 0);
-    Tracer tracer{scene, rt, lights, bsdfs, Bsdf(), max_depth, opt.strategy, opt.roulette};
+    Tracer tracer{scene, rt, lights, bsdfs, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
     std::atomic<uint64_t> rays{0}, nonfinite{0}, clamped{0};
     auto t0 = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range2d<int>(0, acc.height, 8, 0, acc.width, 8), [&](const tbb::blocked_range2d<int> &r) {
@@ -263,7 +262,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                     udm1_cursor c;
                     udm1_cursor_start(&c, seq, stream, i, 0);
                     double uv[2];
-                    udm1_cursor_2d_f64(&c, uv);
+                    udm1_cursor_fill_f64(&c, 2, uv);
                     Vec3 o, d;
                     udm1scene::camera_ray(view, x + uv[0], y + uv[1], &o, &d);
                     Vec3 L = tracer.trace(o, d, &c, &local_rays);

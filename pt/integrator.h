@@ -5,16 +5,18 @@
 // Dimension layout: one sampler point per path. For pixel p and sample index i the
 // udm1 cursor starts at (stream p, index i, dimension 0) and hands out, in order:
 //   0, 1            position in the pixel (box filter)
-//   then for each path vertex that scatters (depth 0, 1, ..., maxdepth - 1), 7 values:
-//   +0              light choice            (next-event estimation)
-//   +1, +2          point on the light
-//   +3              BSDF lobe / layer choice
+//   then for each path vertex that scatters (depth 0, 1, ..., maxdepth - 1), 6 values:
+//   +0, +1          next-event estimation: +0 picks the light (by power) and, rescaled,
+//                   gives with +1 the point on it
+//   +2              BSDF lobe / layer choice
+//   +3              Russian roulette
 //   +4, +5          BSDF direction
-//   +6              Russian roulette
-// so a path of depth d uses 2 + 7d dimensions and depth 5 uses 37. A sampler with fewer
-// dimensions D (WMMR and HWMMR have 22) gives dimensions >= D by the library's padding
-// rule: independent hashed uniforms of (seed, pixel, index, dimension) - random, not
-// low-discrepancy, and never a reuse of the set's own dimensions.
+// so a path of depth d uses 2 + 6d dimensions and depth 5 uses 32. Every 2D decision
+// starts at an even dimension: samplers that are stratified by pairs of dimensions
+// (PMJ02, CMJ, padded sets) stratify each 2D decision, not half of two. A sampler with
+// fewer dimensions D (WMMR and HWMMR have 22) gives dimensions >= D by the library's
+// padding rule: independent hashed uniforms of (seed, pixel, index, dimension) - random,
+// not low-discrepancy, and never a reuse of the set's own dimensions.
 #pragma once
 
 #include "bsdf.h"
@@ -29,6 +31,10 @@
 
 namespace udm1pt {
 
+// Changes whenever the estimator or the dimension layout above changes (cached references are
+// reused only when it matches).
+constexpr int LAYOUT_VERSION = 2;
+
 enum class Strategy { Mis, Nee, Bsdf };  // how light is found: both (MIS), light sampling only, BSDF sampling only
 
 struct Options {
@@ -42,6 +48,8 @@ struct Options {
     int max_depth = -1;         // -1: the scene's Integrator maxdepth (pbrt's default 5)
     Strategy strategy = Strategy::Mis;
     bool roulette = true;
+    int rr_depth = 3;           // roulette from this vertex on (0 = the first hit; pbrt-v4 starts at 1):
+                                // tools/bench_pt.py --roulette measures the choice
 };
 
 // Per-pixel sums of the samples in fixed point (2^-24 units, int64), so that sums of

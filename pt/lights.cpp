@@ -22,6 +22,61 @@ void basis(Vec3 n, Vec3 *t, Vec3 *b)
     *t = Vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
     *b = Vec3(c, s + n.y * n.y * a, -n.y);
 }
+// pbrt-v4's bounds for sampling a triangle by solid angle: below, the spherical triangle is too
+// thin for the arithmetic; above, nearly a hemisphere
+const double MIN_SPHERICAL_AREA = 3e-4, MAX_SPHERICAL_AREA = 6.22;
+// Solid-angle sampling only near the light, where area / distance^2 to its centroid exceeds this:
+// farther away 1/r^2 varies little over the light and area sampling is cheaper for the same
+// error (tools/bench_pt.py measured both on the Cornell box)
+const double NEAR = 0.25;
+
+inline double safe_asin(double x) { return std::asin(std::clamp(x, -1.0, 1.0)); }
+inline double safe_sqrt(double x) { return std::sqrt(std::max(0.0, x)); }
+inline double angle_between(Vec3 a, Vec3 b)  // accurate for nearly equal and nearly opposite unit vectors
+{
+    return dot(a, b) < 0 ? PI - 2 * safe_asin(length(a + b) / 2) : 2 * safe_asin(length(b - a) / 2);
+}
+inline Vec3 gram_schmidt(Vec3 v, Vec3 w) { return v - w * dot(v, w); }
+
+// The solid angle of triangle (p0, p1, p2) seen from p (Van Oosterom and Strackee 1983).
+double solid_angle(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2)
+{
+    Vec3 a = normalize(p0 - p), b = normalize(p1 - p), c = normalize(p2 - p);
+    return std::fabs(2 * std::atan2(dot(a, cross(b, c)), 1 + dot(a, b) + dot(a, c) + dot(b, c)));
+}
+
+// Arvo's (1995) uniform sampling of the spherical triangle that (p0, p1, p2) subtends from p, in
+// pbrt-v4's formulation: returns the point of the triangle the sampled direction meets.
+bool sample_spherical_triangle(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2, double u0, double u1, Vec3 *q)
+{
+    Vec3 a = normalize(p0 - p), b = normalize(p1 - p), c = normalize(p2 - p);
+    Vec3 n_ab = cross(a, b), n_bc = cross(b, c), n_ca = cross(c, a);
+    if (dot(n_ab, n_ab) == 0 || dot(n_bc, n_bc) == 0 || dot(n_ca, n_ca) == 0) return false;
+    n_ab = normalize(n_ab), n_bc = normalize(n_bc), n_ca = normalize(n_ca);
+    double alpha = angle_between(n_ab, -n_ca), beta = angle_between(n_bc, -n_ab), gamma = angle_between(n_ca, -n_bc);
+    double A_pi = alpha + beta + gamma, Ap_pi = PI + u0 * (A_pi - PI);  // the sub-triangle's area, plus pi
+    double sin_a = std::sin(alpha), cos_a = std::cos(alpha), sin_ap = std::sin(Ap_pi), cos_ap = std::cos(Ap_pi);
+    double sin_phi = sin_ap * cos_a - cos_ap * sin_a, cos_phi = cos_ap * cos_a + sin_ap * sin_a;
+    double k1 = cos_phi + cos_a, k2 = sin_phi - sin_a * dot(a, b);
+    double den = (k2 * sin_phi + k1 * cos_phi) * sin_a;
+    double cos_bp = den != 0 ? std::clamp((k2 + (k2 * cos_phi - k1 * sin_phi) * cos_a) / den, -1.0, 1.0) : 1.0;
+    double sin_bp = safe_sqrt(1 - cos_bp * cos_bp);
+    Vec3 cp = a * cos_bp + normalize(gram_schmidt(c, a)) * sin_bp;
+    double cos_t = 1 - u1 * (1 - dot(cp, b)), sin_t = safe_sqrt(1 - cos_t * cos_t);
+    Vec3 w = b * cos_t + normalize(gram_schmidt(cp, b)) * sin_t;
+    // where w meets the triangle (Moller-Trumbore), barycentrics clamped into it
+    Vec3 e1 = p1 - p0, e2 = p2 - p0, s1 = cross(w, e2);
+    double div = dot(s1, e1);
+    if (div == 0 || !std::isfinite(div)) return false;
+    Vec3 sp = p - p0;
+    double b1 = std::clamp(dot(sp, s1) / div, 0.0, 1.0), b2 = std::clamp(dot(w, cross(sp, e1)) / div, 0.0, 1.0);
+    if (b1 + b2 > 1) {
+        double sum = b1 + b2;
+        b1 /= sum, b2 /= sum;
+    }
+    *q = p0 * (1 - b1 - b2) + p1 * b1 + p2 * b2;
+    return std::isfinite(q->x) && std::isfinite(q->y) && std::isfinite(q->z);
+}
 }  // namespace
 
 Lights::Lights(const udm1scene::Scene &scene)
@@ -48,6 +103,7 @@ Lights::Lights(const udm1scene::Scene &scene)
             l.p1 = Vec3(s.P[3 * i[1]], s.P[3 * i[1] + 1], s.P[3 * i[1] + 2]);
             l.p2 = Vec3(s.P[3 * i[2]], s.P[3 * i[2] + 1], s.P[3 * i[2] + 2]);
             l.area = 0.5 * length(cross(l.p1 - l.p0, l.p2 - l.p0));
+            l.centroid = (l.p0 + l.p1 + l.p2) * (1.0 / 3);
             l.n = l.area > 0 ? udm1scene::triangle_normal(s, t) : Vec3(0, 0, 1);
             l.L = L, l.twosided = al.twosided, l.shape = (int)k;
             total += l.area;
@@ -88,6 +144,14 @@ Vec3 Lights::emitted(const udm1scene::Hit &h, Vec3 w) const
     return radiance(lights_[i], h.ng, w);
 }
 
+bool Lights::by_solid_angle(const Light &l, Vec3 p, double *omega) const
+{
+    Vec3 d = l.centroid - p;
+    if (l.area < NEAR * dot(d, d)) return false;  // far: area sampling is as good, and cheaper
+    *omega = solid_angle(p, l.p0, l.p1, l.p2);
+    return *omega >= MIN_SPHERICAL_AREA && *omega <= MAX_SPHERICAL_AREA;
+}
+
 double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
 {
     Vec3 d = q - p;
@@ -99,6 +163,8 @@ double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
             return 1 / (2 * PI * one_minus_cos);
         }
     }
+    double omega;
+    if (!l.sphere && by_solid_angle(l, p, &omega)) return 1 / omega;
     double c = std::fabs(dot(nq, d)) / std::sqrt(d2);
     return c > 0 ? d2 / (c * l.area) : 0;
 }
@@ -110,13 +176,16 @@ double Lights::pdf(Vec3 p, const udm1scene::Hit &h) const
     return prob_[i] * pdf_light(lights_[i], p, h.p, h.ng);
 }
 
-bool Lights::sample(Vec3 p, double u_select, double u1, double u2, LightSample *s) const
+bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
 {
     if (lights_.empty()) return false;
-    double target = u_select * cdf_.back();
+    double target = u1 * cdf_.back();
     size_t i = std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin();
     if (i >= lights_.size()) i = lights_.size() - 1;
     while (prob_[i] == 0 && i > 0) --i;  // (only with a zero-power light at the very end)
+    double lo = i ? cdf_[i - 1] : 0.0;
+    u1 = std::min((target - lo) / (cdf_[i] - lo), 0x1.fffffffffffffp-1);  // reuse: uniform in [0, 1) again
+    if (!(u1 >= 0)) u1 = 0;
     const Light &l = lights_[i];
     s->shape = l.shape, s->sphere = l.sphere;
     Vec3 q, nq;
@@ -151,8 +220,14 @@ bool Lights::sample(Vec3 p, double u_select, double u1, double u2, LightSample *
         nq = Vec3(r * std::cos(phi), r * std::sin(phi), z);
         q = l.center + nq * l.radius;
     } else {
-        double su = std::sqrt(u1), b0 = 1 - su, b1 = u2 * su;
-        q = l.p0 * b0 + l.p1 * b1 + l.p2 * (1 - b0 - b1);
+        // by solid angle where the spherical triangle is well formed (pbrt-v4), else by area
+        double omega;
+        bool spherical = by_solid_angle(l, p, &omega);
+        if (!spherical || !sample_spherical_triangle(p, l.p0, l.p1, l.p2, u1, u2, &q)) {
+            if (spherical) return false;
+            double su = std::sqrt(u1), b0 = 1 - su, b1 = u2 * su;
+            q = l.p0 * b0 + l.p1 * b1 + l.p2 * (1 - b0 - b1);
+        }
         nq = l.n;
     }
     Vec3 d = q - p;

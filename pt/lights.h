@@ -1,8 +1,12 @@
 // lights.h - the scene's area lights for the path tracer: every emitting triangle
-// and sphere, chosen in proportion to its power, sampled by area (triangles) or by
-// the cone of directions they subtend (spheres seen from outside, as pbrt-v4).
-// Emission is pbrt-v4's diffuse area light: radiance L * scale on the side the
-// surface normal faces, or on both sides if twosided.
+// and sphere, chosen in proportion to its power. Triangles near the shading point
+// (area > 0.25 distance^2) are sampled as pbrt-v4 samples them, by the solid angle
+// they subtend (Arvo's spherical triangle sampling, for solid angles in 3e-4..6.22 sr),
+// which keeps the estimate bounded where area sampling's 1/r^2 gives fireflies;
+// farther away by area, which is as good there and cheaper. Spheres seen from
+// outside are sampled by their cone of directions. Emission is pbrt-v4's diffuse
+// area light: radiance L * scale on the side the surface normal faces, or on both
+// sides if twosided.
 #pragma once
 
 #include "embree_scene.h"
@@ -32,8 +36,10 @@ public:
     bool empty() const { return lights_.empty(); }
     size_t count() const { return lights_.size(); }
 
-    // Sample a light for point p: u_select picks the light, (u1, u2) the point on it.
-    bool sample(Vec3 p, double u_select, double u1, double u2, LightSample *s) const;
+    // Sample a light for point p from one 2D point (u1, u2): u1 picks the light by power and,
+    // rescaled to [0, 1) within the light's interval, gives with u2 the point on it (sample reuse,
+    // so that a stratified 2D point stays stratified over all the lights together).
+    bool sample(Vec3 p, double u1, double u2, LightSample *s) const;
 
     // Radiance leaving hit h towards w (unit, pointing away from the surface); zero if h is not on a light.
     Vec3 emitted(const udm1scene::Hit &h, Vec3 w) const;
@@ -49,7 +55,8 @@ private:
     struct Light {
         bool sphere = false;
         Vec3 p0, p1, p2, n;  // triangle: vertices, unit normal (emitting side for one-sided lights)
-        Vec3 center;
+        Vec3 centroid;  // triangle
+        Vec3 center;    // sphere
         double radius = 0, area = 0;
         Vec3 L;
         bool twosided = false;
@@ -57,6 +64,7 @@ private:
     };
     Vec3 radiance(const Light &l, Vec3 n, Vec3 w) const;
     double pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const;  // solid angle, without the choice
+    bool by_solid_angle(const Light &l, Vec3 p, double *omega) const;  // triangle l sampled by solid angle from p?
     std::vector<Light> lights_;
     std::vector<double> cdf_;                // power CDF
     std::vector<double> prob_;               // choice probability of each light

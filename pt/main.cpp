@@ -127,6 +127,7 @@ Options parse(int argc, char **argv)
             else if (s == "bsdf") o.pt.strategy = udm1pt::Strategy::Bsdf;
             else throw Error("--strategy '" + s + "' is not mis, nee or bsdf");
         } else if (a == "--no-roulette") o.pt.roulette = false;
+        else if (a == "--rr-depth") o.pt.rr_depth = (int)udm1app::parse_u64(value(a), a, 0, 1000);
         else if (a == "--threads") o.threads = (uint32_t)udm1app::parse_u64(value(a), a, 1, 1024);
         else if (a == "-o") o.output = value(a);
         else if (a == "--png") o.png = value(a);
@@ -178,9 +179,10 @@ std::string description(const udm1scene::Scene &scene, const udm1pt::Options &p,
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "udm1-pt %s scene %016llx size %dx%d sampler %s spp %u seed %llu randomize %u maxdepth %d strategy %s "
-                  "roulette %d",
+                  "roulette %d layout %d",
                   udm1_version_string(), (unsigned long long)scene.digest(), p.width, p.height, p.sampler.c_str(), p.spp,
-                  (unsigned long long)p.seed, p.randomize, max_depth, strategy_name(p.strategy), (int)p.roulette);
+                  (unsigned long long)p.seed, p.randomize, max_depth, strategy_name(p.strategy), p.roulette ? p.rr_depth : -1,
+                  udm1pt::LAYOUT_VERSION);
     return buf;
 }
 

@@ -94,7 +94,7 @@ def main(argv=None) -> int:
     if args.output:
         import mitsuba as mi
 
-        mi.util.write_bitmap(args.output, img.astype("float32"))
+        mi.util.write_bitmap(args.output, img.astype("float32"), write_async=False)
     return 0
 
 

@@ -11,8 +11,13 @@
  *           UDM1_RANDOMIZE_NONE the state starts as srand48(seed) does,
  *           (low 32 bits of seed) << 16 | 0x330E, so values equal drand48()'s
  *           bit for bit; otherwise it starts at the low 48 bits of the stream key.
- * Jumps use the LCG's closed form (Brown 1994) in O(log n).
+ * Jumps use the LCG's closed form (Brown 1994) in O(log n): n steps of
+ * x -> a x + c are x -> A(n) x + c G(n), A(n) = a^n, G(n) = 1 + a + ... + a^(n-1);
+ * a table of A and G at the powers of two, made once per sequence, composes them
+ * with two multiplications per set bit of n.
  */
+#include <stdlib.h>
+
 #include "hash.h"
 #include "internal.h"
 #include "scramble.h"
@@ -39,6 +44,34 @@ static void lcg_jump(uint64_t a, uint64_t c, uint64_t n, uint64_t *mult, uint64_
     *plus = ap;
 }
 
+typedef struct lcg_table { uint64_t A[64], G[64]; } lcg_table;
+
+static lcg_table *lcg_table_new(uint64_t a)
+{
+    lcg_table *t = malloc(sizeof *t);
+    if (!t) return NULL;
+    uint64_t A = a, G = 1;
+    for (int k = 0; k < 64; ++k) {
+        t->A[k] = A, t->G[k] = G;
+        G = G * A + G; /* G(2m) = G(m) a^m + G(m) */
+        A *= A;
+    }
+    return t;
+}
+
+/* (mult, plus) of n steps of x -> a x + c, by the table of a */
+static void lcg_jump_table(const lcg_table *t, uint64_t c, uint64_t n, uint64_t *mult, uint64_t *plus)
+{
+    uint64_t am = 1, g = 0;
+    for (int k = 0; n; ++k, n >>= 1)
+        if (n & 1) {
+            g = g * t->A[k] + t->G[k];
+            am *= t->A[k];
+        }
+    *mult = am;
+    *plus = g * c;
+}
+
 static uint32_t pcg_output(uint64_t old)
 {
     uint32_t xorshifted = (uint32_t)(((old >> 18) ^ old) >> 27);
@@ -62,7 +95,7 @@ static uint64_t pcg_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, 
 {
     uint64_t state, inc, m, p;
     pcg_seed(seq, skey, &state, &inc);
-    lcg_jump(PCG_MULT, inc, index * seq->dims + dim, &m, &p);
+    lcg_jump_table(seq->data, inc, index * seq->dims + dim, &m, &p);
     uint64_t v = (uint64_t)pcg_output(state * m + p) << 32;
     return udm1_randomize_base2(seq->mode, v + seq->offset[dim], udm1_word(seq, skey, dim));
 }
@@ -77,7 +110,7 @@ static uint64_t drand_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index
 {
     uint64_t m, p;
     /* drand48() steps first, then returns the new state: value k is state k + 1 */
-    lcg_jump(DRAND_A, DRAND_C, index * seq->dims + dim + 1, &m, &p);
+    lcg_jump_table(seq->data, DRAND_C, index * seq->dims + dim + 1, &m, &p);
     uint64_t x = (drand_start(seq, skey) * m + p) & DRAND_MASK;
     return udm1_randomize_base2(seq->mode, (x << 16) + seq->offset[dim], udm1_word(seq, skey, dim));
 }
@@ -124,6 +157,8 @@ static void drand_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, siz
 
 udm1_status udm1_init_pcg32(udm1_seq_t *seq)
 {
+    if (!(seq->data = lcg_table_new(PCG_MULT)))
+        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for the pcg32 jump table");
     seq->value = pcg_value;
     seq->fill = pcg_fill;
     return UDM1_OK;
@@ -131,6 +166,8 @@ udm1_status udm1_init_pcg32(udm1_seq_t *seq)
 
 udm1_status udm1_init_drand48(udm1_seq_t *seq)
 {
+    if (!(seq->data = lcg_table_new(DRAND_A)))
+        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for the drand48 jump table");
     seq->value = drand_value;
     seq->fill = drand_fill;
     return UDM1_OK;

@@ -331,4 +331,41 @@ void udm1_cursor_2d_f64(udm1_cursor *cursor, double out[2])
     out[1] = udm1_to_f64(cursor_next(cursor));
 }
 
+/* The next n raw values: the sequence's own fill over the dimensions it has (one
+ * row of a sequential fill), cursor_next for the padded rest. */
+static void cursor_fill_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
+{
+    const udm1_seq *seq = c->seq;
+    uint32_t k = 0;
+    if (seq->fill && c->dimension < seq->dims) {
+        uint32_t inside = seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
+        seq->fill(seq, c->key, c->index, 1, c->dimension, inside, raw);
+        c->dimension += inside;
+        k = inside;
+    }
+    for (; k < n; ++k) raw[k] = cursor_next(c);
+}
+
+void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out)
+{
+    uint64_t raw[32];
+    while (n) {
+        uint32_t m = n < 32 ? n : 32;
+        cursor_fill_raw(cursor, m, raw);
+        for (uint32_t k = 0; k < m; ++k) out[k] = udm1_to_f32(raw[k]);
+        out += m, n -= m;
+    }
+}
+
+void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out)
+{
+    uint64_t raw[32];
+    while (n) {
+        uint32_t m = n < 32 ? n : 32;
+        cursor_fill_raw(cursor, m, raw);
+        for (uint32_t k = 0; k < m; ++k) out[k] = udm1_to_f64(raw[k]);
+        out += m, n -= m;
+    }
+}
+
 uint32_t udm1_cursor_padded(const udm1_cursor *cursor) { return cursor ? cursor->padded : 0; }

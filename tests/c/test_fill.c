@@ -184,6 +184,46 @@ static void test_cursor(void)
     udm1_seq_destroy(s);
 }
 
+/* udm1_cursor_fill equals successive 1D draws, for every preset and randomization, across
+ * the sequence's last dimension into padding, in pieces of any length */
+static void test_cursor_fill(void)
+{
+    for (size_t p = 0; p < udm1_preset_count(); ++p) {
+        udm1_preset_info info;
+        udm1_preset_get(p, &info);
+        int point_set = (info.flags & UDM1_PRESET_POINT_SET) != 0;
+        uint32_t d = info.max_dimensions < 9 ? info.max_dimensions : 9;
+        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_OWEN; ++r) {
+            udm1_seq_desc desc;
+            udm1_seq_desc_init(&desc);
+            desc.preset = info.name, desc.dimensions = d, desc.point_count = point_set ? 64 : 0;
+            desc.seed = 11, desc.randomize = r;
+            udm1_seq *s = NULL;
+            if (udm1_seq_create_desc(&desc, &s) != UDM1_OK) continue; /* a randomization the preset lacks */
+            for (uint64_t idx = 0; idx < 64; idx += 7) {
+                udm1_cursor a, b, f;
+                udm1_cursor_start(&a, s, 99, idx, 1);
+                udm1_cursor_start(&b, s, 99, idx, 1);
+                udm1_cursor_start(&f, s, 99, idx, 1);
+                double one[50], many[50];
+                float onef[50], manyf[50];
+                for (int k = 0; k < 50; ++k) one[k] = udm1_cursor_1d_f64(&a), onef[k] = udm1_cursor_1d(&b);
+                for (uint32_t at = 0, piece = 1; at < 50; at += piece, piece = piece * 2 + 1) {
+                    uint32_t n = at + piece > 50 ? 50 - at : piece;
+                    udm1_cursor c2 = f;
+                    udm1_cursor_fill_f64(&f, n, many + at);
+                    udm1_cursor_fill(&c2, n, manyf + at);
+                    CHECK(c2.dimension == f.dimension && c2.padded == f.padded);
+                }
+                CHECKF(memcmp(one, many, sizeof one) == 0 && memcmp(onef, manyf, sizeof onef) == 0,
+                       "%s randomize %u index %llu", info.name, r, (unsigned long long)idx);
+                CHECK(f.dimension == a.dimension && udm1_cursor_padded(&f) == udm1_cursor_padded(&a));
+            }
+            udm1_seq_destroy(s);
+        }
+    }
+}
+
 static void test_padding_is_uniform(void)
 {
     /* 1D set, draws 1..8 padded: mean 1/2, variance 1/12, no draw repeats */
@@ -263,6 +303,7 @@ int main(void)
     test_bulk_equals_samples();
     test_splits();
     test_cursor();
+    test_cursor_fill();
     test_padding_is_uniform();
     test_never_one();
     CHECK_DONE();

@@ -8,9 +8,11 @@
 #include "embree_scene.h"
 #include "film_io.h"
 #include "integrator.h"
+#include "lights.h"
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -168,6 +170,57 @@ static void test_bsdf_consistency()
            fresnel_dielectric(1.0, 1.5));
 }
 
+// Next-event estimation of the irradiance from one triangle light (radiance 1) at points from
+// very near (solid-angle sampling) to far (area sampling), against Lambert's closed form for a
+// polygon: E = 1/2 sum_i angle(v_i, v_i+1) (n . unit(v_i x v_i+1)).
+static void test_light_sampling()
+{
+    Scene s;
+    Shape tri;
+    tri.P = {-1, -1, 1, 1, -1, 1, 0, 1, 1};
+    tri.indices = {0, 1, 2};
+    tri.light = 0;
+    s.shapes.push_back(tri);
+    AreaLight al;
+    al.twosided = true;
+    s.lights.push_back(al);
+    Lights lights(s);
+    Vec3 v[3] = {Vec3(-1, -1, 1), Vec3(1, -1, 1), Vec3(0, 1, 1)}, n(0, 0, 1);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> U(0, 1);
+    for (double z : {0.9, 0.5, 0.0, -3.0, -20.0}) {
+        Vec3 p(0.1, -0.2, z);
+        double exact = 0;
+        for (int i = 0; i < 3; ++i) {
+            Vec3 a = normalize(v[i] - p), b = normalize(v[(i + 1) % 3] - p);
+            exact += std::acos(std::clamp(dot(a, b), -1.0, 1.0)) * std::fabs(dot(n, normalize(cross(a, b))));
+        }
+        exact /= 2;
+        const int N = 400000;
+        double sum = 0, sum2 = 0;
+        int failed = 0;
+        for (int k = 0; k < N; ++k) {
+            LightSample ls;
+            double x = 0;
+            if (lights.sample(p, U(rng), U(rng), &ls)) {
+                x = std::max(0.0, dot(n, ls.wi)) * ls.L.y / ls.pdf;
+                // the sampled point lies on the light, and pdf() agrees with the sample's density
+                Hit h;
+                h.shape = 0, h.prim = 0, h.p = p + ls.wi * ls.dist, h.ng = Vec3(0, 0, -1);
+                CHECK(std::fabs(h.p.z - 1) < 1e-9);
+                CHECK(std::fabs(lights.pdf(p, h) / ls.pdf - 1) < 1e-9);
+            } else {
+                ++failed;
+            }
+            sum += x, sum2 += x * x;
+        }
+        double mean = sum / N, se = std::sqrt(std::max(0.0, sum2 / N - mean * mean) / N);
+        CHECKF(std::fabs(mean - exact) < 4 * se + 1e-4 * exact && failed == 0,
+               "z %g: NEE irradiance %.6f +- %.1e, Lambert %.6f, %d samples failed", z, mean, se, exact, failed);
+        if (z >= 0) CHECKF(se < 3e-3 * exact, "z %g: standard error %.2e of %.4f: not bounded", z, se, exact);
+    }
+}
+
 static void test_deterministic()
 {
     Scene s = builtin_scene("cornell");
@@ -228,6 +281,7 @@ int main()
     test_furnace();
     test_strategies_agree();
     test_bsdf_consistency();
+    test_light_sampling();
     test_deterministic();
     test_film_round_trip();
     CHECK_DONE();

@@ -56,7 +56,7 @@
 #include <stdint.h>
 
 #define UDM1_VERSION_MAJOR 1
-#define UDM1_VERSION_MINOR 2
+#define UDM1_VERSION_MINOR 3
 #define UDM1_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, as returned by udm1_version(). */
 #define UDM1_VERSION (UDM1_VERSION_MAJOR * 10000 + UDM1_VERSION_MINOR * 100 + UDM1_VERSION_PATCH)
@@ -362,6 +362,10 @@ UDM1_API void udm1_cursor_2d(udm1_cursor *cursor, float out[2]);
 /* Double-precision variants of the two draws above. */
 UDM1_API double udm1_cursor_1d_f64(udm1_cursor *cursor);
 UDM1_API void udm1_cursor_2d_f64(udm1_cursor *cursor, double out[2]);
+/* The next n dimensions into out[0..n-1]: equal, bit for bit, to n successive
+ * 1D draws, but one sequential evaluation (one seek for the PRNGs). Since 1.3. */
+UDM1_API void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out);
+UDM1_API void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out);
 /* Number of draws so far that fell past the sequence's dimension count. */
 UDM1_API uint32_t udm1_cursor_padded(const udm1_cursor *cursor);
 
