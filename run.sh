@@ -40,6 +40,8 @@ report)
     ./build/noise/udm1-noise figures -o "$ROOT/report/noise"
     udm1_log "writing report/ao.html: the paper's Figure 6 with udm1-ao (every sampler, about 3 minutes the first time)"
     "$PY" tools/report/ao_report.py --ao "$ROOT/build/ao/udm1-ao" --out "$ROOT/report"
+    udm1_log "writing report/pt.html: the paper's Figure 8/10 protocol with udm1-pt (about 3 minutes the first time)"
+    "$PY" tools/report/pt_report.py --pt "$ROOT/build/pt/udm1-pt" --out "$ROOT/report"
     udm1_log "done: open report/index.html"
     ;;
 test)
@@ -68,6 +70,8 @@ bench)
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_noise.py
     udm1_log "udm1-ao against a bare Embree loop over the same rays, and each sampler's cost (tools/bench_ao.cpp)"
     ./build/tools/udm1_bench_ao
+    udm1_log "udm1-pt against Mitsuba 3: throughput, equal spp, equal error (tools/bench_pt.py, about 15 minutes)"
+    "$PY" tools/bench_pt.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
     ;;
 *)
     echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench])" >&2

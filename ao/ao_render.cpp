@@ -18,37 +18,8 @@ using udm1scene::Vec3;
 
 namespace {
 
-const double HALF_SQRT2 = 0.70710678118654752440;
-
-// Duff et al. 2017, "Building an orthonormal basis, revisited"
-struct Frame {
-    Vec3 t, b, n;
-    explicit Frame(Vec3 nn) : n(nn)
-    {
-        double s = std::copysign(1.0, n.z), a = -1.0 / (s + n.z), c = n.x * n.y * a;
-        t = Vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-        b = Vec3(c, s + n.y * n.y * a, -n.y);
-    }
-};
-
-// sin and cos of 2 pi u for u in [0, 1), to about 2e-9: the quadrant from 4u, then Taylor series
-// around pi/4 (|x| <= pi/4, terms to x^10) turned by 45 degrees. Plain arithmetic, so the same on every
-// machine and thread, and several times faster than libm's sincos here.
-inline void sincos_2pi(double u, double *s, double *c)
-{
-    double q4 = 4.0 * u;
-    int q = (int)q4;                                     // quadrant 0..3
-    double x = (q4 - q - 0.5) * 1.57079632679489661923;  // angle in the quadrant minus pi/4
-    double x2 = x * x;
-    double sn = x * (1 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880)))));
-    double cs = 1 + x2 * (-0.5 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 - x2 / 3628800))));
-    double si = HALF_SQRT2 * (sn + cs), co = HALF_SQRT2 * (cs - sn);  // sin, cos of x + pi/4
-    // turn by q quarter turns, without branches (so that loops over samples vectorize)
-    bool odd = q & 1, neg_s = q >= 2, neg_c = q == 1 || q == 2;
-    double s0 = odd ? co : si, c0 = odd ? si : co;
-    *s = neg_s ? -s0 : s0;
-    *c = neg_c ? -c0 : c0;
-}
+using udm1scene::Frame;  // Duff et al. 2017, "Building an orthonormal basis, revisited"
+using udm1scene::sincos_2pi;
 
 struct Scratch {  // per-thread buffers
     std::vector<float> dirs;

@@ -115,8 +115,9 @@ Vec3 Microfacets::sample_wm(Vec3 w, double u1, double u2) const
     if (wh.z < 0) wh = -wh;
     Vec3 t1 = wh.z < 0.99999 ? udm1scene::normalize(udm1scene::cross(Vec3(0, 0, 1), wh)) : Vec3(1, 0, 0);
     Vec3 t2 = udm1scene::cross(wh, t1);
-    double r = std::sqrt(u1), phi = 2 * PI * u2;  // uniform disk, polar
-    double px = r * std::cos(phi), py = r * std::sin(phi);
+    double r = std::sqrt(u1), sin_phi, cos_phi;  // uniform disk, polar
+    udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+    double px = r * cos_phi, py = r * sin_phi;
     double h = std::sqrt(1 - px * px);
     py = (1 - (1 + wh.z) / 2) * h + (1 + wh.z) / 2 * py;
     double pz = std::sqrt(std::max(0.0, 1 - px * px - py * py));
@@ -243,8 +244,9 @@ double Lambert::pdf(Vec3 wo, Vec3 wi, unsigned lobes) const
 bool Lambert::sample(Vec3 wo, double u1, double u2, unsigned lobes, Sample *s) const
 {
     if (!(lobes & Reflect)) return false;
-    double r = std::sqrt(u1), phi = 2 * PI * u2;
-    Vec3 wi(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1 - u1)));
+    double r = std::sqrt(u1), sin_phi, cos_phi;
+    udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+    Vec3 wi(r * cos_phi, r * sin_phi, std::sqrt(std::max(0.0, 1 - u1)));
     if (wo.z < 0) wi.z = -wi.z;
     s->wi = wi, s->f = R * (1 / PI), s->pdf = std::fabs(wi.z) / PI, s->specular = false, s->reflection = true;
     s->pdf_is_proportional = false;

@@ -27,17 +27,7 @@ inline double max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline bool nonzero(Vec3 v) { return v.x != 0 || v.y != 0 || v.z != 0; }
 inline double power_heuristic(double f, double g) { return f * f + g * g > 0 ? f * f / (f * f + g * g) : 0; }
 
-struct Frame {
-    Vec3 t, b, n;
-    explicit Frame(Vec3 nn) : n(nn)
-    {
-        double s = std::copysign(1.0, n.z), a = -1.0 / (s + n.z), c = n.x * n.y * a;
-        t = Vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-        b = Vec3(c, s + n.y * n.y * a, -n.y);
-    }
-    Vec3 to_local(Vec3 v) const { return Vec3(dot(v, t), dot(v, b), dot(v, n)); }
-    Vec3 from_local(Vec3 v) const { return t * v.x + b * v.y + n * v.z; }
-};
+using udm1scene::Frame;
 
 // The shading normal: interpolated vertex normals where the mesh has them, else the geometric one.
 Vec3 shading_normal(const udm1scene::Shape &s, const Hit &h)
@@ -249,6 +239,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     Accumulator acc;
     acc.width = view.width, acc.height = view.height, acc.first = opt.first, acc.count = count;
     acc.sum.assign((size_t)acc.width * acc.height * 3, 0);
+    const udm1scene::CameraRays camera(view);
     Tracer tracer{scene, rt, lights, bsdfs, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
     std::atomic<uint64_t> rays{0}, nonfinite{0}, clamped{0};
     auto t0 = std::chrono::steady_clock::now();
@@ -264,7 +255,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                     double uv[2];
                     udm1_cursor_fill_f64(&c, 2, uv);
                     Vec3 o, d;
-                    udm1scene::camera_ray(view, x + uv[0], y + uv[1], &o, &d);
+                    camera.ray(x + uv[0], y + uv[1], &o, &d);
                     Vec3 L = tracer.trace(o, d, &c, &local_rays);
                     for (int k = 0; k < 3; ++k) {
                         double v = L[k];

@@ -15,13 +15,6 @@ namespace {
 const double PI = 3.14159265358979323846;
 inline double luminance(Vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
 
-// An orthonormal basis around unit n (Duff et al. 2017).
-void basis(Vec3 n, Vec3 *t, Vec3 *b)
-{
-    double s = std::copysign(1.0, n.z), a = -1.0 / (s + n.z), c = n.x * n.y * a;
-    *t = Vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-    *b = Vec3(c, s + n.y * n.y * a, -n.y);
-}
 // pbrt-v4's bounds for sampling a triangle by solid angle: below, the spherical triangle is too
 // thin for the arithmetic; above, nearly a hemisphere
 const double MIN_SPHERICAL_AREA = 3e-4, MAX_SPHERICAL_AREA = 6.22;
@@ -202,10 +195,11 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
             // the angle at the centre between -dc and the point (pbrt-v4, Sphere::Sample)
             double cos_alpha = sin2 / std::sqrt(sin2_max) + cos_t * std::sqrt(std::max(0.0, 1 - sin2 / sin2_max));
             double sin_alpha = std::sqrt(std::max(0.0, 1 - cos_alpha * cos_alpha));
-            double phi = 2 * PI * u2;
-            Vec3 wc = dc * (1 / dist), t, b;
-            basis(wc, &t, &b);
-            nq = (t * (sin_alpha * std::cos(phi)) + b * (sin_alpha * std::sin(phi))) + (-wc) * cos_alpha;
+            double sin_phi, cos_phi;
+            udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+            Vec3 wc = dc * (1 / dist);
+            udm1scene::Frame f(wc);
+            nq = (f.t * (sin_alpha * cos_phi) + f.b * (sin_alpha * sin_phi)) + (-wc) * cos_alpha;
             nq = normalize(nq);
             q = l.center + nq * l.radius;
             Vec3 d = q - p;
@@ -216,8 +210,9 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
             return s->pdf > 0 && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
         }
         // inside the sphere: by area
-        double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z)), phi = 2 * PI * u2;
-        nq = Vec3(r * std::cos(phi), r * std::sin(phi), z);
+        double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z)), sin_phi, cos_phi;
+        udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+        nq = Vec3(r * cos_phi, r * sin_phi, z);
         q = l.center + nq * l.radius;
     } else {
         // by solid angle where the spherical triangle is well formed (pbrt-v4), else by area

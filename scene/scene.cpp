@@ -138,18 +138,27 @@ Vec3 triangle_normal(const Shape &s, unsigned prim)
     return n;
 }
 
-void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir)
+CameraRays::CameraRays(const Scene &s) : world_from_camera_(s.camera.world_from_camera)
 {
     // pbrt's perspective camera: the screen window spans [-1, 1] along the shorter axis
     double aspect = (double)s.width / s.height;
     double sx0 = aspect > 1 ? -aspect : -1, sx1 = -sx0, sy0 = aspect > 1 ? -1 : -1 / aspect, sy1 = -sy0;
-    double sx = sx0 + (px / s.width) * (sx1 - sx0);
-    double sy = sy1 - (py / s.height) * (sy1 - sy0);
-    double t = std::tan(s.camera.fov * 3.14159265358979323846 / 360.0);
-    Vec3 d = normalize(Vec3(sx * t, sy * t, 1.0));
-    *origin = s.camera.world_from_camera.point(Vec3(0, 0, 0));
-    *dir = normalize(s.camera.world_from_camera.vector(d));
+    w_ = s.width, h_ = s.height;  // divided by (not multiplied by the inverse): the rays keep their bits
+    sx0_ = sx0, sx_span_ = sx1 - sx0, sy1_ = sy1, sy_span_ = sy1 - sy0;
+    tan_half_fov_ = std::tan(s.camera.fov * 3.14159265358979323846 / 360.0);
+    origin_ = world_from_camera_.point(Vec3(0, 0, 0));
 }
+
+void CameraRays::ray(double px, double py, Vec3 *origin, Vec3 *dir) const
+{
+    double sx = sx0_ + (px / w_) * sx_span_;
+    double sy = sy1_ - (py / h_) * sy_span_;
+    Vec3 d = normalize(Vec3(sx * tan_half_fov_, sy * tan_half_fov_, 1.0));
+    *origin = origin_;
+    *dir = normalize(world_from_camera_.vector(d));
+}
+
+void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir) { CameraRays(s).ray(px, py, origin, dir); }
 
 Scene load_scene(const std::string &path, Need need)
 {

@@ -100,6 +100,18 @@ Vec3 triangle_normal(const Shape &s, unsigned prim);
 // Raster (px, py) in [0, width) x [0, height), y down, to a world-space ray (pbrt's perspective camera).
 void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir);
 
+// The same rays with the per-image work done once (camera_ray per sample recomputes it).
+class CameraRays {
+public:
+    explicit CameraRays(const Scene &s);
+    void ray(double px, double py, Vec3 *origin, Vec3 *dir) const;
+
+private:
+    Mat4 world_from_camera_;
+    Vec3 origin_;
+    double w_, h_, sx0_, sx_span_, sy1_, sy_span_, tan_half_fov_;
+};
+
 // What a renderer needs of a scene. Everything: the supported subset exactly, anything else is an
 // error. Geometry (ambient occlusion): shapes, transforms, camera and film size; appearance
 // (materials, textures, media, lights' emission, film and camera extras) is read for syntax and

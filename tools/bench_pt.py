@@ -4,9 +4,11 @@ given error.
 1. Throughput: paths/s and rays/s of udm1-pt on the built-in Cornell box and on the shared pbrt-v4
    scenes (cornell-box, veach-mis; skipped with a message where ../shared is absent), and Mitsuba 3
    (PyPI `mitsuba`, variant scalar_rgb, its `path` integrator) on the same Cornell box at the same spp.
-2. Equal spp: RMSE against one common reference (udm1-pt, sobol-owen at --ref-spp, cached) for every
-   udm1 sampler and every Mitsuba sampler at each spp. The scenes are matched by `udm1-pt export` (see
-   tools/mitsuba_scene.py); the two renderers' high-spp images agree pixel by pixel within their noise.
+2. Equal spp: RMSE (root of the MSE averaged over --seeds renders; time averaged too) against one
+   common reference (udm1-pt, sobol-owen at --ref-spp, cached) for every udm1 sampler and every
+   Mitsuba sampler at each spp. The scenes are matched by `udm1-pt export` (see
+   tools/mitsuba_scene.py); the two renderers' high-spp images agree pixel by pixel within their
+   noise. Errors are those of `udm1-pt compare` (linear RGB clamped to [0, 1], as the PSNR).
 3. Equal error: for each target RMSE (the errors Mitsuba's independent sampler reaches at the spps),
    the time each sampler needs, interpolated log-log between measured points; the ratio of Mitsuba's
    best time to udm1-pt's best time is the speed-up at equal error.
@@ -84,6 +86,7 @@ def main(argv=None) -> int:
     ap.add_argument("--ref-spp", type=int, default=8192)
     ap.add_argument("--samplers", default=",".join(OURS))
     ap.add_argument("--mitsuba-samplers", default=",".join(THEIRS))
+    ap.add_argument("--seeds", type=int, default=3, help="renders per point, MSE and time averaged (default 3)")
     ap.add_argument("--throughput-spp", type=int, default=64)
     ap.add_argument("--out", default=str(ROOT / "build" / "bench_pt"))
     args = ap.parse_args(argv)
@@ -135,18 +138,26 @@ def main(argv=None) -> int:
     for s in ours:
         log(f"udm1-pt {s}: spp {spps}")
         csv_out = tool_run(tool, "sweep", "--against", str(ref), "--samplers", s, "--spps", args.spps,
-                           "--size", args.size)
-        for rec in csv.DictReader(csv_out.splitlines()):
-            rows.append({"renderer": "udm1-pt", "sampler": s, "spp": int(rec["spp"]),
-                         "seconds": float(rec["seconds"]), "rmse": float(rec["rmse"])})
+                           "--size", args.size, "--seeds", str(args.seeds))
+        recs = list(csv.DictReader(csv_out.splitlines()))
+        for spp in spps:
+            mine = [r for r in recs if int(r["spp"]) == spp]
+            rows.append({"renderer": "udm1-pt", "sampler": s, "spp": spp,
+                         "seconds": float(np.mean([float(r["seconds"]) for r in mine])),
+                         "rmse": float(np.sqrt(np.mean([float(r["rmse"]) ** 2 for r in mine])))})
     for s in theirs:
         for spp in spps:
             log(f"Mitsuba {s}: spp {spp}")
-            img, secs = mitsuba_scene.render(scene_dir, spp, s, 1)
-            exr = out / f"mitsuba-{s}-{spp}.exr"
-            mi.util.write_bitmap(str(exr), img.astype("float32"), write_async=False)
-            rows.append({"renderer": "mitsuba", "sampler": s, "spp": spp, "seconds": secs,
-                         "rmse": rmse_of(tool, exr, ref)})
+            secs, mse = [], []
+            for seed in range(1, args.seeds + 1):
+                img, t = mitsuba_scene.render(scene_dir, spp, s, seed)
+                exr = out / f"mitsuba-{s}-{spp}-{seed}.exr"
+                mi.util.write_bitmap(str(exr), img.astype("float32"), write_async=False)
+                secs.append(t)
+                mse.append(rmse_of(tool, exr, ref) ** 2)
+                exr.unlink()
+            rows.append({"renderer": "mitsuba", "sampler": s, "spp": spp, "seconds": float(np.mean(secs)),
+                         "rmse": float(np.sqrt(np.mean(mse)))})
     results["runs"] = rows
 
     # 3. equal error
@@ -180,7 +191,8 @@ def main(argv=None) -> int:
     base = results["throughput"][-1]["paths_per_second"]
     print(f"\nudm1-pt / Mitsuba paths per second on the same Cornell box: "
           f"{results['throughput'][0]['paths_per_second'] / base:.2f}\n")
-    print(f"## Equal spp: RMSE against udm1-pt sobol-owen {args.ref_spp} spp, {args.size} (seconds in brackets)\n")
+    print(f"## Equal spp: RMSE against udm1-pt sobol-owen {args.ref_spp} spp, {args.size}, {args.seeds} seeds "
+          "(seconds in brackets)\n")
     print("| renderer | sampler | " + " | ".join(f"{n} spp" for n in spps) + " |")
     print("|---|---|" + "---|" * len(spps))
     for renderer, names in (("mitsuba", theirs), ("udm1-pt", ours)):

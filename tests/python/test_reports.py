@@ -13,6 +13,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[2]
 BENCH = os.environ.get("UDM1_BENCH_SAMPLERS", "")
 AO = os.environ.get("UDM1_AO_TOOL", "")
+PT = os.environ.get("UDM1_PT_TOOL", "")
 
 
 def run_report(script, out, *extra):
@@ -30,7 +31,7 @@ def test_sequence_report(tmp_path):
     assert r.returncode == 0, r.stderr
     html = (tmp_path / "index.html").read_text()
     for link in links(html):
-        if link not in ("samplers.html", "noise/figures.md", "ao.html"):  # written by the other report steps
+        if link not in ("samplers.html", "noise/figures.md", "ao.html", "pt.html"):  # written by the other report steps
             assert (tmp_path / link).exists(), link
     data = json.loads((tmp_path / "data.json").read_text())
     worst = [c for c in data["check"] if c["preset"] == "wmmr" and c["d"] == 22][0]
@@ -76,6 +77,32 @@ def test_ao_report(tmp_path):
     # a second run reuses the cached references
     r = run_report("ao_report.py", tmp_path, "--ao", AO)
     assert r.returncode == 0 and "reused" in (tmp_path / "ao.json").read_text(), r.stderr
+
+
+@pytest.mark.skipif(not PT, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
+def test_pt_report(tmp_path):
+    r = run_report("pt_report.py", tmp_path, "--pt", PT)
+    assert r.returncode == 0, r.stderr
+    html = (tmp_path / "pt.html").read_text()
+    for link in links(html):
+        assert (tmp_path / link).exists(), link
+    data = json.loads((tmp_path / "pt.json").read_text())
+    names = {"pcg32": "PRNG (pcg32)", "halton": "Halton", "sobol": "Sobol", "sobol-owen": "Sobol (Owen)",
+             "pmj02": "PMJ02", "wr": "WR", "wmmr": "WMMR", "hwmmr": "HWMMR", "rd": "R_d"}
+    for scene in data["scenes"]:
+        fig = {row["sampler"]: row for row in scene["figure"]}
+        assert set(fig) == set(names)  # every sampler the protocol names, none hidden
+        for s, row in fig.items():
+            assert names[s] in html and f"{row['psnr_seed1']:.2f}" in html and f"{row['psnr_mean']:.2f}" in html
+            assert (tmp_path / "pt" / row["png"]).exists() and row["seconds"] > 0 and row["rays_per_second"] > 0
+        for s in ("pcg32", "sobol-owen"):  # error falls with spp in the sweep
+            rm = [row["rmse"] for row in sorted(scene["sweep"], key=lambda x: x["spp"]) if row["sampler"] == s]
+            assert rm[-1] < rm[0], (s, rm)
+        assert scene["time_to_target"]["pcg32"] is not None
+    # the paper's numbers are shown next to ours
+    assert "+1.47" in html and "+0.94" in html  # Halton's gain over PRNG in Figures 8 and 10
+    r = run_report("pt_report.py", tmp_path, "--pt", PT)  # a second run reuses the cached references
+    assert r.returncode == 0 and "reused" in (tmp_path / "pt.json").read_text(), r.stderr
 
 
 def test_bad_output_folder(tmp_path):

@@ -233,7 +233,9 @@ The comparison of every sampler (integration error against N and time, spectra, 
 the paper's sequences win and lose) is in [the sampler report](samplers.html); the paper's noise figures,
 re-made with udm1 tables beside drand48, in [noise/](noise/figures.md); the paper's ambient occlusion
 comparison (its Figure 6: every sampler at 64 spp against an 8192-spp reference, equal time, error against
-spp and time) in [the ambient occlusion report](ao.html).
+spp and time) in [the ambient occlusion report](ao.html); the paper's path tracing protocol (its Figures 8
+and 10: every sampler at equal spp against a high-spp reference, error against spp and time) with udm1-pt
+in [the path tracing report](pt.html).
 
 ## Points
 ![points]({fig_points})
