@@ -96,7 +96,8 @@ def summarize(rows, spp: int) -> list[dict]:
         rs = [r for r in rows if r["sampler"] == s and r["spp"] == spp]
         ps = [r["psnr"] for r in rs]
         secs = sum(r["seconds"] for r in rs)
-        out.append({"sampler": s, "spp": spp, "psnr_seed1": rs[0]["psnr"], "psnr_mean": float(np.mean(ps)),
+        out.append({"sampler": s, "spp": spp, "n_seeds": len(ps), "psnr_seed1": rs[0]["psnr"],
+                    "psnr_mean": float(np.mean(ps)),
                     "psnr_sd": float(np.std(ps, ddof=1)) if len(ps) > 1 else 0.0,
                     "rmse_mean": float(np.sqrt(np.mean([r["rmse"] ** 2 for r in rs]))),
                     "seconds": float(np.median([r["seconds"] for r in rs])),
@@ -122,7 +123,7 @@ def contact_sheet(rows, folder: Path, out: Path, name: str, title: str) -> str:
     nrows = math.ceil(len(rows) / cols)
     first = mpimg.imread(folder / rows[0]["png"])
     aspect = first.shape[1] / first.shape[0]
-    fig, axes = plt.subplots(nrows, cols, figsize=(2.9 * cols * max(1.0, aspect) ** 0.5, 3.1 * nrows / max(1.0, aspect) ** 0.5))
+    fig, axes = plt.subplots(nrows, cols, figsize=(2.9 * cols * max(1.0, aspect) ** 0.5, 3.5 * nrows / max(1.0, aspect) ** 0.5))
     for ax in np.ravel(axes):
         ax.axis("off")
     for ax, r in zip(np.ravel(axes), rows):
@@ -163,11 +164,11 @@ def plot_sweep(rows, out: Path, name: str, title: str) -> str:
 def verdicts(fig: list[dict]) -> list[list[str]]:
     """The paper's claims, checked on this scene's mean PSNR."""
     p = {r["sampler"]: r["psnr_mean"] for r in fig}
-    sd = max(r["psnr_sd"] for r in fig)
-    tol = max(0.05, 2 * sd)  # differences within twice the seed spread are ties
+    sd = {r["sampler"]: r["psnr_sd"] for r in fig}
+    n = fig[0]["n_seeds"]
 
-    def cmp(a, b):
-        d = p[a] - p[b]
+    def cmp(a, b):  # a difference within two standard errors of the difference of means (at least 0.05 dB) is a tie
+        d, tol = p[a] - p[b], max(0.05, 2 * math.sqrt((sd[a] ** 2 + sd[b] ** 2) / n))
         return "holds" if d > tol else ("tie" if abs(d) <= tol else "fails")
 
     weyl = ["wr", "wmmr", "hwmmr"]
@@ -275,7 +276,8 @@ there to reach the RMSE PRNG has at {prng_spp} spp ({target:.4g}), log-log inter
 ![sweep]({sweep_png})
 
 ### The paper's claims on this scene
-Ties: differences within twice the largest seed spread ({max(r['psnr_sd'] for r in fig):.2f} dB), at least 0.05 dB.
+A difference within two standard errors of the difference of the mean PSNRs (over {seeds} seeds; at least
+0.05 dB) is a tie.
 
 {md_table(["claim", "ours", "verdict"], verdicts(fig))}
 """)
