@@ -72,6 +72,8 @@ bench)
     ./build/tools/udm1_bench_ao
     udm1_log "udm1-pt against Mitsuba 3: throughput, equal spp, equal error (tools/bench_pt.py, about 15 minutes)"
     "$PY" tools/bench_pt.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
+    udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (tools/bench_pt.py --estimators)"
+    "$PY" tools/bench_pt.py --estimators --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
     ;;
 *)
     echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench])" >&2

@@ -218,7 +218,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     int max_depth = opt.max_depth >= 0 ? opt.max_depth : scene.max_depth;
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
     std::vector<Bsdf> bsdfs = materials(scene);
-    Lights lights(scene);
+    Lights lights(scene, opt.near_light);
 
     udm1_preset_info info;
     if (udm1_preset_find(opt.sampler.c_str(), &info) != UDM1_OK)

@@ -48,8 +48,8 @@ struct Options {
     int max_depth = -1;         // -1: the scene's Integrator maxdepth (pbrt's default 5)
     Strategy strategy = Strategy::Mis;
     bool roulette = true;
-    int rr_depth = 3;           // roulette from this vertex on (0 = the first hit; pbrt-v4 starts at 1):
-                                // tools/bench_pt.py --roulette measures the choice
+    int rr_depth = 3;           // roulette from this vertex on (0 = the first hit; pbrt-v4 starts at 1)
+    double near_light = Lights::NEAR_DEFAULT;  // see Lights; `tools/bench_pt.py --estimators` measures both
 };
 
 // Per-pixel sums of the samples in fixed point (2^-24 units, int64), so that sums of

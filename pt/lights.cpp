@@ -18,10 +18,7 @@ inline double luminance(Vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * 
 // pbrt-v4's bounds for sampling a triangle by solid angle: below, the spherical triangle is too
 // thin for the arithmetic; above, nearly a hemisphere
 const double MIN_SPHERICAL_AREA = 3e-4, MAX_SPHERICAL_AREA = 6.22;
-// Solid-angle sampling only near the light, where area / distance^2 to its centroid exceeds this:
-// farther away 1/r^2 varies little over the light and area sampling is cheaper for the same
-// error (tools/bench_pt.py measured both on the Cornell box)
-const double NEAR = 0.25;
+
 
 inline double safe_asin(double x) { return std::asin(std::clamp(x, -1.0, 1.0)); }
 inline double safe_sqrt(double x) { return std::sqrt(std::max(0.0, x)); }
@@ -72,7 +69,10 @@ bool sample_spherical_triangle(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2, double u0, dou
 }
 }  // namespace
 
-Lights::Lights(const udm1scene::Scene &scene)
+// Solid-angle sampling only near the light (area / distance^2 to its centroid above near_): farther
+// away 1/r^2 varies little over the light and area sampling gives the same error for less work
+// (`python tools/bench_pt.py --estimators` measures the choice).
+Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
 {
     first_of_shape_.assign(scene.shapes.size(), -1);
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
@@ -140,7 +140,7 @@ Vec3 Lights::emitted(const udm1scene::Hit &h, Vec3 w) const
 bool Lights::by_solid_angle(const Light &l, Vec3 p, double *omega) const
 {
     Vec3 d = l.centroid - p;
-    if (l.area < NEAR * dot(d, d)) return false;  // far: area sampling is as good, and cheaper
+    if (l.area < near_ * dot(d, d)) return false;  // far: area sampling is as good, and cheaper
     *omega = solid_angle(p, l.p0, l.p1, l.p2);
     return *omega >= MIN_SPHERICAL_AREA && *omega <= MAX_SPHERICAL_AREA;
 }

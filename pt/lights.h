@@ -31,7 +31,10 @@ struct LightSample {
 class Lights {
 public:
     // Throws udm1scene::SceneError (file:line of the Shape) for a light of zero area.
-    explicit Lights(const udm1scene::Scene &scene);
+    // near: triangles are sampled by solid angle where area > near * distance^2 (0: wherever the
+    // solid angle allows; infinity: never, always by area). The default is the measured choice.
+    explicit Lights(const udm1scene::Scene &scene, double near = NEAR_DEFAULT);
+    static constexpr double NEAR_DEFAULT = 0.25;
 
     bool empty() const { return lights_.empty(); }
     size_t count() const { return lights_.size(); }
@@ -65,6 +68,7 @@ private:
     Vec3 radiance(const Light &l, Vec3 n, Vec3 w) const;
     double pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const;  // solid angle, without the choice
     bool by_solid_angle(const Light &l, Vec3 p, double *omega) const;  // triangle l sampled by solid angle from p?
+    double near_;
     std::vector<Light> lights_;
     std::vector<double> cdf_;                // power CDF
     std::vector<double> prob_;               // choice probability of each light

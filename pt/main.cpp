@@ -56,6 +56,9 @@ const char *USAGE =
     "  --maxdepth D      maximum bounces (default: the scene's, pbrt's 5)\n"
     "  --strategy S      mis|nee|bsdf: light found by both (MIS), light sampling, or BSDF sampling\n"
     "  --no-roulette     no Russian roulette\n"
+    "  --rr-depth N      roulette from vertex N on (default 3; pbrt-v4's rule is 1)\n"
+    "  --solid-angle S   near|always|never: triangle lights sampled by solid angle near the light (default),\n"
+    "                    wherever possible (as pbrt-v4), or never (always by area)\n"
     "  --threads N       default: all cores\n";
 
 const uint64_t MAX_PIXELS = 1ull << 26;
@@ -128,6 +131,13 @@ Options parse(int argc, char **argv)
             else throw Error("--strategy '" + s + "' is not mis, nee or bsdf");
         } else if (a == "--no-roulette") o.pt.roulette = false;
         else if (a == "--rr-depth") o.pt.rr_depth = (int)udm1app::parse_u64(value(a), a, 0, 1000);
+        else if (a == "--solid-angle") {
+            std::string s = value(a);
+            if (s == "near") o.pt.near_light = udm1pt::Lights::NEAR_DEFAULT;
+            else if (s == "always") o.pt.near_light = 0;
+            else if (s == "never") o.pt.near_light = HUGE_VAL;
+            else throw Error("--solid-angle '" + s + "' is not near, always or never");
+        }
         else if (a == "--threads") o.threads = (uint32_t)udm1app::parse_u64(value(a), a, 1, 1024);
         else if (a == "-o") o.output = value(a);
         else if (a == "--png") o.png = value(a);
@@ -179,10 +189,10 @@ std::string description(const udm1scene::Scene &scene, const udm1pt::Options &p,
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "udm1-pt %s scene %016llx size %dx%d sampler %s spp %u seed %llu randomize %u maxdepth %d strategy %s "
-                  "roulette %d layout %d",
+                  "roulette %d near %g layout %d",
                   udm1_version_string(), (unsigned long long)scene.digest(), p.width, p.height, p.sampler.c_str(), p.spp,
                   (unsigned long long)p.seed, p.randomize, max_depth, strategy_name(p.strategy), p.roulette ? p.rr_depth : -1,
-                  udm1pt::LAYOUT_VERSION);
+                  p.near_light, udm1pt::LAYOUT_VERSION);
     return buf;
 }
 

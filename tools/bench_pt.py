@@ -15,7 +15,13 @@ given error.
 
 Both renderers use every core of the machine; times are render times (scene loading excluded).
 
+With --estimators it measures udm1-pt's own estimator choices instead, on the same Cornell box and
+reference: Russian roulette from vertex 1 (pbrt-v4's rule), 2, 3 (the default) or never, and triangle
+lights sampled by solid angle near the light (the default), wherever possible (pbrt-v4) or never; for
+each, MSE x time relative to the default (lower is better), per sampler.
+
     python tools/bench_pt.py [--size 128x128] [--spps 16,64,256,1024] [--ref-spp 8192] [--out DIR]
+    python tools/bench_pt.py --estimators [--estimator-spp 256]
 """
 
 from __future__ import annotations
@@ -78,6 +84,45 @@ def time_to(points: list[tuple[float, float]], target: float) -> float | None:
     return None
 
 
+VARIANTS = [("default: roulette from vertex 3, solid angle near lights", []),
+            ("roulette from vertex 1 (pbrt-v4)", ["--rr-depth", "1"]),
+            ("roulette from vertex 2", ["--rr-depth", "2"]),
+            ("no roulette", ["--no-roulette"]),
+            ("solid angle wherever possible (pbrt-v4)", ["--solid-angle", "always"]),
+            ("solid angle never (area sampling)", ["--solid-angle", "never"])]
+
+
+def estimators(args) -> int:
+    tool, out = args.tool, Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    ref = out / f"ref-cornell-{args.size}-{args.ref_spp}.exr"
+    log(f"reference: udm1-pt sobol-owen {args.ref_spp} spp at {args.size} -> {ref} (reused when cached)")
+    tool_run(tool, "reference", "-o", str(ref), "--spp", str(args.ref_spp), "--size", args.size, "--seed", "7")
+    samplers = ["pcg32", "sobol-owen", "pmj02", "wr"]
+    res = {}
+    for name, extra in VARIANTS:
+        for s in samplers:
+            log(f"{name}: {s}")
+            csv_out = tool_run(tool, "sweep", "--against", str(ref), "--samplers", s, "--spps",
+                               str(args.estimator_spp), "--size", args.size, "--seeds", str(args.seeds), *extra)
+            recs = list(csv.DictReader(csv_out.splitlines()))
+            res[name, s] = (float(np.mean([float(r["rmse"]) ** 2 for r in recs])),
+                            float(np.mean([float(r["seconds"]) for r in recs])),
+                            float(np.mean([int(r["rays"]) / int(r["paths"]) for r in recs])))
+    print(f"# udm1-pt estimator choices: builtin:cornell {args.size}, {args.estimator_spp} spp, {args.seeds} seeds\n")
+    print("MSE x time relative to the default (lower is better); in brackets MSE relative, time relative, rays/path\n")
+    print("| variant | " + " | ".join(samplers) + " |\n|---|" + "---|" * len(samplers))
+    base = {s: res[VARIANTS[0][0], s] for s in samplers}
+    for name, _ in VARIANTS:
+        cells = []
+        for s in samplers:
+            m, t, rpp = res[name, s]
+            cells.append(f"**{m * t / (base[s][0] * base[s][1]):.2f}** ({m / base[s][0]:.2f}, {t / base[s][1]:.2f}, {rpp:.2f})")
+        print(f"| {name} | " + " | ".join(cells) + " |")
+    (out / "estimators.json").write_text(json.dumps({f"{k[0]} | {k[1]}": v for k, v in res.items()}, indent=1))
+    return 0
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tool", default=str(ROOT / "build" / "pt" / "udm1-pt"))
@@ -89,7 +134,11 @@ def main(argv=None) -> int:
     ap.add_argument("--seeds", type=int, default=3, help="renders per point, MSE and time averaged (default 3)")
     ap.add_argument("--throughput-spp", type=int, default=64)
     ap.add_argument("--out", default=str(ROOT / "build" / "bench_pt"))
+    ap.add_argument("--estimators", action="store_true", help="measure udm1-pt's estimator choices instead")
+    ap.add_argument("--estimator-spp", type=int, default=256)
     args = ap.parse_args(argv)
+    if args.estimators:
+        return estimators(args)
     try:
         import mitsuba as mi
     except ImportError:

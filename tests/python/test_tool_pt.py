@@ -237,6 +237,8 @@ def test_bad_scenes_name_file_and_line(text, line, words, tmp_path):
         (["--strategy", "bdpt"], 2, "'bdpt'"),
         (["--maxdepth", "-1"], 2, "--maxdepth '-1'"),
         (["--randomize", "sideways"], 2, "'sideways'"),
+        (["--rr-depth", "-2"], 2, "--rr-depth '-2'"),
+        (["--solid-angle", "sometimes"], 2, "'sometimes'"),
         (["--threads", "0"], 2, "--threads '0'"),
         (["--frobnicate"], 2, "'--frobnicate'"),
         (["-o", "out.png"], 2, "'out.png'"),
