@@ -201,7 +201,7 @@ bool Dielectric::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, uns
         if (!refract(wo, Vec3(0, 0, 1), eta, &etap, &wi)) return false;
         double v = T / std::fabs(wi.z);
         if (mode == Mode::Radiance) v /= etap * etap;
-        s->wi = wi, s->f = Vec3(v, v, v), s->pdf = T / (R + T), s->reflection = false;
+        s->wi = wi, s->f = Vec3(v, v, v), s->pdf = T / (R + T), s->reflection = false, s->eta = etap;
         return true;
     }
     Vec3 wm = mf.sample_wm(wo, u1, u2);
@@ -227,8 +227,80 @@ bool Dielectric::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, uns
     double v = T * mf.D(wm) * mf.G(wo, wi) *
                std::fabs(udm1scene::dot(wi, wm) * udm1scene::dot(wo, wm) / (wi.z * wo.z * denom));
     if (mode == Mode::Radiance) v /= etap * etap;
-    s->wi = wi, s->f = Vec3(v, v, v), s->reflection = false;
+    s->wi = wi, s->f = Vec3(v, v, v), s->reflection = false, s->eta = etap;
     return s->pdf > 0;
+}
+
+// ---- conductor ----
+
+double fresnel_complex(double cos_i, double eta, double k)
+{
+    // |r_s|^2 and |r_p|^2 with complex arithmetic, as pbrt-v4's FrComplex
+    cos_i = std::clamp(cos_i, 0.0, 1.0);
+    double sin2_i = 1 - cos_i * cos_i;
+    // eta_c = eta + i k; sin2_t = sin2_i / eta_c^2; cos_t = sqrt(1 - sin2_t)
+    double e2r = eta * eta - k * k, e2i = 2 * eta * k, e2n = e2r * e2r + e2i * e2i;
+    double s2r = sin2_i * e2r / e2n, s2i = -sin2_i * e2i / e2n;  // sin2_i / eta_c^2
+    double ar = 1 - s2r, ai = -s2i;                               // 1 - sin2_t
+    double mod = std::sqrt(ar * ar + ai * ai), ctr = std::sqrt((mod + ar) / 2);
+    double cti = std::copysign(std::sqrt(std::max(0.0, (mod - ar) / 2)), ai);
+    auto norm2 = [](double r, double i) { return r * r + i * i; };
+    // r_parl = (eta_c cos_i - cos_t) / (eta_c cos_i + cos_t); r_perp = (cos_i - eta_c cos_t) / (cos_i + eta_c cos_t)
+    double ecr = eta * cos_i, eci = k * cos_i;
+    double rpl = norm2(ecr - ctr, eci - cti) / norm2(ecr + ctr, eci + cti);
+    double ect_r = eta * ctr - k * cti, ect_i = eta * cti + k * ctr;
+    double rpp = norm2(cos_i - ect_r, -ect_i) / norm2(cos_i + ect_r, ect_i);
+    return (rpl + rpp) / 2;
+}
+
+namespace {
+Vec3 fresnel_rgb(double cos_i, Vec3 eta, Vec3 k)
+{
+    return Vec3(fresnel_complex(cos_i, eta.x, k.x), fresnel_complex(cos_i, eta.y, k.y),
+                fresnel_complex(cos_i, eta.z, k.z));
+}
+}  // namespace
+
+Vec3 Conductor::f(Vec3 wo, Vec3 wi) const
+{
+    if (!same_hemisphere(wo, wi) || specular()) return Vec3();
+    double co = std::fabs(wo.z), ci = std::fabs(wi.z);
+    if (co == 0 || ci == 0) return Vec3();
+    Vec3 wm = wi + wo;
+    if (udm1scene::dot(wm, wm) == 0) return Vec3();
+    wm = udm1scene::normalize(wm);
+    Vec3 F = fresnel_rgb(std::fabs(udm1scene::dot(wo, wm)), eta, k);
+    return F * (mf.D(wm) * mf.G(wo, wi) / (4 * ci * co));
+}
+
+double Conductor::pdf(Vec3 wo, Vec3 wi) const
+{
+    if (!same_hemisphere(wo, wi) || specular()) return 0;
+    Vec3 wm = wo + wi;
+    if (udm1scene::dot(wm, wm) == 0) return 0;
+    wm = face_forward(udm1scene::normalize(wm), Vec3(0, 0, 1));
+    return mf.pdf(wo, wm) / (4 * std::fabs(udm1scene::dot(wo, wm)));
+}
+
+bool Conductor::sample(Vec3 wo, double u1, double u2, Sample *s) const
+{
+    if (specular()) {
+        Vec3 wi(-wo.x, -wo.y, wo.z);
+        if (wi.z == 0) return false;
+        s->wi = wi, s->f = fresnel_rgb(std::fabs(wi.z), eta, k) * (1 / std::fabs(wi.z)), s->pdf = 1;
+        s->specular = true, s->reflection = true;
+        return true;
+    }
+    if (wo.z == 0) return false;
+    Vec3 wm = mf.sample_wm(wo, u1, u2);
+    Vec3 wi = reflect(wo, wm);
+    if (!same_hemisphere(wo, wi)) return false;
+    s->pdf = mf.pdf(wo, wm) / (4 * std::fabs(udm1scene::dot(wo, wm)));
+    double co = std::fabs(wo.z), ci = std::fabs(wi.z);
+    if (ci == 0 || co == 0 || !(s->pdf > 0)) return false;
+    s->f = fresnel_rgb(std::fabs(udm1scene::dot(wo, wm)), eta, k) * (mf.D(wm) * mf.G(wo, wi) / (4 * ci * co));
+    s->wi = wi, s->specular = false, s->reflection = true;
+    return true;
 }
 
 // ---- Lambertian ----
@@ -439,18 +511,33 @@ bool Coated::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, Sample 
 
 Vec3 Bsdf::f(Vec3 wo, Vec3 wi, Mode mode) const
 {
-    return kind == Diffuse ? diffuse.f(wo, wi) : coated.f(wo, wi, mode);
+    switch (kind) {
+    case Diffuse: return diffuse.f(wo, wi);
+    case CoatedDiffuse: return coated.f(wo, wi, mode);
+    case DielectricKind: return dielectric.f(wo, wi, mode);
+    default: return conductor.f(wo, wi);
+    }
 }
 
 double Bsdf::pdf(Vec3 wo, Vec3 wi, Mode mode) const
 {
-    return kind == Diffuse ? diffuse.pdf(wo, wi, Both) : coated.pdf(wo, wi, mode);
+    switch (kind) {
+    case Diffuse: return diffuse.pdf(wo, wi, Both);
+    case CoatedDiffuse: return coated.pdf(wo, wi, mode);
+    case DielectricKind: return dielectric.pdf(wo, wi, mode, Both);
+    default: return conductor.pdf(wo, wi);
+    }
 }
 
 bool Bsdf::sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode) const
 {
     *s = Sample();
-    return kind == Diffuse ? diffuse.sample(wo, u1, u2, Both, s) : coated.sample(wo, uc, u1, u2, mode, s);
+    switch (kind) {
+    case Diffuse: return diffuse.sample(wo, u1, u2, Both, s);
+    case CoatedDiffuse: return coated.sample(wo, uc, u1, u2, mode, s);
+    case DielectricKind: return dielectric.sample(wo, uc, u1, u2, mode, Both, s);
+    default: return conductor.sample(wo, u1, u2, s);
+    }
 }
 
 }  // namespace udm1pt

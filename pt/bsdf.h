@@ -1,6 +1,8 @@
 // bsdf.h - the scattering functions the target scenes use, in RGB, in a local
 // frame whose z axis is the shading normal (pbrt-v4's conventions):
 //   diffuse        Lambertian reflection on both sides (pbrt-v4 DiffuseBxDF)
+//   conductor      metal: Trowbridge-Reitz microfacets or a mirror, complex Fresnel per channel
+//   dielectric     glass: smooth or rough reflection and refraction (one eta for all channels)
 //   coateddiffuse  a dielectric coat (Trowbridge-Reitz microfacets, or smooth) over a
 //                  diffuse base, two-sided, evaluated by pbrt-v4's stochastic layered
 //                  random walk (LayeredBxDF) for the case the scenes use: no medium
@@ -26,6 +28,7 @@ struct Sample {
     double pdf = 0;    // solid-angle density; 0 means no sample
     bool specular = false, reflection = true;
     bool pdf_is_proportional = false;  // layered sampling: use pdf() for MIS weights
+    double eta = 1;                    // transmission: the relative index crossed (pbrt's etaScale)
 };
 
 // Trowbridge-Reitz (GGX) microfacets with visible-normal sampling.
@@ -52,6 +55,17 @@ struct Dielectric {
     bool specular() const { return eta == 1 || mf.smooth(); }
 };
 
+// A metal: Trowbridge-Reitz microfacets (or a perfect mirror when smooth) with the Fresnel
+// reflectance of a conductor of complex index eta + i k, per RGB channel (pbrt-v4 ConductorBxDF).
+struct Conductor {
+    Vec3 eta{1, 1, 1}, k{0, 0, 0};
+    Microfacets mf;
+    Vec3 f(Vec3 wo, Vec3 wi) const;
+    double pdf(Vec3 wo, Vec3 wi) const;
+    bool sample(Vec3 wo, double u1, double u2, Sample *s) const;
+    bool specular() const { return mf.smooth(); }
+};
+
 struct Lambert {
     Vec3 R;
     Vec3 f(Vec3 wo, Vec3 wi) const;
@@ -71,16 +85,24 @@ struct Coated {
 
 // A material at a point: one of the above.
 struct Bsdf {
-    enum Kind { Diffuse, CoatedDiffuse } kind = Diffuse;
+    enum Kind { Diffuse, CoatedDiffuse, DielectricKind, ConductorKind } kind = Diffuse;
     Lambert diffuse;
     Coated coated;
+    Dielectric dielectric;
+    Conductor conductor;
     Vec3 f(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     double pdf(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode = Mode::Radiance) const;
-    bool has_non_specular() const { return true; }  // both kinds have a diffuse part
+    // false for perfect mirrors and smooth glass: next-event estimation cannot reach them
+    bool has_non_specular() const
+    {
+        return kind == DielectricKind ? !dielectric.specular() : kind == ConductorKind ? !conductor.specular() : true;
+    }
 };
 
 // Fresnel reflectance of a dielectric interface (cos of the incident angle, relative eta).
 double fresnel_dielectric(double cos_i, double eta);
+// Fresnel reflectance of a conductor (cos of the incident angle, complex index eta + i k).
+double fresnel_complex(double cos_i, double eta, double k);
 
 }  // namespace udm1pt

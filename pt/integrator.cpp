@@ -66,6 +66,63 @@ void only(const udm1scene::ParamSet &ps, std::initializer_list<const char *> all
     }
 }
 
+// RGB stand-ins for pbrt-v4's named spectra (pbrt works spectrally; udm1-pt in RGB): the refractive
+// index n + i k of metals at about 650, 550 and 450 nm (the RGB table of Hindefjord, from the same
+// measured data pbrt-v4 ships), and the index of glasses at 550 nm.
+struct NamedSpectrum {
+    const char *name;
+    Vec3 value;
+};
+const NamedSpectrum NAMED_SPECTRA[] = {
+    {"metal-Au-eta", Vec3(0.18299, 0.42108, 1.3734)}, {"metal-Au-k", Vec3(3.4242, 2.3459, 1.7704)},
+    {"metal-Ag-eta", Vec3(0.15943, 0.14512, 0.13547)}, {"metal-Ag-k", Vec3(3.9291, 3.19, 2.3808)},
+    {"metal-Cu-eta", Vec3(0.27105, 0.67693, 1.3164)}, {"metal-Cu-k", Vec3(3.6092, 2.6248, 2.2921)},
+    {"metal-Al-eta", Vec3(1.3456, 0.96521, 0.61722)}, {"metal-Al-k", Vec3(7.4746, 6.3995, 5.3031)},
+    {"glass-BK7", Vec3(1.5185, 1.5185, 1.5185)}, {"glass-BAF10", Vec3(1.6700, 1.6700, 1.6700)},
+    {"glass-F11", Vec3(1.6200, 1.6200, 1.6200)},
+};
+
+// A "spectrum" or "rgb" or "float" parameter as RGB: a named spectrum, (lambda, value) pairs
+// (piecewise linear, taken at 650/550/450 nm), an rgb triple or one number.
+Vec3 spectrum_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 fallback)
+{
+    const udm1scene::Param *p = ps.find(name);
+    if (!p) return fallback;
+    if (p->type == "float" && p->numbers.size() == 1) return Vec3(p->numbers[0], p->numbers[0], p->numbers[0]);
+    if (p->type == "rgb" && p->numbers.size() == 3) return Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
+    if (p->type == "spectrum" && p->strings.size() == 1) {
+        for (const NamedSpectrum &n : NAMED_SPECTRA)
+            if (p->strings[0] == n.name) return n.value;
+        throw SceneError(p->where + ": '" + name + "': the named spectrum \"" + p->strings[0] + "\" is not known");
+    }
+    if (p->type == "spectrum" && p->numbers.size() >= 2 && p->numbers.size() % 2 == 0) {
+        auto at = [&](double lambda) {
+            const std::vector<double> &v = p->numbers;
+            if (lambda <= v[0]) return v[1];
+            for (size_t i = 2; i < v.size(); i += 2)
+                if (lambda <= v[i]) return v[i - 1] + (v[i + 1] - v[i - 1]) * (lambda - v[i - 2]) / (v[i] - v[i - 2]);
+            return v[v.size() - 1];
+        };
+        for (size_t i = 2; i < p->numbers.size(); i += 2)
+            if (!(p->numbers[i] > p->numbers[i - 2]))
+                throw SceneError(p->where + ": '" + name + "': wavelengths must increase");
+        return Vec3(at(650), at(550), at(450));
+    }
+    throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
+}
+
+// pbrt-v4's roughness parameters: roughness or uroughness/vroughness, remapped unless remaproughness false.
+udm1pt::Microfacets roughness_param(const udm1scene::ParamSet &ps, const std::string &what)
+{
+    double r = ps.get_float("roughness", 0.0);
+    double ur = ps.get_float("uroughness", r), vr = ps.get_float("vroughness", r);
+    if (!(ur >= 0 && vr >= 0)) throw SceneError(ps.where + ": " + what + ": roughness must not be negative");
+    if (ps.get_bool("remaproughness", true)) ur = std::sqrt(ur), vr = std::sqrt(vr);  // pbrt's RoughnessToAlpha
+    udm1pt::Microfacets mf;
+    mf.ax = ur, mf.ay = vr;
+    return mf;
+}
+
 struct Tracer {
     const udm1scene::Scene &scene;
     const udm1scene::EmbreeScene &rt;
@@ -81,6 +138,7 @@ struct Tracer {
     {
         Vec3 L, beta(1, 1, 1);
         bool specular_bounce = false;
+        double eta_scale = 1;  // the product of eta^2 over transmissions: roulette sees beta without it (pbrt)
         double p_b = 0;
         Vec3 prev_p;
         for (int depth = 0;; ++depth) {
@@ -108,7 +166,7 @@ struct Tracer {
             Frame frame(shading_normal(shape, h));
             Vec3 wo_l = frame.to_local(wo);
             if (wo_l.z == 0) break;
-            if (strategy != Strategy::Bsdf) {  // next-event estimation
+            if (strategy != Strategy::Bsdf && bsdf.has_non_specular()) {  // next-event estimation
                 LightSample ls;
                 if (lights.sample(h.p, u_lp[0], u_lp[1], &ls)) {
                     Vec3 wi_l = frame.to_local(ls.wi);
@@ -140,10 +198,11 @@ struct Tracer {
             beta = mul(beta, bs.f) * (std::fabs(bs.wi.z) / bs.pdf);
             p_b = bs.pdf_is_proportional ? bsdf.pdf(wo_l, bs.wi) : bs.pdf;
             specular_bounce = bs.specular;
+            if (!bs.reflection) eta_scale *= bs.eta * bs.eta;
             prev_p = h.p;
             if (!(max_component(beta) > 0) || !std::isfinite(max_component(beta))) break;
             if (roulette && depth >= rr_depth) {  // when the throughput is below 1
-                double rr = max_component(beta);
+                double rr = max_component(beta) * eta_scale;
                 if (rr < 1) {
                     double q = std::max(0.0, 1 - rr);
                     if (u_rr < q) break;
@@ -184,11 +243,7 @@ std::vector<Bsdf> materials(const udm1scene::Scene &scene)
             b.kind = Bsdf::CoatedDiffuse;
             Coated &c = b.coated;
             c.bottom.R = rgb_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
-            double r = ps.get_float("roughness", 0.0);
-            double ur = ps.get_float("uroughness", r), vr = ps.get_float("vroughness", r);
-            if (!(ur >= 0 && vr >= 0)) throw SceneError(ps.where + ": coateddiffuse: roughness must not be negative");
-            if (ps.get_bool("remaproughness", true)) ur = std::sqrt(ur), vr = std::sqrt(vr);  // pbrt's RoughnessToAlpha
-            c.top.mf.ax = ur, c.top.mf.ay = vr;
+            c.top.mf = roughness_param(ps, "coateddiffuse");
             c.top.eta = ps.get_float("eta", 1.5);
             c.thickness = std::max(ps.get_float("thickness", 0.01), 1e-300);
             c.max_depth = ps.get_int("maxdepth", 10);
@@ -200,8 +255,25 @@ std::vector<Bsdf> materials(const udm1scene::Scene &scene)
             if (nonzero(albedo))
                 throw SceneError(ps.where + ": coateddiffuse: a scattering medium between the layers (albedo > 0) "
                                             "is not supported");
+        } else if (m.type == "conductor") {
+            only(ps, {"eta", "k", "roughness", "uroughness", "vroughness", "remaproughness"}, "conductor");
+            b.kind = Bsdf::ConductorKind;
+            b.conductor.eta = spectrum_param(ps, "eta", Vec3(0.27105, 0.67693, 1.3164));  // pbrt's default: copper
+            b.conductor.k = spectrum_param(ps, "k", Vec3(3.6092, 2.6248, 2.2921));
+            b.conductor.mf = roughness_param(ps, "conductor");
+            if (!(b.conductor.eta.x > 0 && b.conductor.eta.y > 0 && b.conductor.eta.z > 0) ||
+                !(b.conductor.k.x >= 0 && b.conductor.k.y >= 0 && b.conductor.k.z >= 0))
+                throw SceneError(ps.where + ": conductor: eta must be positive and k not negative");
+        } else if (m.type == "dielectric") {
+            only(ps, {"eta", "roughness", "uroughness", "vroughness", "remaproughness"}, "dielectric");
+            b.kind = Bsdf::DielectricKind;
+            Vec3 eta = spectrum_param(ps, "eta", Vec3(1.5, 1.5, 1.5));
+            b.dielectric.eta = eta.y;  // one index for all channels (no dispersion): green's, 550 nm
+            b.dielectric.mf = roughness_param(ps, "dielectric");
+            if (!(b.dielectric.eta > 0)) throw SceneError(ps.where + ": dielectric: eta must be positive");
         } else {
-            throw SceneError(ps.where + ": Material \"" + m.type + "\" is not supported (diffuse, coateddiffuse)");
+            throw SceneError(ps.where + ": Material \"" + m.type +
+                             "\" is not supported (diffuse, coateddiffuse, conductor, dielectric)");
         }
         out.push_back(b);
     }

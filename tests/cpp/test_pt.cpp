@@ -170,6 +170,187 @@ static void test_bsdf_consistency()
            fresnel_dielectric(1.0, 1.5));
 }
 
+// Pearson's chi-square test of a BSDF's sampled directions against its pdf (the test of Mitsuba and
+// pbrt): N samples for one wo binned on a (cos theta, phi) grid over the sphere, expected counts from
+// the pdf integrated over each cell, cells expecting fewer than 5 pooled; the statistic must stay
+// below the 0.1 % quantile of its distribution (Wilson-Hilferty).
+static void chi2_check(const Bsdf &b, Vec3 wo, const char *what)
+{
+    const int NT = 24, NP = 48, SUB = 32, N = 300000;
+    std::vector<double> observed(NT * NP, 0.0), expected(NT * NP, 0.0);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> U(0, 1);
+    int failed = 0;
+    for (int i = 0; i < N; ++i) {
+        Sample sm;
+        if (!b.sample(wo, U(rng), U(rng), U(rng), &sm) || !(sm.pdf > 0)) {
+            ++failed;
+            continue;
+        }
+        Vec3 w = normalize(sm.wi);
+        int t = std::min(NT - 1, (int)((1 - w.z) / 2 * NT));
+        double phi = std::atan2(w.y, w.x);
+        if (phi < 0) phi += 2 * M_PI;
+        int ph = std::min(NP - 1, (int)(phi / (2 * M_PI) * NP));
+        observed[t * NP + ph] += 1;
+    }
+    double total_pdf = 0;
+    for (int t = 0; t < NT; ++t)
+        for (int ph = 0; ph < NP; ++ph) {
+            // midpoint rule in (theta, phi), d omega = sin theta d theta d phi: resolves narrow lobes at the poles
+            double th0 = std::acos(1 - 2.0 * t / NT), th1 = std::acos(std::max(-1.0, 1 - 2.0 * (t + 1) / NT)), sum = 0;
+            for (int a = 0; a < SUB; ++a)
+                for (int c = 0; c < SUB; ++c) {
+                    double th = th0 + (th1 - th0) * (a + 0.5) / SUB, phi = 2 * M_PI * (ph + (c + 0.5) / SUB) / NP;
+                    double z = std::cos(th), r = std::sin(th);
+                    sum += b.pdf(wo, Vec3(r * std::cos(phi), r * std::sin(phi), z)) * r;
+                }
+            expected[t * NP + ph] = sum / (SUB * SUB) * (th1 - th0) * (2 * M_PI / NP) * N;
+            total_pdf += expected[t * NP + ph];
+        }
+    double chi2 = 0, pool_o = failed, pool_e = std::max(0.0, N - total_pdf);
+    int cells = 0;
+    for (int k = 0; k < NT * NP; ++k) {
+        if (expected[k] < 5) {
+            pool_o += observed[k], pool_e += expected[k];
+            continue;
+        }
+        chi2 += (observed[k] - expected[k]) * (observed[k] - expected[k]) / expected[k];
+        ++cells;
+    }
+    if (pool_e >= 5) chi2 += (pool_o - pool_e) * (pool_o - pool_e) / pool_e, ++cells;
+    double df = cells - 1, z = 3.09;  // the 0.999 quantile of the normal
+    double crit = df * std::pow(1 - 2 / (9 * df) + z * std::sqrt(2 / (9 * df)), 3);
+    CHECKF(chi2 < crit && cells > 50, "%s: chi-square %.1f over %d cells (0.1%% critical value %.1f)", what, chi2, cells,
+           crit);
+}
+
+// Conductors and dielectrics: Fresnel against closed forms, white furnaces (no energy created; the
+// smooth ones exact), sampling against evaluation, reciprocity, and the chi-square test.
+static void test_metal_and_glass()
+{
+    for (double eta : {1.33, 1.5, 2.4})
+        for (double c : {1.0, 0.7, 0.3, 0.05})
+            CHECKF(std::fabs(fresnel_complex(c, eta, 0) - fresnel_dielectric(c, eta)) < 1e-12,
+                   "complex Fresnel with k = 0 against the dielectric one: eta %g cos %g", eta, c);
+    Vec3 au_eta(0.18299, 0.42108, 1.3734), au_k(3.4242, 2.3459, 1.7704);
+    for (int ch = 0; ch < 3; ++ch) {  // normal incidence: ((n-1)^2 + k^2) / ((n+1)^2 + k^2)
+        double n = au_eta[ch], k = au_k[ch], f0 = ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k);
+        CHECKF(std::fabs(fresnel_complex(1.0, n, k) - f0) < 1e-12, "gold F0 channel %d", ch);
+        CHECK(fresnel_complex(0.0, n, k) > 0.999999);  // grazing: a mirror
+    }
+    CHECK(fresnel_complex(1, au_eta.x, au_k.x) > fresnel_complex(1, au_eta.y, au_k.y) &&
+          fresnel_complex(1, au_eta.y, au_k.y) > fresnel_complex(1, au_eta.z, au_k.z));  // gold is yellow
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> U(0, 1);
+    const Vec3 wos[] = {normalize(Vec3(0.2, 0.1, 1.0)), normalize(Vec3(0.8, -0.3, 0.35)), normalize(Vec3(0.3, 0.2, -0.9))};
+    for (double alpha : {0.0, 0.05, 0.2, 0.5}) {
+        for (double aniso : {1.0, 0.4}) {
+            if (alpha == 0 && aniso != 1.0) continue;
+            Bsdf m;  // a white conductor (F ~ 1): its albedo is the microfacet model's own energy loss
+            m.kind = Bsdf::ConductorKind;
+            m.conductor.eta = Vec3(1, 1, 1), m.conductor.k = Vec3(1e4, 1e4, 1e4);
+            m.conductor.mf.ax = alpha, m.conductor.mf.ay = alpha * aniso;
+            Bsdf g;  // glass, in Importance mode (no 1/eta^2 radiance scaling): reflection + transmission
+            g.kind = Bsdf::DielectricKind;
+            g.dielectric.eta = 1.5;
+            g.dielectric.mf = m.conductor.mf;
+            for (Vec3 wo : wos) {
+                char what[128];
+                double albedo_m = 0, albedo_g = 0;
+                const int N = 200000;
+                for (int i = 0; i < N; ++i) {
+                    Sample s;
+                    if (m.sample(wo, U(rng), U(rng), U(rng), &s) && s.pdf > 0) albedo_m += s.f.y * std::fabs(s.wi.z) / s.pdf;
+                    if (g.sample(wo, U(rng), U(rng), U(rng), &s, Mode::Importance) && s.pdf > 0)
+                        albedo_g += s.f.y * std::fabs(s.wi.z) / s.pdf;
+                }
+                albedo_m /= N, albedo_g /= N;
+                std::snprintf(what, sizeof what, "alpha %g x %g, wo.z %.2f", alpha, alpha * aniso, wo.z);
+                if (alpha == 0) {  // smooth: exactly F = 1 and R + T = 1 (below the surface only glass transmits)
+                    if (wo.z > 0) CHECKF(std::fabs(albedo_m - 1) < 1e-3, "white mirror %s: albedo %.5f", what, albedo_m);
+                    CHECKF(std::fabs(albedo_g - 1) < 1e-9, "smooth glass %s: R + T = %.9f", what, albedo_g);
+                    continue;
+                }
+                if (wo.z > 0) {
+                    // single-scattering microfacets lose energy (GGX at alpha 0.5: about 30 %), never gain it
+                    CHECKF(albedo_m <= 1.003 && albedo_m > (alpha <= 0.05 ? 0.97 : alpha <= 0.2 ? 0.85 : 0.6),
+                           "white conductor %s: albedo %.4f", what, albedo_m);
+                    char w2[160];
+                    std::snprintf(w2, sizeof w2, "conductor %s", what);
+                    albedo_check(m, wo, w2);
+                    chi2_check(m, wo, w2);
+                }
+                CHECKF(albedo_g <= 1.003 && albedo_g > (alpha <= 0.05 ? 0.97 : alpha <= 0.2 ? 0.85 : 0.6),
+                       "rough glass %s: R + T = %.4f", what, albedo_g);
+                char w3[160];
+                std::snprintf(w3, sizeof w3, "glass %s", what);
+                chi2_check(g, wo, w3);
+                // reciprocity of the reflection lobes
+                for (int k = 0; k < 50; ++k) {
+                    double z = U(rng), r = std::sqrt(1 - z * z), phi = 2 * M_PI * U(rng);
+                    Vec3 wi(r * std::cos(phi), r * std::sin(phi), wo.z > 0 ? z : -z);
+                    for (const Bsdf *b : {&m, &g}) {
+                        Vec3 a = b->f(wo, wi), c = b->f(wi, wo);
+                        CHECKF(std::fabs(a.y - c.y) <= 1e-9 * std::max(1.0, std::fabs(a.y)), "reciprocity %s: %.9g %.9g",
+                               what, a.y, c.y);
+                    }
+                }
+            }
+        }
+    }
+}
+
+// The furnace again, now black (albedo 0, emission 1) with a sphere of glass or metal in view: a
+// lossless smooth surface (glass: R + T = 1; a white mirror: F = 1) leaves every pixel at exactly 1
+// (the 1/eta^2 of entering the glass and the eta^2 of leaving cancel), and rough microfacets can only
+// lose energy: the whole path (refraction, total internal reflection, spawning, NEE skipped on
+// specular vertices) against a closed form.
+static void test_glass_and_metal_in_the_furnace()
+{
+    auto param = [](const char *type, const char *name, std::vector<double> v) {
+        Param p;
+        p.type = type, p.name = name, p.numbers = v;
+        return p;
+    };
+    struct Case {
+        const char *what, *type;
+        std::vector<Param> params;
+        bool lossless;
+    } cases[] = {
+        {"smooth glass", "dielectric", {param("float", "eta", {1.5})}, true},
+        {"smooth diamond", "dielectric", {param("float", "eta", {2.4})}, true},
+        {"white mirror", "conductor", {param("rgb", "eta", {1, 1, 1}), param("rgb", "k", {1e4, 1e4, 1e4})}, true},
+        {"rough glass", "dielectric", {param("float", "eta", {1.5}), param("float", "roughness", {0.2})}, false},
+        {"rough white metal", "conductor",
+         {param("rgb", "eta", {1, 1, 1}), param("rgb", "k", {1e4, 1e4, 1e4}), param("float", "roughness", {0.2})}, false},
+    };
+    for (const Case &c : cases) {
+        Scene s = furnace(0.0);
+        Material m;
+        m.type = c.type, m.params.params = c.params;
+        s.materials.push_back(m);
+        Shape ball;
+        ball.kind = Shape::Sphere, ball.center = Vec3(0, 0, 0.5), ball.radius = 0.3;
+        ball.material = (int)s.materials.size() - 1;
+        s.shapes.push_back(ball);
+        EmbreeScene rt(s);
+        Options o;
+        o.width = o.height = 16, o.spp = 64, o.max_depth = 200, o.sampler = "sobol-owen";
+        // no roulette and BSDF sampling only: every path then carries its exact weight, 1 for lossless
+        // surfaces and at most 1 for rough ones (light sampling and MIS are unbiased, not bounded per sample)
+        o.roulette = false, o.strategy = Strategy::Bsdf;
+        std::vector<float> img = run(s, rt, o).mean();
+        double lo = 1e9, hi = -1e9, mean = 0;
+        for (float v : img) lo = std::min(lo, (double)v), hi = std::max(hi, (double)v), mean += v / img.size();
+        if (c.lossless)
+            CHECKF(lo > 1 - 1e-4 && hi < 1 + 1e-4, "%s in the furnace: pixels %.6f..%.6f, expected 1", c.what, lo, hi);
+        else
+            CHECKF(hi <= 1 + 1e-6 && lo < 0.999 && mean > 0.6, "%s in the furnace: pixels %.6f..%.6f (mean %.4f)", c.what,
+                   lo, hi, mean);
+    }
+}
+
 // Next-event estimation of the irradiance from one triangle light (radiance 1) at points from
 // very near (solid-angle sampling) to far (area sampling), against Lambert's closed form for a
 // polygon: E = 1/2 sum_i angle(v_i, v_i+1) (n . unit(v_i x v_i+1)).
@@ -282,6 +463,8 @@ int main()
     test_strategies_agree();
     test_bsdf_consistency();
     test_light_sampling();
+    test_metal_and_glass();
+    test_glass_and_metal_in_the_furnace();
     test_deterministic();
     test_film_round_trip();
     CHECK_DONE();

@@ -194,7 +194,11 @@ PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty f
         (HEAD + 'Shape "plymesh" "string filename" "trunc.ply"\n', 0, "trunc.ply"),
         (HEAD + 'Shape "plymesh" "string filename" "badindex.ply"\n', 0, "badindex.ply"),
         (HEAD + LIGHT + TRI, 6, "an area light of zero area"),
-        (HEAD + 'Material "conductor"\n' + TRI, 4, 'Material "conductor" is not supported'),
+        (HEAD + 'Material "measured"\n' + TRI, 4, 'Material "measured" is not supported'),
+        (HEAD + 'Material "conductor" "spectrum eta" "metal-Xx-eta"\n' + TRI, 4, '"metal-Xx-eta" is not known'),
+        (HEAD + 'Material "conductor" "spectrum k" [ 300 1 200 2 ]\n' + TRI, 4, "wavelengths must increase"),
+        (HEAD + 'Material "dielectric" "float eta" [ -1.5 ]\n' + TRI, 4, "eta must be positive"),
+        (HEAD + 'Material "dielectric" "float roughness" [ -0.1 ]\n' + TRI, 4, "roughness must not be negative"),
         (HEAD + 'Material "diffuse" "texture reflectance" "checks"\n' + TRI, 4, "reflectance"),
         (HEAD + 'Material "coateddiffuse" "rgb albedo" [ 0.3 0.3 0.3 ]\n' + TRI, 4, "albedo"),
         (HEAD + 'NamedMaterial "nope"\n' + TRI, 4, 'NamedMaterial "nope"'),
@@ -259,6 +263,39 @@ def test_bad_arguments(args, code, words, tmp_path):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("udm1-pt: ") and words in lines[0], r.stderr
     assert set(tmp_path.iterdir()) == before
+
+
+def test_metal_and_glass_scene(tmp_path):
+    # a gold sphere, a glass sphere (eta as pbrt's spectrum pairs) and a rough copper floor under a light
+    scene = tmp_path / "metals.pbrt"
+    scene.write_text(HEAD + """
+AttributeBegin
+AreaLightSource "diffuse" "rgb L" [ 8 8 8 ]
+Shape "trianglemesh" "point3 P" [ -1 3 -1  1 3 -1  1 3 1  -1 3 1 ] "integer indices" [ 0 1 2 0 2 3 ]
+AttributeEnd
+Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k"
+AttributeBegin
+Translate -0.8 0 0
+Shape "sphere" "float radius" [ 0.7 ]
+AttributeEnd
+Material "dielectric" "spectrum eta" [ 300 1.52 800 1.50 ]
+AttributeBegin
+Translate 0.8 0 0
+Shape "sphere" "float radius" [ 0.7 ]
+AttributeEnd
+Material "conductor" "float roughness" [ 0.1 ]
+Shape "trianglemesh" "point3 P" [ -5 -0.7 -5  5 -0.7 -5  5 -0.7 5  -5 -0.7 5 ] "integer indices" [ 0 1 2 0 2 3 ]
+""")
+    png = tmp_path / "metals.png"
+    r = ok("--scene", str(scene), "--spp", "64", "--size", "64x48", "--png", str(png))
+    assert r.stderr == "", r.stderr
+    img = read_png(png)[..., :3]
+    gold = img[26:32, 16:28].reshape(-1, 3).mean(axis=0)  # the gold sphere's lower half, reflecting the floor
+    assert img.mean() > 0.05 and gold[0] > 1.5 * gold[2] and gold.mean() > 0.1, (img.mean(), gold)
+    outs = [tmp_path / f"t{t}.exr" for t in ("1", "2")]
+    for t, out in zip(("1", "2"), outs):
+        ok("--scene", str(scene), "--spp", "16", "--size", "32x24", "--threads", t, "-o", str(out))
+    assert outs[0].read_bytes() == outs[1].read_bytes()
 
 
 def test_reference_written_once_and_reused(tmp_path):

@@ -189,9 +189,9 @@ def main(argv=None) -> int:
     ap.add_argument("--pt", required=True, help="path of udm1-pt")
     ap.add_argument("--out", default="report")
     ap.add_argument("--full", action="store_true", help="also the shared pbrt-v4 scenes, larger sizes and spp")
-    ap.add_argument("--spp", type=int, default=None, help="the figure's spp (default 256; --full 1024)")
-    ap.add_argument("--ref-spp", type=int, default=None, help="reference spp (default 4096; --full 16384)")
-    ap.add_argument("--seeds", type=int, default=None, help="seeds per PSNR (default 2; --full 3)")
+    ap.add_argument("--spp", type=int, default=None, help="the figure's spp (default 256; --full 512)")
+    ap.add_argument("--ref-spp", type=int, default=None, help="reference spp (default 4096; --full 8192)")
+    ap.add_argument("--seeds", type=int, default=2, help="seeds per PSNR (default 2)")
     ap.add_argument("--quick", action="store_true", help="tiny sizes and spp, for tests")
     args = ap.parse_args(argv)
     if not Path(args.pt).exists():
@@ -200,10 +200,10 @@ def main(argv=None) -> int:
     out = writable_folder(args.out, "pt_report")
     if out is None:
         return 1
-    spp = args.spp or (1024 if args.full else 256)
-    ref_spp = args.ref_spp or (16384 if args.full else 4096)
-    seeds = args.seeds or (3 if args.full else 2)
-    sweep_spps = [16, 64, 256, 1024, 4096] if args.full else [16, 64, 256, 1024]
+    spp = args.spp or (512 if args.full else 256)
+    ref_spp = args.ref_spp or (8192 if args.full else 4096)
+    seeds = args.seeds
+    sweep_spps = [16, 64, 256, 1024]
     scenes = [("builtin:cornell", "Cornell box (built in)", "128x128" if args.full else "96x96", "64x64")]
     if args.full:
         for name, size, small in (("cornell-box", "128x128", "64x64"), ("veach-mis", "192x120", "96x60")):
