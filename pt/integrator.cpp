@@ -328,7 +328,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                     udm1_cursor_fill_f64(&c, 2, uv);
                     Vec3 o, d;
                     camera.ray(x + uv[0], y + uv[1], &o, &d);
-                    Vec3 L = tracer.trace(o, d, &c, &local_rays);
+                    Vec3 L = tracer.trace(o, d, &c, &local_rays) * scene.film_scale;
                     for (int k = 0; k < 3; ++k) {
                         double v = L[k];
                         if (!std::isfinite(v)) {

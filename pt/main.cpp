@@ -303,6 +303,11 @@ int run_render(Options o)
         scene = udm1scene::load_scene(o.scene);
         check = udm1pt::materials(scene);  // unsupported materials fail here, before any work
         udm1pt::Lights lights(scene);      // and zero-area lights
+        if (!scene.media_where.empty() && scene.integrator == "volpath")
+            throw Error(scene.media_where + ": participating media need Integrator \"volpath\", which udm1-pt does not model", 1);
+        if (!scene.media_where.empty() && o.command != "export")  // pbrt-v4's PathIntegrator ignores media too
+            std::fprintf(stderr, "udm1-pt: note: %s: media are left out, as Integrator \"path\" leaves them out\n",
+                         scene.media_where.c_str());
         if (lights.empty() && o.command != "export")
             std::fprintf(stderr, "udm1-pt: note: %s has no area lights: the image is black\n", o.scene.c_str());
     } catch (const udm1scene::SceneError &e) {

@@ -4,6 +4,7 @@
 // parameter: model only what a scene needs.
 #include "pbrt_parser.h"
 
+#include "color.h"
 #include "mesh_io.h"
 
 #include <cctype>
@@ -298,7 +299,14 @@ private:
             std::string type = string_arg(lex, "Film");
             ParamSet ps = params(lex, t.line);
             if (type != "rgb") throw SceneError(here + ": Film \"" + type + "\" is not supported (rgb only)");
-            only(ps, {"xresolution", "yresolution", "filename"}, "Film", true);
+            only(ps, {"xresolution", "yresolution", "filename", "iso", "exposuretime", "sensor", "whitebalance"}, "Film",
+                 true);
+            // pbrt-v4's imaging ratio (exposure time x ISO / 100) scales the image; the sensor's spectral
+            // response and white balance have no RGB counterpart: the film is a plain RGB sensor
+            scene_.film_scale = ps.get_float("exposuretime", 1.0) * ps.get_float("iso", 100.0) / 100;
+            scene_.film_sensor = ps.get_string("sensor", "cie1931");
+            if (!(scene_.film_scale > 0 && scene_.film_scale < 1e6))
+                throw SceneError(here + ": Film: exposuretime x iso / 100 must be positive");
             scene_.width = ps.get_int("xresolution", 1280);
             scene_.height = ps.get_int("yresolution", 720);
             scene_.film_filename = ps.get_string("filename", "");
@@ -364,8 +372,15 @@ private:
             if (type != "diffuse") throw SceneError(here + ": AreaLightSource \"" + type + "\" is not supported (diffuse only)");
             only(ps, {"L", "scale", "twosided"}, "AreaLightSource");
             AreaLight l;
-            if (ps.find("L") && !ps.get_rgb("L", &l.L))
-                throw SceneError(ps.find("L")->where + ": AreaLightSource: only \"rgb L\" is supported");
+            if (const Param *L = ps.find("L")) {
+                if (L->type == "blackbody" && L->numbers.size() == 1) {
+                    if (!(L->numbers[0] >= 1000 && L->numbers[0] <= 40000))
+                        throw SceneError(L->where + ": AreaLightSource: blackbody temperature outside 1000..40000 K");
+                    l.L = blackbody_rgb(L->numbers[0]);  // luminance 1 before the scale, as pbrt-v4
+                } else if (L->type != "rgb" || !ps.get_rgb("L", &l.L)) {
+                    throw SceneError(L->where + ": AreaLightSource: only \"rgb L\" and \"blackbody L\" are supported");
+                }
+            }
             l.scale = ps.get_float("scale", 1.0);
             l.twosided = ps.get_bool("twosided", false);
             l.where = here;
@@ -380,6 +395,20 @@ private:
             std::string full = file.size() && file[0] == '/' ? file : dir + file;
             if (!std::ifstream(full, std::ios::binary)) throw SceneError(here + ": " + d + ": " + full + ": cannot open the scene file");
             parse_file(full, depth + 1);
+        } else if (d == "MakeNamedMedium" && !geometry_only_) {
+            std::string name = string_arg(lex, d);
+            ParamSet ps = params(lex, t.line);
+            std::string type = ps.get_string("type", "");
+            if (type != "homogeneous")
+                throw SceneError(here + ": MakeNamedMedium \"" + name + "\": type \"" + type + "\" is not supported (homogeneous)");
+            only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "preset"}, "MakeNamedMedium");
+            media_.insert(name);
+            if (scene_.media_where.empty()) scene_.media_where = here;
+        } else if (d == "MediumInterface" && !geometry_only_) {
+            std::string inside = string_arg(lex, d), outside = inside;
+            if (lex.peek().kind == Token::String) outside = string_arg(lex, d);
+            for (const std::string &m : {inside, outside})
+                if (!m.empty() && !media_.count(m)) throw SceneError(here + ": MediumInterface: medium \"" + m + "\" was not made");
         } else if (geometry_only_ && (d == "Texture" || d == "MakeNamedMedium" || d == "MediumInterface" ||
                                       d == "LightSource" || d == "ColorSpace" || d == "Option" || d == "Attribute")) {
             skip(lex, t);
@@ -475,6 +504,7 @@ private:
     bool camera_set_ = false, in_world_ = false;
     bool geometry_only_ = false;
     std::set<std::string> ignored_kinds_;
+    std::set<std::string> media_;  // MakeNamedMedium names
 };
 
 }  // namespace

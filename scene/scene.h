@@ -73,6 +73,9 @@ struct Scene {
     Camera camera;
     int width = 256, height = 256;
     std::string film_filename;
+    double film_scale = 1;              // pbrt-v4's imaging ratio: exposuretime * iso / 100
+    std::string film_sensor = "cie1931";  // named in the file; udm1-pt renders plain RGB whatever it is
+    std::string media_where;              // file:line of the first MakeNamedMedium, if any
     std::string sampler;  // the scene's Sampler directive, for information
     int pixel_samples = 16;
     std::string integrator = "path";

@@ -5,6 +5,7 @@
 #include "../c/check.h"
 
 #include "builtin.h"
+#include "color.h"
 #include "embree_scene.h"
 #include "film_io.h"
 #include "integrator.h"
@@ -351,6 +352,22 @@ static void test_glass_and_metal_in_the_furnace()
     }
 }
 
+// "blackbody L": luminance 1 before the scale (as pbrt-v4 normalizes it), warm below about 6500 K and
+// cool above, near white at D65's temperature.
+static void test_blackbody()
+{
+    for (double t : {2000.0, 3000.0, 5500.0, 6504.0, 10000.0}) {
+        Vec3 c = blackbody_rgb(t);
+        double y = 0.2126729 * c.x + 0.7151522 * c.y + 0.0721750 * c.z;
+        CHECKF(std::fabs(y - 1) < 2e-3 || t <= 2000, "blackbody %g K: luminance %.5f", t, y);
+    }
+    Vec3 warm = blackbody_rgb(3000), white = blackbody_rgb(6504), cool = blackbody_rgb(10000);
+    CHECK(warm.x > warm.y && warm.y > warm.z);
+    CHECK(cool.z > cool.y && cool.z > cool.x);
+    CHECKF(std::fabs(white.x - 1) < 0.05 && std::fabs(white.y - 1) < 0.05 && std::fabs(white.z - 1) < 0.05,
+           "6504 K: %.4f %.4f %.4f", white.x, white.y, white.z);
+}
+
 // Next-event estimation of the irradiance from one triangle light (radiance 1) at points from
 // very near (solid-angle sampling) to far (area sampling), against Lambert's closed form for a
 // polygon: E = 1/2 sum_i angle(v_i, v_i+1) (n . unit(v_i x v_i+1)).
@@ -463,6 +480,7 @@ int main()
     test_strategies_agree();
     test_bsdf_consistency();
     test_light_sampling();
+    test_blackbody();
     test_metal_and_glass();
     test_glass_and_metal_in_the_furnace();
     test_deterministic();

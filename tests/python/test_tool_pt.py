@@ -202,8 +202,14 @@ PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty f
         (HEAD + 'Material "diffuse" "texture reflectance" "checks"\n' + TRI, 4, "reflectance"),
         (HEAD + 'Material "coateddiffuse" "rgb albedo" [ 0.3 0.3 0.3 ]\n' + TRI, 4, "albedo"),
         (HEAD + 'NamedMaterial "nope"\n' + TRI, 4, 'NamedMaterial "nope"'),
-        (HEAD + 'AreaLightSource "diffuse" "blackbody L" [ 3000 ]\n' + TRI, 4, "L"),
+        (HEAD + 'AreaLightSource "diffuse" "spectrum L" "stdillum-D65"\n' + TRI, 4, '"blackbody L" are supported'),
         ('Integrator "bdpt"\n' + HEAD + TRI, 1, 'Integrator "bdpt" is not supported'),
+        (HEAD + 'MakeNamedMedium "fog" "string type" "heterogeneous"\n' + TRI, 4, '"heterogeneous" is not supported'),
+        (HEAD + 'MediumInterface "" "glass"\n' + TRI, 4, 'medium "glass" was not made'),
+        ('Integrator "volpath"\n' + HEAD + 'MakeNamedMedium "m" "string type" "homogeneous"\n' + TRI, 5,
+         'need Integrator "volpath"'),
+        (HEAD + 'AreaLightSource "diffuse" "blackbody L" [ 20 ]\n' + TRI, 4, "blackbody temperature"),
+        ('Film "rgb" "float iso" [ -100 ]\n' + HEAD + TRI, 1, "iso"),
         ('Film "gbuffer"\n' + HEAD + TRI, 1, 'Film "gbuffer"'),
         ('Camera "orthographic"\n' + HEAD + TRI, 1, "orthographic"),
         (HEAD + 'Include "nothere.pbrt"\n', 4, "nothere.pbrt: cannot open"),
@@ -296,6 +302,27 @@ Shape "trianglemesh" "point3 P" [ -5 -0.7 -5  5 -0.7 -5  5 -0.7 5  -5 -0.7 5 ] "
     for t, out in zip(("1", "2"), outs):
         ok("--scene", str(scene), "--spp", "16", "--size", "32x24", "--threads", t, "-o", str(out))
     assert outs[0].read_bytes() == outs[1].read_bytes()
+
+
+def test_film_light_and_media_settings(tmp_path):
+    light = ('AttributeBegin\nAreaLightSource "diffuse" "blackbody L" [ 3000 ] "float scale" [ 4 ] "bool twosided" true\n'
+             'Shape "trianglemesh" "point3 P" [ -9 -9 3  9 -9 3  9 9 3  -9 9 3 ] "integer indices" [ 0 1 2 0 2 3 ]\n'
+             'AttributeEnd\n')
+    means = {}
+    for iso in (100, 250):
+        scene = tmp_path / f"iso{iso}.pbrt"
+        scene.write_text(f'Film "rgb" "float iso" [ {iso} ] "string sensor" "canon_eos_5d_mkiv"\n' + HEAD + light
+                         + 'MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [ 1 2 3 ]\n'
+                         + 'MediumInterface "ink" ""\n')
+        r = ok("--scene", str(scene), "--spp", "4", "--size", "16x16", "-o", str(tmp_path / "x.exr"))
+        # media are left out as pbrt-v4's path integrator leaves them out, and said so in one line
+        assert re.fullmatch(r'udm1-pt: note: \S+:9: media are left out, as Integrator "path" leaves them out\n',
+                            r.stderr), r.stderr
+        means[iso] = mean_of(r)
+    # a view straight into a 3000 K light of scale 4: luminance 4, warm; ISO 250 is 2.5 times brighter
+    y = 0.2126 * means[100][0] + 0.7152 * means[100][1] + 0.0722 * means[100][2]
+    assert abs(y - 4) < 0.02 and means[100][0] > means[100][1] > means[100][2], means[100]
+    assert np.allclose(means[250], 2.5 * means[100], rtol=1e-5), means
 
 
 def test_reference_written_once_and_reused(tmp_path):
