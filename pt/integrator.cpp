@@ -47,87 +47,11 @@ inline Vec3 spawn(const Hit &h, Vec3 w)
     return h.p + (dot(h.ng, w) > 0 ? h.ng : -h.ng) * off;
 }
 
-Vec3 rgb_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 fallback)
-{
-    const udm1scene::Param *p = ps.find(name);
-    if (!p) return fallback;
-    Vec3 v;
-    if (!ps.get_rgb(name, &v)) throw SceneError(p->where + ": '" + name + "' must be \"rgb " + name + "\" [r g b]");
-    if (v.x < 0 || v.y < 0 || v.z < 0) throw SceneError(p->where + ": '" + name + "' must not be negative");
-    return v;
-}
-
-void only(const udm1scene::ParamSet &ps, std::initializer_list<const char *> allowed, const std::string &what)
-{
-    for (const udm1scene::Param &p : ps.params) {
-        bool ok = p.name == "type";  // MakeNamedMaterial's own parameter
-        for (const char *a : allowed) ok |= p.name == a;
-        if (!ok) throw SceneError(p.where + ": " + what + ": unsupported parameter '" + p.name + "'");
-    }
-}
-
-// RGB stand-ins for pbrt-v4's named spectra (pbrt works spectrally; udm1-pt in RGB): the refractive
-// index n + i k of metals at about 650, 550 and 450 nm (the RGB table of Hindefjord, from the same
-// measured data pbrt-v4 ships), and the index of glasses at 550 nm.
-struct NamedSpectrum {
-    const char *name;
-    Vec3 value;
-};
-const NamedSpectrum NAMED_SPECTRA[] = {
-    {"metal-Au-eta", Vec3(0.18299, 0.42108, 1.3734)}, {"metal-Au-k", Vec3(3.4242, 2.3459, 1.7704)},
-    {"metal-Ag-eta", Vec3(0.15943, 0.14512, 0.13547)}, {"metal-Ag-k", Vec3(3.9291, 3.19, 2.3808)},
-    {"metal-Cu-eta", Vec3(0.27105, 0.67693, 1.3164)}, {"metal-Cu-k", Vec3(3.6092, 2.6248, 2.2921)},
-    {"metal-Al-eta", Vec3(1.3456, 0.96521, 0.61722)}, {"metal-Al-k", Vec3(7.4746, 6.3995, 5.3031)},
-    {"glass-BK7", Vec3(1.5185, 1.5185, 1.5185)}, {"glass-BAF10", Vec3(1.6700, 1.6700, 1.6700)},
-    {"glass-F11", Vec3(1.6200, 1.6200, 1.6200)},
-};
-
-// A "spectrum" or "rgb" or "float" parameter as RGB: a named spectrum, (lambda, value) pairs
-// (piecewise linear, taken at 650/550/450 nm), an rgb triple or one number.
-Vec3 spectrum_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 fallback)
-{
-    const udm1scene::Param *p = ps.find(name);
-    if (!p) return fallback;
-    if (p->type == "float" && p->numbers.size() == 1) return Vec3(p->numbers[0], p->numbers[0], p->numbers[0]);
-    if (p->type == "rgb" && p->numbers.size() == 3) return Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
-    if (p->type == "spectrum" && p->strings.size() == 1) {
-        for (const NamedSpectrum &n : NAMED_SPECTRA)
-            if (p->strings[0] == n.name) return n.value;
-        throw SceneError(p->where + ": '" + name + "': the named spectrum \"" + p->strings[0] + "\" is not known");
-    }
-    if (p->type == "spectrum" && p->numbers.size() >= 2 && p->numbers.size() % 2 == 0) {
-        auto at = [&](double lambda) {
-            const std::vector<double> &v = p->numbers;
-            if (lambda <= v[0]) return v[1];
-            for (size_t i = 2; i < v.size(); i += 2)
-                if (lambda <= v[i]) return v[i - 1] + (v[i + 1] - v[i - 1]) * (lambda - v[i - 2]) / (v[i] - v[i - 2]);
-            return v[v.size() - 1];
-        };
-        for (size_t i = 2; i < p->numbers.size(); i += 2)
-            if (!(p->numbers[i] > p->numbers[i - 2]))
-                throw SceneError(p->where + ": '" + name + "': wavelengths must increase");
-        return Vec3(at(650), at(550), at(450));
-    }
-    throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
-}
-
-// pbrt-v4's roughness parameters: roughness or uroughness/vroughness, remapped unless remaproughness false.
-udm1pt::Microfacets roughness_param(const udm1scene::ParamSet &ps, const std::string &what)
-{
-    double r = ps.get_float("roughness", 0.0);
-    double ur = ps.get_float("uroughness", r), vr = ps.get_float("vroughness", r);
-    if (!(ur >= 0 && vr >= 0)) throw SceneError(ps.where + ": " + what + ": roughness must not be negative");
-    if (ps.get_bool("remaproughness", true)) ur = std::sqrt(ur), vr = std::sqrt(vr);  // pbrt's RoughnessToAlpha
-    udm1pt::Microfacets mf;
-    mf.ax = ur, mf.ay = vr;
-    return mf;
-}
-
 struct Tracer {
     const udm1scene::Scene &scene;
     const udm1scene::EmbreeScene &rt;
     const Lights &lights;
-    const std::vector<Bsdf> &bsdfs;
+    const Materials &materials;
     Bsdf default_bsdf;
     int max_depth;
     Strategy strategy;
@@ -162,7 +86,12 @@ struct Tracer {
             const double u_lp[2] = {u[0], u[1]}, u_lobe = u[2], u_rr = u[3], u_dir[2] = {u[4], u[5]};
 
             const udm1scene::Shape &shape = scene.shapes[h.shape];
-            const Bsdf &bsdf = shape.material >= 0 ? bsdfs[shape.material] : default_bsdf;
+            Bsdf bsdf = default_bsdf;
+            if (shape.material >= 0) {
+                double tu, tv;
+                hit_uv(shape, h, &tu, &tv);
+                bsdf = materials.at(shape.material, tu, tv, h.p, wo);
+            }
             Frame frame(shading_normal(shape, h));
             Vec3 wo_l = frame.to_local(wo);
             if (wo_l.z == 0) break;
@@ -226,60 +155,6 @@ std::vector<float> Accumulator::mean() const
     return out;
 }
 
-std::vector<Bsdf> materials(const udm1scene::Scene &scene)
-{
-    std::vector<Bsdf> out;
-    for (const udm1scene::Material &m : scene.materials) {
-        Bsdf b;
-        const udm1scene::ParamSet &ps = m.params;
-        if (m.type == "diffuse") {
-            only(ps, {"reflectance"}, "diffuse");
-            b.kind = Bsdf::Diffuse;
-            b.diffuse.R = rgb_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
-        } else if (m.type == "coateddiffuse") {
-            only(ps, {"reflectance", "roughness", "uroughness", "vroughness", "remaproughness", "thickness", "eta",
-                      "maxdepth", "nsamples", "albedo", "g"},
-                 "coateddiffuse");
-            b.kind = Bsdf::CoatedDiffuse;
-            Coated &c = b.coated;
-            c.bottom.R = rgb_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
-            c.top.mf = roughness_param(ps, "coateddiffuse");
-            c.top.eta = ps.get_float("eta", 1.5);
-            c.thickness = std::max(ps.get_float("thickness", 0.01), 1e-300);
-            c.max_depth = ps.get_int("maxdepth", 10);
-            c.samples = ps.get_int("nsamples", 1);
-            if (!(c.top.eta > 0)) throw SceneError(ps.where + ": coateddiffuse: eta must be positive");
-            if (c.max_depth < 1 || c.max_depth > 100 || c.samples < 1 || c.samples > 100)
-                throw SceneError(ps.where + ": coateddiffuse: maxdepth and nsamples must be in 1..100");
-            Vec3 albedo = rgb_param(ps, "albedo", Vec3());
-            if (nonzero(albedo))
-                throw SceneError(ps.where + ": coateddiffuse: a scattering medium between the layers (albedo > 0) "
-                                            "is not supported");
-        } else if (m.type == "conductor") {
-            only(ps, {"eta", "k", "roughness", "uroughness", "vroughness", "remaproughness"}, "conductor");
-            b.kind = Bsdf::ConductorKind;
-            b.conductor.eta = spectrum_param(ps, "eta", Vec3(0.27105, 0.67693, 1.3164));  // pbrt's default: copper
-            b.conductor.k = spectrum_param(ps, "k", Vec3(3.6092, 2.6248, 2.2921));
-            b.conductor.mf = roughness_param(ps, "conductor");
-            if (!(b.conductor.eta.x > 0 && b.conductor.eta.y > 0 && b.conductor.eta.z > 0) ||
-                !(b.conductor.k.x >= 0 && b.conductor.k.y >= 0 && b.conductor.k.z >= 0))
-                throw SceneError(ps.where + ": conductor: eta must be positive and k not negative");
-        } else if (m.type == "dielectric") {
-            only(ps, {"eta", "roughness", "uroughness", "vroughness", "remaproughness"}, "dielectric");
-            b.kind = Bsdf::DielectricKind;
-            Vec3 eta = spectrum_param(ps, "eta", Vec3(1.5, 1.5, 1.5));
-            b.dielectric.eta = eta.y;  // one index for all channels (no dispersion): green's, 550 nm
-            b.dielectric.mf = roughness_param(ps, "dielectric");
-            if (!(b.dielectric.eta > 0)) throw SceneError(ps.where + ": dielectric: eta must be positive");
-        } else {
-            throw SceneError(ps.where + ": Material \"" + m.type +
-                             "\" is not supported (diffuse, coateddiffuse, conductor, dielectric)");
-        }
-        out.push_back(b);
-    }
-    return out;
-}
-
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)
 {
     if (opt.spp == 0) throw std::runtime_error("spp must be at least 1");
@@ -289,7 +164,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                                  ") is not inside [0, " + std::to_string(opt.spp) + ")");
     int max_depth = opt.max_depth >= 0 ? opt.max_depth : scene.max_depth;
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
-    std::vector<Bsdf> bsdfs = materials(scene);
+    Materials materials(scene);
     Lights lights(scene, opt.near_light);
 
     udm1_preset_info info;
@@ -312,7 +187,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     acc.width = view.width, acc.height = view.height, acc.first = opt.first, acc.count = count;
     acc.sum.assign((size_t)acc.width * acc.height * 3, 0);
     const udm1scene::CameraRays camera(view);
-    Tracer tracer{scene, rt, lights, bsdfs, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
+    Tracer tracer{scene, rt, lights, materials, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
     std::atomic<uint64_t> rays{0}, nonfinite{0}, clamped{0};
     auto t0 = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range2d<int>(0, acc.height, 8, 0, acc.width, 8), [&](const tbb::blocked_range2d<int> &r) {

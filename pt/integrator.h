@@ -22,6 +22,7 @@
 #include "bsdf.h"
 #include "embree_scene.h"
 #include "lights.h"
+#include "material.h"
 #include "scene.h"
 
 #include <udm1/udm1.h>
@@ -74,8 +75,5 @@ struct Stats {
 // Throws std::runtime_error with a one-line message (unknown sampler, bad range, material).
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats);
 
-// The materials of the scene as BSDFs (validated: unknown types and parameters give errors with
-// the material's file:line).
-std::vector<Bsdf> materials(const udm1scene::Scene &scene);
 
 }  // namespace udm1pt

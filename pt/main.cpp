@@ -298,10 +298,9 @@ int run_sweep(const Options &o, const udm1scene::Scene &scene, const udm1scene::
 int run_render(Options o)
 {
     udm1scene::Scene scene;
-    std::vector<udm1pt::Bsdf> check;
     try {
         scene = udm1scene::load_scene(o.scene);
-        check = udm1pt::materials(scene);  // unsupported materials fail here, before any work
+        udm1pt::Materials check(scene);  // unsupported materials and unreadable textures fail here, before any work
         udm1pt::Lights lights(scene);      // and zero-area lights
         if (!scene.media_where.empty() && scene.integrator == "volpath")
             throw Error(scene.media_where + ": participating media need Integrator \"volpath\", which udm1-pt does not model", 1);

@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -355,6 +356,7 @@ private:
             std::string name = string_arg(lex, "MakeNamedMaterial");
             Material m;
             m.params = params(lex, t.line);
+            m.name = name;
             m.type = m.params.get_string("type", "");
             if (m.type.empty()) throw SceneError(here + ": MakeNamedMaterial \"" + name + "\" has no \"string type\"");
             scene_.materials.push_back(m);
@@ -395,6 +397,43 @@ private:
             std::string full = file.size() && file[0] == '/' ? file : dir + file;
             if (!std::ifstream(full, std::ios::binary)) throw SceneError(here + ": " + d + ": " + full + ": cannot open the scene file");
             parse_file(full, depth + 1);
+        } else if (d == "Texture" && !geometry_only_) {
+            Texture tx;
+            tx.name = string_arg(lex, d), tx.kind = string_arg(lex, d), tx.type = string_arg(lex, d);
+            ParamSet ps = params(lex, t.line);
+            tx.where = here;
+            if (tx.kind != "float" && tx.kind != "spectrum")
+                throw SceneError(here + ": Texture \"" + tx.name + "\": kind \"" + tx.kind + "\" is not float or spectrum");
+            if (tx.type == "imagemap") {
+                only(ps, {"filename", "encoding", "invert", "scale", "wrap", "filter"}, "Texture imagemap");
+                std::string file = ps.get_string("filename", "");
+                if (file.empty()) throw SceneError(here + ": Texture imagemap needs \"string filename\"");
+                tx.filename = file[0] == '/' ? file : dir + file;
+                std::string enc = ps.get_string("encoding", "sRGB");
+                if (enc != "sRGB" && enc != "linear")
+                    throw SceneError(here + ": Texture imagemap: encoding \"" + enc + "\" is not supported (sRGB, linear)");
+                tx.srgb = enc == "sRGB";
+                tx.invert = ps.get_bool("invert", false);
+                tx.scale = ps.get_float("scale", 1.0);
+                if (ps.get_string("wrap", "repeat") != "repeat")
+                    throw SceneError(here + ": Texture imagemap: only \"repeat\" wrapping is supported");
+                std::string filter = ps.get_string("filter", "bilinear");
+                if (filter != "bilinear" && filter != "point")
+                    throw SceneError(here + ": Texture imagemap: filter \"" + filter + "\" is not supported (bilinear)");
+            } else if (tx.type == "scale") {
+                only(ps, {"tex", "scale"}, "Texture scale");
+                const Param *p = ps.find("tex");
+                if (!p || p->type != "texture" || p->strings.size() != 1)
+                    throw SceneError(here + ": Texture scale needs \"texture tex\"");
+                auto it = textures_.find(p->strings[0]);
+                if (it == textures_.end()) throw SceneError(p->where + ": texture \"" + p->strings[0] + "\" was not made");
+                tx.tex = it->second;
+                tx.scale = ps.get_float("scale", 1.0);
+            } else {
+                throw SceneError(here + ": Texture \"" + tx.type + "\" is not supported (imagemap, scale)");
+            }
+            scene_.textures.push_back(tx);
+            textures_[tx.name] = (int)scene_.textures.size() - 1;
         } else if (d == "MakeNamedMedium" && !geometry_only_) {
             std::string name = string_arg(lex, d);
             ParamSet ps = params(lex, t.line);
@@ -505,6 +544,7 @@ private:
     bool geometry_only_ = false;
     std::set<std::string> ignored_kinds_;
     std::set<std::string> media_;  // MakeNamedMedium names
+    std::map<std::string, int> textures_;
 };
 
 }  // namespace

@@ -37,7 +37,19 @@ struct ParamSet {
     bool get_rgb(const std::string &name, Vec3 *rgb) const;
 };
 
+// A pbrt-v4 texture of the subset: "imagemap" (an image file, repeated, bilinear, 8-bit files
+// decoded from sRGB unless "encoding" says "linear") or "scale" (texture tex times float scale).
+struct Texture {
+    std::string name, kind, type;  // kind "float" or "spectrum"; type "imagemap" or "scale"
+    std::string filename;          // imagemap: resolved against the scene file's folder
+    bool srgb = true, invert = false;
+    double scale = 1;              // imagemap "scale", or the scale texture's factor
+    int tex = -1;                  // scale: the texture scaled (Scene::textures index)
+    std::string where;
+};
+
 struct Material {
+    std::string name;  // MakeNamedMaterial's name ("" for Material)
     std::string type;  // "diffuse", "coateddiffuse", ...
     ParamSet params;
 };
@@ -81,6 +93,7 @@ struct Scene {
     std::string integrator = "path";
     int max_depth = 5;
     std::vector<Material> materials;
+    std::vector<Texture> textures;  // referenced from material parameters "texture NAME" by name
     std::vector<AreaLight> lights;
     std::vector<Shape> shapes;
     std::string source;  // file name, or "built-in NAME"

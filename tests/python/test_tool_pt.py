@@ -325,6 +325,72 @@ def test_film_light_and_media_settings(tmp_path):
     assert np.allclose(means[250], 2.5 * means[100], rtol=1e-5), means
 
 
+TEX_SCENE = HEAD.replace("WorldBegin", 'Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]\nWorldBegin') + """
+AttributeBegin
+AreaLightSource "diffuse" "rgb L" [ 1 1 1 ] "bool twosided" true
+Shape "trianglemesh" "point3 P" [ -50 -50 -9  50 -50 -9  50 50 -9  -50 50 -9 ] "integer indices" [ 0 1 2 0 2 3 ]
+AttributeEnd
+{textures}
+{material}
+Shape "trianglemesh" "point3 P" [ -3 -3 0  3 -3 0  3 3 0  -3 3 0 ] "point2 uv" [ 0 0  1 0  1 1  0 1 ]
+      "integer indices" [ 0 1 2 0 2 3 ]
+"""
+
+
+def render_textured(tmp_path, name, textures, material, spp="16"):
+    scene = tmp_path / f"{name}.pbrt"
+    scene.write_text(TEX_SCENE.format(textures=textures, material=material))
+    png = tmp_path / f"{name}.png"
+    r = ok("--scene", str(scene), "--spp", spp, "--png", str(png), "-o", str(tmp_path / f"{name}.exr"))
+    return read_png(png)[..., :3], mean_of(r)
+
+
+def test_textures_and_mix(tmp_path):
+    import matplotlib.image as mpimg
+
+    # a 16 x 16 image, white on top and black below: pbrt looks images up at (u, 1 - v), so the top of
+    # the quad (v = 1) is white
+    half = np.zeros((16, 16, 3))
+    half[:8] = 1
+    mpimg.imsave(tmp_path / "half.png", half)
+    tex = 'Texture "half" "spectrum" "imagemap" "string filename" "half.png" "string encoding" "linear"'
+    img, _ = render_textured(tmp_path, "half", tex, 'Material "diffuse" "texture reflectance" "half"')
+    top, bottom = img[3:10, 10:22].mean(), img[22:29, 10:22].mean()
+    assert top > 0.3 and bottom < 0.05, (top, bottom)
+    # 8-bit files decode from sRGB unless the texture says "linear": 50 % grey is 0.214 linear
+    mpimg.imsave(tmp_path / "grey.png", np.full((2, 2, 3), 128 / 255))
+    means = {}
+    for enc in ("sRGB", "linear"):
+        t = f'Texture "g" "spectrum" "imagemap" "string filename" "grey.png" "string encoding" "{enc}"'
+        _, means[enc] = render_textured(tmp_path, f"grey-{enc}", t, 'Material "diffuse" "texture reflectance" "g"')
+    ratio = means["sRGB"] / means["linear"]
+    assert np.allclose(ratio, ((128 / 255 + 0.055) / 1.055) ** 2.4 / (128 / 255), rtol=1e-3), ratio
+    # a scale texture, and a mix: a quarter white, three quarters black, chosen per point by a hash
+    white = 'MakeNamedMaterial "white" "string type" "diffuse" "rgb reflectance" [ 1 1 1 ]\n'
+    black = 'MakeNamedMaterial "black" "string type" "diffuse" "rgb reflectance" [ 0 0 0 ]\n'
+    _, full = render_textured(tmp_path, "white", white, 'NamedMaterial "white"', spp="64")
+    mix = 'MakeNamedMaterial "m" "string type" "mix" "string materials" [ "black" "white" ] "float amount" 0.25\n'
+    _, quarter = render_textured(tmp_path, "mix", white + black + mix, 'NamedMaterial "m"', spp="64")
+    assert np.allclose(quarter / full, 0.25, atol=0.02), quarter / full
+    scaled = tex.replace('"half"', '"h0"') + '\nTexture "half" "spectrum" "scale" "texture tex" "h0" "float scale" 0.5'
+    img2, _ = render_textured(tmp_path, "scaled", scaled, 'Material "diffuse" "texture reflectance" "half"')
+    assert abs(img2[3:10, 10:22].mean() - top) > 0.05  # half as bright before the sRGB encoding of the PNG
+    # bad textures: a missing file, an unknown texture, a float texture where a spectrum is needed
+    for textures, material, words in (
+        ('Texture "t" "spectrum" "imagemap" "string filename" "nothere.png"', 'Material "diffuse"', "nothere.png"),
+        ("", 'Material "diffuse" "texture reflectance" "t"', 'texture "t" was not made'),
+        ('Texture "t" "float" "imagemap" "string filename" "half.png"', 'Material "diffuse" "texture reflectance" "t"',
+         "needs a spectrum texture"),
+        ('Texture "t" "spectrum" "checkerboard"', 'Material "diffuse"', '"checkerboard" is not supported'),
+    ):
+        scene = tmp_path / "bad.pbrt"
+        scene.write_text(TEX_SCENE.format(textures=textures, material=material))
+        r = run("--scene", str(scene), "--spp", "1", "-o", str(tmp_path / "bad.exr"))
+        lines = r.stderr.strip().splitlines()
+        assert r.returncode == 1 and len(lines) == 1 and str(scene) + ":" in lines[0] and words in lines[0], r.stderr
+        assert not (tmp_path / "bad.exr").exists()
+
+
 def test_reference_written_once_and_reused(tmp_path):
     ref = tmp_path / "ref.exr"
     r = ok("reference", "-o", str(ref), "--spp", "8", "--size", "16x16")

@@ -19,6 +19,7 @@ LoadedImage read_image(const std::string &path)
     img.width = spec.width;
     img.height = spec.height;
     img.channels = spec.nchannels;
+    img.bits = (int)spec.format.size() * 8;
     for (const OIIO::ParamValue &pv : spec.extra_attribs)
         if (pv.name().string().rfind("udm1:", 0) == 0 && pv.type() == OIIO::TypeDesc::STRING)
             img.attributes[pv.name().string()] = pv.get_string();

@@ -10,6 +10,7 @@ namespace udm1app {
 
 struct LoadedImage {
     int width = 0, height = 0, channels = 0;
+    int bits = 32;              // the file's bits per channel (8 for most PNGs)
     std::vector<float> pixels;  // all channels, row-major
     std::map<std::string, std::string> attributes;  // the string metadata whose names start with "udm1:"
 };

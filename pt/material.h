@@ -1,0 +1,47 @@
+// material.h - the scene's materials for the path tracer. Each Material / MakeNamedMaterial of the
+// subset (diffuse, coateddiffuse, conductor, dielectric, mix) becomes a BSDF template plus the
+// textures that vary it over the surface (reflectance, roughness, a mix's amount); at a hit, at()
+// evaluates them and resolves a mix as pbrt-v4 does: the second material where a hash of the point and
+// the outgoing direction falls below the amount. pbrt-v4's named spectra become documented RGB
+// stand-ins (metals: n + i k at about 650, 550, 450 nm; glasses and spectrum pairs: the value at
+// 550 nm for a dielectric's single index).
+#pragma once
+
+#include "bsdf.h"
+#include "embree_scene.h"
+#include "scene.h"
+#include "texture.h"
+
+#include <vector>
+
+namespace udm1pt {
+
+struct MaterialModel {
+    Bsdf base;
+    int reflectance_tex = -1;  // diffuse R, or the coated base's R (a spectrum texture)
+    int roughness_tex = -1;    // conductor, dielectric, coated: a float texture in place of "roughness"
+    bool remap = true;         // pbrt's remaproughness: alpha = sqrt(roughness)
+    bool mix = false;
+    int parts[2] = {-1, -1};   // mix: the two materials
+    double amount = 0.5;
+    int amount_tex = -1;
+};
+
+class Materials {
+public:
+    // Validates every material (unknown types and parameters, missing textures and named materials,
+    // mixes that contain themselves) with its file:line, and reads the textures' images.
+    explicit Materials(const udm1scene::Scene &scene);
+    Bsdf at(int material, double u, double v, Vec3 p, Vec3 wo) const;
+    size_t size() const { return models_.size(); }
+
+private:
+    Textures textures_;
+    std::vector<MaterialModel> models_;
+};
+
+// The texture coordinates of a hit: the mesh's per-vertex uv interpolated, else pbrt-v4's defaults
+// ((0,0), (1,0), (1,1) per triangle; spheres by longitude and colatitude around the centre).
+void hit_uv(const udm1scene::Shape &shape, const udm1scene::Hit &h, double *u, double *v);
+
+}  // namespace udm1pt
