@@ -106,7 +106,7 @@ int texture_param(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, 
                                  "\" is a " + scene.textures[i].kind + " texture");
             return (int)i;
         }
-    throw SceneError(p->where + ": texture \"" + p->strings[0] + "\" was not made");
+    throw SceneError(p->where + ": '" + name + "': texture \"" + p->strings[0] + "\" was not made");
 }
 
 uint64_t mix_bits(uint64_t z)
