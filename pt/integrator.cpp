@@ -170,7 +170,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     udm1_preset_info info;
     if (udm1_preset_find(opt.sampler.c_str(), &info) != UDM1_OK)
         throw std::runtime_error("unknown sampler '" + opt.sampler + "' (udm1-seq list shows them)");
-    uint32_t path_dims = 2 + DIMS_PER_VERTEX * (uint32_t)max_depth;
+    uint32_t path_dims = (scene.camera.lens_radius > 0 ? 4 : 2) + DIMS_PER_VERTEX * (uint32_t)max_depth;
     udm1_seq_desc desc;
     udm1_seq_desc_init(&desc);
     desc.preset = opt.sampler.c_str();
@@ -199,10 +199,10 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                 for (uint64_t i = opt.first; i < opt.first + count; ++i) {
                     udm1_cursor c;
                     udm1_cursor_start(&c, seq, stream, i, 0);
-                    double uv[2];
-                    udm1_cursor_fill_f64(&c, 2, uv);
+                    double uv[4];
+                    udm1_cursor_fill_f64(&c, camera.has_lens() ? 4 : 2, uv);
                     Vec3 o, d;
-                    camera.ray(x + uv[0], y + uv[1], &o, &d);
+                    camera.ray(x + uv[0], y + uv[1], uv[2], uv[3], &o, &d);
                     Vec3 L = tracer.trace(o, d, &c, &local_rays) * scene.film_scale;
                     for (int k = 0; k < 3; ++k) {
                         double v = L[k];

@@ -5,13 +5,14 @@
 // Dimension layout: one sampler point per path. For pixel p and sample index i the
 // udm1 cursor starts at (stream p, index i, dimension 0) and hands out, in order:
 //   0, 1            position in the pixel (box filter)
+//   2, 3            only if the camera has a lens (lensradius > 0): the point on the thin lens
 //   then for each path vertex that scatters (depth 0, 1, ..., maxdepth - 1), 6 values:
 //   +0, +1          next-event estimation: +0 picks the light (by power) and, rescaled,
 //                   gives with +1 the point on it
 //   +2              BSDF lobe / layer choice
 //   +3              Russian roulette
 //   +4, +5          BSDF direction
-// so a path of depth d uses 2 + 6d dimensions and depth 5 uses 32. Every 2D decision
+// so a path of depth d uses 2 + 6d dimensions (4 + 6d with a lens) and depth 5 uses 32. Every 2D decision
 // starts at an even dimension: samplers that are stratified by pairs of dimensions
 // (PMJ02, CMJ, padded sets) stratify each 2D decision, not half of two. A sampler with
 // fewer dimensions D (WMMR and HWMMR have 22) gives dimensions >= D by the library's
@@ -34,7 +35,7 @@ namespace udm1pt {
 
 // Changes whenever the estimator or the dimension layout above changes (cached references are
 // reused only when it matches).
-constexpr int LAYOUT_VERSION = 2;
+constexpr int LAYOUT_VERSION = 3;
 
 enum class Strategy { Mis, Nee, Bsdf };  // how light is found: both (MIS), light sampling only, BSDF sampling only
 

@@ -147,6 +147,28 @@ CameraRays::CameraRays(const Scene &s) : world_from_camera_(s.camera.world_from_
     sx0_ = sx0, sx_span_ = sx1 - sx0, sy1_ = sy1, sy_span_ = sy1 - sy0;
     tan_half_fov_ = std::tan(s.camera.fov * 3.14159265358979323846 / 360.0);
     origin_ = world_from_camera_.point(Vec3(0, 0, 0));
+    lens_radius_ = s.camera.lens_radius, focal_distance_ = s.camera.focal_distance;
+}
+
+void CameraRays::ray(double px, double py, double lu, double lv, Vec3 *origin, Vec3 *dir) const
+{
+    if (!(lens_radius_ > 0)) return ray(px, py, origin, dir);
+    double sx = sx0_ + (px / w_) * sx_span_;
+    double sy = sy1_ - (py / h_) * sy_span_;
+    Vec3 d = normalize(Vec3(sx * tan_half_fov_, sy * tan_half_fov_, 1.0));
+    // Shirley and Chiu's concentric map of (lu, lv) to the unit disk, as pbrt's SampleUniformDiskConcentric
+    double ox = 2 * lu - 1, oy = 2 * lv - 1, r, theta;
+    if (ox == 0 && oy == 0) {
+        r = 0, theta = 0;
+    } else if (std::fabs(ox) > std::fabs(oy)) {
+        r = ox, theta = 0.78539816339744830962 * (oy / ox);
+    } else {
+        r = oy, theta = 1.57079632679489661923 - 0.78539816339744830962 * (ox / oy);
+    }
+    Vec3 lens(lens_radius_ * r * std::cos(theta), lens_radius_ * r * std::sin(theta), 0);
+    Vec3 focus = d * (focal_distance_ / d.z);  // where the pinhole ray meets the plane of focus
+    *origin = world_from_camera_.point(lens);
+    *dir = normalize(world_from_camera_.vector(normalize(focus - lens)));
 }
 
 void CameraRays::ray(double px, double py, Vec3 *origin, Vec3 *dir) const

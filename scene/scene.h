@@ -121,11 +121,15 @@ class CameraRays {
 public:
     explicit CameraRays(const Scene &s);
     void ray(double px, double py, Vec3 *origin, Vec3 *dir) const;
+    // pbrt's thin lens: (lu, lv) in [0, 1)^2 picks the point on the lens (concentric disk mapping);
+    // the same as ray() when the camera's lens radius is 0
+    void ray(double px, double py, double lu, double lv, Vec3 *origin, Vec3 *dir) const;
+    bool has_lens() const { return lens_radius_ > 0; }
 
 private:
     Mat4 world_from_camera_;
     Vec3 origin_;
-    double w_, h_, sx0_, sx_span_, sy1_, sy_span_, tan_half_fov_;
+    double w_, h_, sx0_, sx_span_, sy1_, sy_span_, tan_half_fov_, lens_radius_, focal_distance_;
 };
 
 // What a renderer needs of a scene. Everything: the supported subset exactly, anything else is an

@@ -391,6 +391,28 @@ def test_textures_and_mix(tmp_path):
         assert not (tmp_path / "bad.exr").exists()
 
 
+def test_thin_lens(tmp_path):
+    import matplotlib.image as mpimg
+
+    half = np.zeros((16, 16, 3))
+    half[:8] = 1
+    mpimg.imsave(tmp_path / "half.png", half)
+    tex = 'Texture "half" "spectrum" "imagemap" "string filename" "half.png" "string encoding" "linear"'
+    mat = 'Material "diffuse" "texture reflectance" "half"'
+    grey = {}
+    for name, lens in (("pinhole", ""), ("focused", '"float lensradius" 0.4 "float focaldistance" 5'),
+                       ("blurred", '"float lensradius" 0.4 "float focaldistance" 2')):
+        text = TEX_SCENE.replace('"float fov" [ 45 ]', '"float fov" [ 45 ] ' + lens).format(textures=tex, material=mat)
+        scene = tmp_path / f"{name}.pbrt"
+        scene.write_text(text)
+        png = tmp_path / f"{name}.png"
+        ok("--scene", str(scene), "--spp", "64", "--png", str(png))
+        col = read_png(png)[:, 8:24, 1].mean(axis=1)  # the middle columns, top to bottom
+        grey[name] = int(((col > 0.1) & (col < 0.8 * col.max())).sum())  # rows in the transition
+    # the plane is 5 away: focused there, the edge is as sharp as the pinhole's; focused at 2, blurred
+    assert grey["focused"] <= grey["pinhole"] + 1 and grey["blurred"] >= grey["pinhole"] + 4, grey
+
+
 def test_reference_written_once_and_reused(tmp_path):
     ref = tmp_path / "ref.exr"
     r = ok("reference", "-o", str(ref), "--spp", "8", "--size", "16x16")
