@@ -310,7 +310,7 @@ depend on its scenes and tone mapping, so the gains are what compares.
 
 {md_table(["figure / scene", "spp"] + [NAMES[s] for s in SAMPLERS], paper_rows)}
 
-{"".join(sections)}"""
+{chr(10).join(sections)}"""
     (out / "pt.md").write_text(md)
     (out / "pt.html").write_text(md_to_html(md, "udm1 path tracing report"))
     log(f"wrote {out / 'pt.html'} in {time.time() - t0:.0f} s")
