@@ -22,7 +22,6 @@ import csv
 import json
 import math
 import re
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -34,7 +33,7 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from report_common import log, md_table, md_to_html, writable_folder  # noqa: E402
+from report_common import RendererTool, log, md_table, md_to_html, writable_folder  # noqa: E402
 
 # The paper's set for ambient occlusion (section 4.2.3), in its order, then the other samplers.
 PAPER_SET = ["pcg32", "cmj", "grps", "hammersley", "lp", "halton", "sobol", "wr-ao", "we", "wgr", "episwr"]
@@ -45,39 +44,9 @@ NAMES = {"pcg32": "PRNG (pcg32)", "cmj": "CMJ", "grps": "GRPS", "hammersley": "H
          "episwr": "EPISWR"}
 
 
-class AoTool:
-    """udm1-ao with the report's scene options; renders run in batches (`udm1-ao sweep`), one process each."""
-
-    def __init__(self, path: str, scene: str, size: str, maxdist: str | None):
-        self.path, self.common = path, ["--scene", scene, "--size", size] + (["--maxdist", maxdist] if maxdist else [])
-
-    def run(self, *args: str) -> str:
-        r = subprocess.run([self.path, *args], capture_output=True, text=True)
-        if r.returncode != 0:
-            raise RuntimeError(f"udm1-ao {' '.join(args)}: {r.stderr.strip()}")
-        return r.stdout
-
-    def reference(self, spp: int, path: Path, png: Path) -> str:
-        return self.run("reference", *self.common, "--spp", str(spp), "-o", str(path), "--png", str(png)).splitlines()[0]
-
-    def sweep(self, samplers, spps, seeds: int, ref: Path, images: Path | None = None, note: str = "") -> list[dict]:
-        """Every sampler x spp x seed in one process; progress on stderr as the lines arrive."""
-        args = [self.path, "sweep", *self.common, "--against", str(ref), "--samplers", ",".join(samplers),
-                "--spps", ",".join(map(str, spps)), "--seeds", str(seeds)] + (["--images", str(images)] if images else [])
-        rows, total = [], len(samplers) * len(spps) * seeds
-        with subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as p:
-            header = p.stdout.readline().strip().split(",")
-            for line in p.stdout:
-                r = dict(zip(header, line.strip().split(",")))
-                rows.append({"sampler": r["sampler"], "spp": int(r["spp"]), "seed": int(r["seed"]),
-                             "seconds": float(r["seconds"]), "rmse": float(r["rmse"]), "psnr": float(r["psnr"])})
-                if rows[-1]["seed"] == seeds:
-                    log(f"  {note}[{len(rows)}/{total}] {r['sampler']:12s} {r['spp']:>5s} spp: PSNR {float(r['psnr']):.2f} dB, "
-                        f"{float(r['seconds']) * 1e3:.1f} ms")
-            err = p.stderr.read()
-        if p.returncode != 0:
-            raise RuntimeError(f"udm1-ao sweep: {err.strip()}")
-        return rows
+def AoTool(path: str, scene: str, size: str, maxdist: str | None) -> RendererTool:
+    return RendererTool(path, "udm1-ao", ["--scene", scene, "--size", size] + (["--maxdist", maxdist] if maxdist else []),
+                        ms=True)
 
 
 def summarize(rows, spp: int, seeds: int) -> list[dict]:

@@ -28,7 +28,6 @@ import argparse
 import csv
 import json
 import math
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -40,7 +39,7 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from report_common import log, md_table, md_to_html, writable_folder  # noqa: E402
+from report_common import RendererTool, log, md_table, md_to_html, writable_folder  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 SHARED = ROOT.parent / "shared" / "scenes"
@@ -55,39 +54,8 @@ PAPER = {"Figure 8 (San Miguel)": {"pcg32": 25.509749, "halton": 26.980754, "sob
                                "wmmr": 23.553944, "hwmmr": 23.677106}}
 
 
-class PtTool:
-    """udm1-pt on one scene at one size; renders run in batches (`udm1-pt sweep`), one process each."""
-
-    def __init__(self, path: str, scene: str, size: str):
-        self.path, self.common = path, ["--scene", scene, "--size", size]
-
-    def run(self, *args: str) -> str:
-        r = subprocess.run([self.path, *args], capture_output=True, text=True)
-        if r.returncode != 0:
-            raise RuntimeError(f"udm1-pt {' '.join(args)}: {r.stderr.strip()}")
-        return r.stdout
-
-    def reference(self, spp: int, path: Path, png: Path) -> str:
-        return self.run("reference", *self.common, "--spp", str(spp), "-o", str(path), "--png", str(png)).splitlines()[0]
-
-    def sweep(self, samplers, spps, seeds: int, ref: Path, images: Path | None = None, note: str = "") -> list[dict]:
-        args = [self.path, "sweep", *self.common, "--against", str(ref), "--samplers", ",".join(samplers),
-                "--spps", ",".join(map(str, spps)), "--seeds", str(seeds)] + (["--images", str(images)] if images else [])
-        rows, total = [], len(samplers) * len(spps) * seeds
-        with subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as p:
-            header = p.stdout.readline().strip().split(",")
-            for line in p.stdout:
-                r = dict(zip(header, line.strip().split(",")))
-                rows.append({"sampler": r["sampler"], "spp": int(r["spp"]), "seed": int(r["seed"]),
-                             "seconds": float(r["seconds"]), "rmse": float(r["rmse"]), "psnr": float(r["psnr"]),
-                             "paths": int(r["paths"]), "rays": int(r["rays"])})
-                if rows[-1]["seed"] == seeds:
-                    log(f"  {note}[{len(rows)}/{total}] {r['sampler']:11s} {r['spp']:>5s} spp: PSNR "
-                        f"{float(r['psnr']):.2f} dB, {float(r['seconds']):.2f} s")
-            err = p.stderr.read()
-        if p.returncode != 0:
-            raise RuntimeError(f"udm1-pt sweep: {err.strip()}")
-        return rows
+def PtTool(path: str, scene: str, size: str) -> RendererTool:
+    return RendererTool(path, "udm1-pt", ["--scene", scene, "--size", size], ms=False)
 
 
 def summarize(rows, spp: int) -> list[dict]:
@@ -231,7 +199,7 @@ def main(argv=None) -> int:
         images = folder / tag
         images.mkdir(exist_ok=True)
         log(f"{title}: {len(SAMPLERS)} samplers at {spp} spp, {seeds} seeds each")
-        fig = summarize(tool.sweep(SAMPLERS, [spp], seeds, ref, images, note=f"{tag} "), spp)
+        fig = summarize(tool.sweep(SAMPLERS, [spp], seeds, ref, images, note=f"{tag} ", extra=("paths", "rays")), spp)
         for r in fig:
             r["png"] = f"{tag}/{r['sampler']}-{spp}spp.png"
         small_ref = folder / f"{tag}-reference-{small_size}-{ref_spp}spp.exr"

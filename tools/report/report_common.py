@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import html
 import re
+import subprocess
 import sys
 from pathlib import Path
 
@@ -25,6 +26,46 @@ def writable_folder(path: str, tool: str) -> Path | None:
         print(f"{tool}: cannot write to '{out}': {exc.strerror}", file=sys.stderr)
         return None
     return out
+
+
+class RendererTool:
+    """udm1-ao or udm1-pt with a report's scene options (`common`): one-shot runs, cached references, and
+    batches of renders in one process (`sweep`) whose CSV lines are turned into rows as they arrive,
+    with progress on stderr."""
+
+    def __init__(self, path: str, name: str, common: list[str], ms: bool):
+        self.path, self.name, self.common, self.ms = path, name, common, ms  # ms: progress times in ms, else s
+
+    def run(self, *args: str) -> str:
+        r = subprocess.run([self.path, *args], capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"{self.name} {' '.join(args)}: {r.stderr.strip()}")
+        return r.stdout
+
+    def reference(self, spp: int, path: Path, png: Path) -> str:
+        return self.run("reference", *self.common, "--spp", str(spp), "-o", str(path), "--png", str(png)).splitlines()[0]
+
+    def sweep(self, samplers, spps, seeds: int, ref: Path, images: Path | None = None, note: str = "",
+              extra: tuple[str, ...] = ()) -> list[dict]:
+        """Every sampler x spp x seed in one process; extra names integer CSV columns to keep too."""
+        args = [self.path, "sweep", *self.common, "--against", str(ref), "--samplers", ",".join(samplers),
+                "--spps", ",".join(map(str, spps)), "--seeds", str(seeds)] + (["--images", str(images)] if images else [])
+        rows, total = [], len(samplers) * len(spps) * seeds
+        with subprocess.Popen(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) as p:
+            header = p.stdout.readline().strip().split(",")
+            for line in p.stdout:
+                r = dict(zip(header, line.strip().split(",")))
+                rows.append({"sampler": r["sampler"], "spp": int(r["spp"]), "seed": int(r["seed"]),
+                             "seconds": float(r["seconds"]), "rmse": float(r["rmse"]), "psnr": float(r["psnr"]),
+                             **{k: int(r[k]) for k in extra}})
+                if rows[-1]["seed"] == seeds:
+                    t = float(r["seconds"])
+                    log(f"  {note}[{len(rows)}/{total}] {r['sampler']:12s} {r['spp']:>5s} spp: PSNR {float(r['psnr']):.2f} dB, "
+                        + (f"{t * 1e3:.1f} ms" if self.ms else f"{t:.2f} s"))
+            err = p.stderr.read()
+        if p.returncode != 0:
+            raise RuntimeError(f"{self.name} sweep: {err.strip()}")
+        return rows
 
 
 def md_table(header: list[str], rows: list[list]) -> str:
