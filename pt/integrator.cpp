@@ -87,12 +87,9 @@ struct Tracer {
 
             const udm1scene::Shape &shape = scene.shapes[h.shape];
             Bsdf bsdf = default_bsdf;
-            if (shape.material >= 0) {
-                double tu, tv;
-                hit_uv(shape, h, &tu, &tv);
-                bsdf = materials.at(shape.material, tu, tv, h.p, wo);
-            }
-            Frame frame(shading_normal(shape, h));
+            Vec3 ns = shading_normal(shape, h);
+            if (shape.material >= 0) bsdf = materials.at(shape.material, shape, h, wo, &ns);
+            Frame frame(ns);
             Vec3 wo_l = frame.to_local(wo);
             if (wo_l.z == 0) break;
             if (strategy != Strategy::Bsdf && bsdf.has_non_specular()) {  // next-event estimation

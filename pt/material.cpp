@@ -143,13 +143,13 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             if (mm.roughness_tex < 0) *mf = roughness_param(ps, what);
         };
         if (m.type == "diffuse") {
-            only(ps, {"reflectance"}, "diffuse");
+            only(ps, {"reflectance", "displacement"}, "diffuse");
             b.kind = Bsdf::Diffuse;
             mm.reflectance_tex = texture_param(scene, ps, "reflectance", "spectrum");
             if (mm.reflectance_tex < 0) b.diffuse.R = rgb_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
         } else if (m.type == "coateddiffuse") {
             only(ps, {"reflectance", "roughness", "uroughness", "vroughness", "remaproughness", "thickness", "eta",
-                      "maxdepth", "nsamples", "albedo", "g"},
+                      "maxdepth", "nsamples", "albedo", "g", "displacement"},
                  "coateddiffuse");
             b.kind = Bsdf::CoatedDiffuse;
             Coated &c = b.coated;
@@ -168,7 +168,7 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
                 throw SceneError(ps.where + ": coateddiffuse: a scattering medium between the layers (albedo > 0) "
                                             "is not supported");
         } else if (m.type == "conductor") {
-            only(ps, {"eta", "k", "roughness", "uroughness", "vroughness", "remaproughness"}, "conductor");
+            only(ps, {"eta", "k", "roughness", "uroughness", "vroughness", "remaproughness", "displacement"}, "conductor");
             b.kind = Bsdf::ConductorKind;
             b.conductor.eta = spectrum_param(ps, "eta", Vec3(0.27105, 0.67693, 1.3164));  // pbrt's default: copper
             b.conductor.k = spectrum_param(ps, "k", Vec3(3.6092, 2.6248, 2.2921));
@@ -177,7 +177,7 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
                 !(b.conductor.k.x >= 0 && b.conductor.k.y >= 0 && b.conductor.k.z >= 0))
                 throw SceneError(ps.where + ": conductor: eta must be positive and k not negative");
         } else if (m.type == "dielectric") {
-            only(ps, {"eta", "roughness", "uroughness", "vroughness", "remaproughness"}, "dielectric");
+            only(ps, {"eta", "roughness", "uroughness", "vroughness", "remaproughness", "displacement"}, "dielectric");
             b.kind = Bsdf::DielectricKind;
             Vec3 eta = spectrum_param(ps, "eta", Vec3(1.5, 1.5, 1.5));
             b.dielectric.eta = eta.y;  // one index for all channels (no dispersion): green's, 550 nm
@@ -200,6 +200,11 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             throw SceneError(ps.where + ": Material \"" + m.type +
                              "\" is not supported (diffuse, coateddiffuse, conductor, dielectric, mix)");
         }
+        if (!mm.mix) {
+            mm.displacement_tex = texture_param(scene, ps, "displacement", "float");
+            if (ps.find("displacement") && mm.displacement_tex < 0)
+                throw SceneError(ps.find("displacement")->where + ": 'displacement' must be \"texture displacement\"");
+        }
         models_.push_back(mm);
     }
     // a mix must not contain itself
@@ -211,8 +216,46 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
     for (size_t i = 0; i < models_.size(); ++i) walk((int)i, 0);
 }
 
-Bsdf Materials::at(int material, double u, double v, Vec3 p, Vec3 wo) const
+namespace {
+// dp/du and dp/dv of a triangle from its uv (pbrt-v4's Triangle), or a frame around n when the uv
+// are degenerate; spheres: from the longitude/colatitude parametrization of hit_uv.
+void surface_derivatives(const udm1scene::Shape &s, const udm1scene::Hit &h, Vec3 n, Vec3 *dpdu, Vec3 *dpdv)
 {
+    const double PI = 3.14159265358979323846;
+    if (s.kind == udm1scene::Shape::Sphere) {
+        Vec3 d = h.p - s.center;
+        double phi_max = 2 * PI, r = s.radius, rho = std::sqrt(d.x * d.x + d.y * d.y);
+        *dpdu = Vec3(-phi_max * d.y, phi_max * d.x, 0);
+        double cos_phi = rho > 0 ? d.x / rho : 1, sin_phi = rho > 0 ? d.y / rho : 0, theta = std::acos(std::clamp(d.z / r, -1.0, 1.0));
+        *dpdv = Vec3(d.z * cos_phi, d.z * sin_phi, -r * std::sin(theta)) * (-PI);  // v = 1 - theta / pi
+        return;
+    }
+    const uint32_t *i = &s.indices[3 * (size_t)h.prim];
+    auto P = [&](uint32_t k) { return Vec3(s.P[3 * k], s.P[3 * k + 1], s.P[3 * k + 2]); };
+    double uv[3][2] = {{0, 0}, {1, 0}, {1, 1}};
+    if (!s.UV.empty())
+        for (int k = 0; k < 3; ++k) uv[k][0] = s.UV[2 * i[k]], uv[k][1] = s.UV[2 * i[k] + 1];
+    double du02 = uv[0][0] - uv[2][0], dv02 = uv[0][1] - uv[2][1], du12 = uv[1][0] - uv[2][0], dv12 = uv[1][1] - uv[2][1];
+    Vec3 dp02 = P(i[0]) - P(i[2]), dp12 = P(i[1]) - P(i[2]);
+    double det = du02 * dv12 - dv02 * du12;
+    bool ok = std::fabs(det) >= 1e-12;
+    if (ok) {
+        *dpdu = (dp02 * dv12 - dp12 * dv02) * (1 / det);
+        *dpdv = (dp12 * du02 - dp02 * du12) * (1 / det);
+        ok = udm1scene::dot(udm1scene::cross(*dpdu, *dpdv), udm1scene::cross(*dpdu, *dpdv)) > 0;
+    }
+    if (!ok) {
+        udm1scene::Frame f(n);
+        *dpdu = f.t, *dpdv = f.b;
+    }
+}
+}  // namespace
+
+Bsdf Materials::at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns) const
+{
+    double u, v;
+    hit_uv(shape, h, &u, &v);
+    Vec3 p = h.p;
     const MaterialModel *m = &models_[material];
     while (m->mix) {
         double amount = m->amount_tex >= 0 ? textures_.value(m->amount_tex, u, v) : m->amount;
@@ -232,6 +275,24 @@ Bsdf Materials::at(int material, double u, double v, Vec3 p, Vec3 wo) const
                           : b.kind == Bsdf::DielectricKind ? b.dielectric.mf
                                                            : b.coated.top.mf;
         mf.ax = mf.ay = a;
+    }
+    if (m->displacement_tex >= 0) {  // pbrt-v4's BumpMap
+        Vec3 n = *ns, dpdu, dpdv;
+        surface_derivatives(shape, h, n, &dpdu, &dpdv);
+        if (!shape.N.empty()) {  // shading geometry as pbrt-v4 sets it with vertex normals
+            Vec3 ts = udm1scene::cross(n, dpdu);
+            if (udm1scene::dot(ts, ts) > 0) dpdu = udm1scene::cross(ts, n), dpdv = ts;
+        }
+        const double du = 0.0005, dv = 0.0005;
+        double d = textures_.value(m->displacement_tex, u, v);
+        double d_u = textures_.value(m->displacement_tex, u + du, v), d_v = textures_.value(m->displacement_tex, u, v + dv);
+        Vec3 bu = dpdu + n * ((d_u - d) / du), bv = dpdv + n * ((d_v - d) / dv);
+        Vec3 bn = udm1scene::cross(bu, bv);
+        double len = udm1scene::length(bn);
+        if (len > 0 && std::isfinite(len)) {
+            bn = bn * (1 / len);
+            *ns = udm1scene::dot(bn, n) < 0 ? -bn : bn;
+        }
     }
     return b;
 }

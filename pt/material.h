@@ -19,6 +19,7 @@ namespace udm1pt {
 struct MaterialModel {
     Bsdf base;
     int reflectance_tex = -1;  // diffuse R, or the coated base's R (a spectrum texture)
+    int displacement_tex = -1; // bump mapping: a float texture of displacement along the normal
     int roughness_tex = -1;    // conductor, dielectric, coated: a float texture in place of "roughness"
     bool remap = true;         // pbrt's remaproughness: alpha = sqrt(roughness)
     bool mix = false;
@@ -32,7 +33,11 @@ public:
     // Validates every material (unknown types and parameters, missing textures and named materials,
     // mixes that contain themselves) with its file:line, and reads the textures' images.
     explicit Materials(const udm1scene::Scene &scene);
-    Bsdf at(int material, double u, double v, Vec3 p, Vec3 wo) const;
+    // The BSDF at hit h of shape (a mix resolved, textures evaluated) and, through *ns, the shading
+    // normal: the caller's (interpolated or geometric) on entry, bumped as pbrt-v4's BumpMap if the
+    // material has a displacement texture (finite differences of 0.0005 in u and v: udm1-pt has no ray
+    // differentials, pbrt-v4's own fallback; the normal's change dn/du is taken as 0).
+    Bsdf at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns) const;
     size_t size() const { return models_.size(); }
 
 private:

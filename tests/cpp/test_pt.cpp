@@ -9,6 +9,7 @@
 #include "embree_scene.h"
 #include "film_io.h"
 #include "integrator.h"
+#include "../../tools/common/image_write.h"
 #include "lights.h"
 
 #include <tbb/global_control.h>
@@ -368,6 +369,50 @@ static void test_blackbody()
            "6504 K: %.4f %.4f %.4f", white.x, white.y, white.z);
 }
 
+// Bump mapping as pbrt-v4's BumpMap: a displacement d = a u over a quad whose uv spans 6 units gives
+// dp/du = (6, 0, 0) + a n, so the shading normal tilts to (-a, 0, 6) / |.|, exactly (the texture is a
+// linear ramp, read bilinearly, and the finite difference of a linear function is exact).
+static void test_bump_mapping()
+{
+    const double a = 3;
+    char path[] = "/tmp/udm1-test-ramp-XXXXXX.exr";
+    int fd = mkstemps(path, 4);
+    CHECK(fd >= 0);
+    close(fd);
+    std::vector<float> ramp(64);
+    for (int x = 0; x < 64; ++x) ramp[x] = (float)(a * (x + 0.5) / 64);
+    udm1app::write_image(path, ramp, 64, 1, 1);
+    Scene s;
+    Texture t;
+    t.name = "ramp", t.kind = "float", t.type = "imagemap", t.filename = path, t.srgb = false;
+    s.textures.push_back(t);
+    Material m;
+    m.type = "diffuse";
+    Param disp;
+    disp.type = "texture", disp.name = "displacement", disp.strings = {"ramp"};
+    m.params.params.push_back(disp);
+    s.materials.push_back(m);
+    Shape q;
+    q.P = {-3, -3, 0, 3, -3, 0, 3, 3, 0, -3, 3, 0};
+    q.UV = {0, 0, 1, 0, 1, 1, 0, 1};
+    q.indices = {0, 1, 2, 0, 2, 3};
+    q.material = 0;
+    s.shapes.push_back(q);
+    Materials mats(s);
+    for (double b1 : {0.2, 0.5}) {
+        Hit h;
+        h.shape = 0, h.prim = 0, h.u = b1, h.v = 0.2;
+        h.p = Vec3(-3, -3, 0) * (1 - b1 - 0.2) + Vec3(3, -3, 0) * b1 + Vec3(3, 3, 0) * 0.2;
+        h.ng = Vec3(0, 0, 1);
+        Vec3 ns = h.ng;
+        mats.at(0, s.shapes[0], h, Vec3(0, 0, 1), &ns);
+        Vec3 want = normalize(Vec3(-a, 0, 6));
+        CHECKF(length(ns - want) < 1e-5, "bumped normal %.6f %.6f %.6f, expected %.6f %.6f %.6f", ns.x, ns.y, ns.z,
+               want.x, want.y, want.z);
+    }
+    std::remove(path);
+}
+
 // Next-event estimation of the irradiance from one triangle light (radiance 1) at points from
 // very near (solid-angle sampling) to far (area sampling), against Lambert's closed form for a
 // polygon: E = 1/2 sum_i angle(v_i, v_i+1) (n . unit(v_i x v_i+1)).
@@ -483,6 +528,7 @@ int main()
     test_blackbody();
     test_metal_and_glass();
     test_glass_and_metal_in_the_furnace();
+    test_bump_mapping();
     test_deterministic();
     test_film_round_trip();
     CHECK_DONE();
