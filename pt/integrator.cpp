@@ -154,6 +154,13 @@ std::vector<float> Accumulator::mean() const
 
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)
 {
+    Materials materials(scene);
+    return render(scene, rt, materials, opt, stats);
+}
+
+Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
+                   const Options &opt, Stats *stats)
+{
     if (opt.spp == 0) throw std::runtime_error("spp must be at least 1");
     uint64_t count = opt.count ? opt.count : (opt.first < opt.spp ? opt.spp - opt.first : 0);
     if (opt.first >= opt.spp || count > opt.spp - opt.first)
@@ -161,7 +168,6 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                                  ") is not inside [0, " + std::to_string(opt.spp) + ")");
     int max_depth = opt.max_depth >= 0 ? opt.max_depth : scene.max_depth;
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
-    Materials materials(scene);
     Lights lights(scene, opt.near_light);
 
     udm1_preset_info info;

@@ -75,6 +75,9 @@ struct Stats {
 
 // Throws std::runtime_error with a one-line message (unknown sampler, bad range, material).
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats);
+// The same with the scene's materials (and their textures) made once by the caller.
+Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
+                   const Options &opt, Stats *stats);
 
 
 }  // namespace udm1pt

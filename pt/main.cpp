@@ -24,7 +24,9 @@
 #include <tbb/global_control.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <sys/resource.h>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -245,7 +247,8 @@ int run_merge(const Options &o)
     return 0;
 }
 
-int run_sweep(const Options &o, const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt)
+int run_sweep(const Options &o, const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt,
+              const udm1pt::Materials &materials)
 {
     udm1app::LoadedImage ref = udm1app::read_image(o.against);
     if (ref.width != o.pt.width || ref.height != o.pt.height)
@@ -276,7 +279,7 @@ int run_sweep(const Options &o, const udm1scene::Scene &scene, const udm1scene::
                 udm1pt::Stats st;
                 udm1pt::Accumulator acc;
                 try {
-                    acc = udm1pt::render(scene, rt, p, &st);
+                    acc = udm1pt::render(scene, rt, materials, p, &st);
                 } catch (const udm1scene::SceneError &e) {
                     throw Error(e.what(), 1);
                 } catch (const std::runtime_error &e) {
@@ -297,10 +300,13 @@ int run_sweep(const Options &o, const udm1scene::Scene &scene, const udm1scene::
 
 int run_render(Options o)
 {
+    std::chrono::steady_clock::time_point load_start;
+    std::unique_ptr<udm1pt::Materials> materials;
     udm1scene::Scene scene;
     try {
+        load_start = std::chrono::steady_clock::now();
         scene = udm1scene::load_scene(o.scene);
-        udm1pt::Materials check(scene);  // unsupported materials and unreadable textures fail here, before any work
+        materials = std::make_unique<udm1pt::Materials>(scene);  // bad materials and textures fail here, before any work
         udm1pt::Lights lights(scene);      // and zero-area lights
         if (!scene.media_where.empty() && scene.integrator == "volpath")
             throw Error(scene.media_where + ": participating media need Integrator \"volpath\", which udm1-pt does not model", 1);
@@ -350,10 +356,11 @@ int run_render(Options o)
             throw Error("-o '" + o.output + "': udm1-pt writes OpenEXR (.exr); use --png for a PNG", 2);
     }
     udm1scene::EmbreeScene rt(scene);
-    if (o.command == "sweep") return run_sweep(o, scene, rt);
+    double load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - load_start).count();
+    if (o.command == "sweep") return run_sweep(o, scene, rt, *materials);
     udm1pt::Stats st;
     try {
-        part.acc = udm1pt::render(scene, rt, o.pt, &st);
+        part.acc = udm1pt::render(scene, rt, *materials, o.pt, &st);
     } catch (const udm1scene::SceneError &e) {
         throw Error(e.what(), 1);
     } catch (const std::runtime_error &e) {
@@ -367,6 +374,10 @@ int run_render(Options o)
                 (unsigned long long)(part.acc.first + part.acc.count), part.acc.width, part.acc.height, st.dimensions,
                 st.path_dimensions, st.seconds, (unsigned long long)st.paths, (unsigned long long)st.rays,
                 st.paths / std::max(st.seconds, 1e-9), st.rays / std::max(st.seconds, 1e-9), mean_text(part.acc).c_str());
+    struct rusage ru;
+    getrusage(RUSAGE_SELF, &ru);
+    std::printf("scene %zu triangles, %zu shapes, loaded (parse, meshes, textures, BVH) in %.2f s; peak memory %.0f MiB\n",
+                scene.triangle_count(), scene.shapes.size(), load_seconds, ru.ru_maxrss / 1024.0);
     if (part.acc.nonfinite || part.acc.clamped)
         std::printf("warning: %llu non-finite and %llu clamped sample values\n", (unsigned long long)part.acc.nonfinite,
                     (unsigned long long)part.acc.clamped);

@@ -15,7 +15,9 @@ scrambled), PMJ02, WR, WMMR, HWMMR and R_d. Per scene:
 - the paper's numbers next to ours as PSNR gains over PRNG, and a verdict per claim.
 
 Scenes: the built-in Cornell box by default (no files needed); --full adds the shared pbrt-v4 scenes
-cornell-box and veach-mis (skipped with a message where ../shared is absent) at larger sizes.
+cornell-box and veach-mis (skipped with a message where ../shared is absent) at larger sizes; --scene
+renders one given scene instead (the paper's Crown: --scene ../shared/scenes/crown/crown.pbrt, into its
+own --out folder).
 
 Writes OUT/pt.md, OUT/pt.html, OUT/pt_*.png, OUT/pt.csv and OUT/pt.json; images go to OUT/pt/.
 
@@ -160,6 +162,9 @@ def main(argv=None) -> int:
     ap.add_argument("--spp", type=int, default=None, help="the figure's spp (default 256; --full 512)")
     ap.add_argument("--ref-spp", type=int, default=None, help="reference spp (default 4096; --full 8192)")
     ap.add_argument("--seeds", type=int, default=2, help="seeds per PSNR (default 2)")
+    ap.add_argument("--scene", help="this scene only (a .pbrt file or builtin:NAME), e.g. the Crown")
+    ap.add_argument("--size", default="100x140", help="with --scene: image size (default 100x140)")
+    ap.add_argument("--sweep-size", default="50x70", help="with --scene: the sweep's image size (default 50x70)")
     ap.add_argument("--quick", action="store_true", help="tiny sizes and spp, for tests")
     args = ap.parse_args(argv)
     if not Path(args.pt).exists():
@@ -180,6 +185,8 @@ def main(argv=None) -> int:
                 scenes.append((str(path), f"{name} (pbrt-v4 scenes)", size, small))
             else:
                 log(f"{path} is absent: the shared scene {name} is skipped")
+    if args.scene:
+        scenes = [(args.scene, Path(args.scene).stem, args.size, args.sweep_size)]
     if args.quick:
         spp, ref_spp, seeds, sweep_spps = 16, 256, 2, [4, 16]
         scenes = [(s, t, "24x24", "16x16") for s, t, _, _ in scenes]
