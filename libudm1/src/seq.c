@@ -346,26 +346,22 @@ static void cursor_fill_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
     for (; k < n; ++k) raw[k] = cursor_next(c);
 }
 
-void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out)
+/* n draws converted to float (f64 = 0) or double (f64 = 1), in chunks of 32 */
+static void cursor_fill_as(udm1_cursor *cursor, uint32_t n, void *out, int f64)
 {
     uint64_t raw[32];
-    while (n) {
-        uint32_t m = n < 32 ? n : 32;
+    for (uint32_t done = 0; done < n;) {
+        uint32_t m = n - done < 32 ? n - done : 32;
         cursor_fill_raw(cursor, m, raw);
-        for (uint32_t k = 0; k < m; ++k) out[k] = udm1_to_f32(raw[k]);
-        out += m, n -= m;
+        for (uint32_t k = 0; k < m; ++k) {
+            if (f64) ((double *)out)[done + k] = udm1_to_f64(raw[k]);
+            else ((float *)out)[done + k] = udm1_to_f32(raw[k]);
+        }
+        done += m;
     }
 }
 
-void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out)
-{
-    uint64_t raw[32];
-    while (n) {
-        uint32_t m = n < 32 ? n : 32;
-        cursor_fill_raw(cursor, m, raw);
-        for (uint32_t k = 0; k < m; ++k) out[k] = udm1_to_f64(raw[k]);
-        out += m, n -= m;
-    }
-}
+void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out) { cursor_fill_as(cursor, n, out, 0); }
+void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out) { cursor_fill_as(cursor, n, out, 1); }
 
 uint32_t udm1_cursor_padded(const udm1_cursor *cursor) { return cursor ? cursor->padded : 0; }
