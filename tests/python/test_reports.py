@@ -99,6 +99,9 @@ def test_pt_report(tmp_path):
             rm = [row["rmse"] for row in sorted(scene["sweep"], key=lambda x: x["spp"]) if row["sampler"] == s]
             assert rm[-1] < rm[0], (s, rm)
         assert scene["time_to_target"]["pcg32"] is not None
+        assert {r["sampler"] for r in scene["equal_time"]} == set(names)  # equal time: every sampler too
+        for r in scene["equal_time"]:
+            assert f"{r['psnr_mean']:.2f}" in html
     # the paper's numbers are shown next to ours
     assert "+1.47" in html and "+0.94" in html  # Halton's gain over PRNG in Figures 8 and 10
     r = run_report("pt_report.py", tmp_path, "--pt", PT)  # a second run reuses the cached references

@@ -10,6 +10,7 @@ scrambled), PMJ02, WR, WMMR, HWMMR and R_d. Per scene:
   settings are the same);
 - every sampler at the figure's spp, PSNR (peak 1 on linear RGB clamped to [0, 1]) and render time,
   mean and spread over seeds, and a contact sheet of the images with their PSNR and time;
+- an equal-time table (every sampler given PRNG's time at the figure's spp);
 - an spp sweep (error against spp and against time, one seed), and from it the time each sampler
   needs to reach the error PRNG has at the figure's spp;
 - the paper's numbers next to ours as PSNR gains over PRNG, and a verdict per claim.
@@ -209,6 +210,14 @@ def main(argv=None) -> int:
         fig = summarize(tool.sweep(SAMPLERS, [spp], seeds, ref, images, note=f"{tag} ", extra=("paths", "rays")), spp)
         for r in fig:
             r["png"] = f"{tag}/{r['sampler']}-{spp}spp.png"
+        # equal time: every sampler given PRNG's time at the figure's spp (render time is proportional to spp)
+        budget = next(r["seconds"] for r in fig if r["sampler"] == "pcg32")
+        log(f"{title}: equal time, every sampler given PRNG's {budget:.2f} s")
+        eq = []
+        for r in fig:
+            n = max(1, int(round(spp * budget / r["seconds"])))
+            eq += summarize(tool.sweep([r["sampler"]], [n], seeds, ref, note=f"{tag} equal time ",
+                                       extra=("paths", "rays")), n)
         small_ref = folder / f"{tag}-reference-{small_size}-{ref_spp}spp.exr"
         log(f"{title}: spp sweep {sweep_spps[0]}..{sweep_spps[-1]} at {small_size}")
         small.reference(ref_spp, small_ref, folder / f"{tag}-reference-{small_size}.png")
@@ -223,13 +232,21 @@ def main(argv=None) -> int:
         sweep_png = plot_sweep(sw, out, f"pt_{tag}_sweep.png", f"{title}, {small_size}")
         results.append({"scene": scene, "title": title, "size": size, "spp": spp, "ref_spp": ref_spp, "seeds": seeds,
                         "reference": ref_line, "figure": fig, "sweep_size": small_size, "sweep": sw,
-                        "target_rmse": target, "target_spp": prng_spp, "time_to_target": reach})
+                        "target_rmse": target, "target_spp": prng_spp, "time_to_target": reach,
+                        "equal_time": eq, "budget_seconds": budget})
         for r in fig:
             csv_rows.append({"scene": title, "table": "figure", "sampler": r["sampler"], "spp": spp,
                              "psnr_seed1": r["psnr_seed1"], "psnr_mean": r["psnr_mean"], "psnr_sd": r["psnr_sd"],
                              "rmse": r["rmse_mean"], "seconds": r["seconds"]})
         for r in sw:
             csv_rows.append({"scene": title, "table": "sweep", **r})
+        for r in eq:
+            csv_rows.append({"scene": title, "table": "equal_time", "sampler": r["sampler"], "spp": r["spp"],
+                             "psnr_seed1": r["psnr_seed1"], "psnr_mean": r["psnr_mean"], "psnr_sd": r["psnr_sd"],
+                             "rmse": r["rmse_mean"], "seconds": r["seconds"]})
+        prng_eq = next(r for r in eq if r["sampler"] == "pcg32")
+        eq_table = [[NAMES[r["sampler"]], r["spp"], f"{r['seconds']:.2f}", f"{r['psnr_mean']:.2f} +- {r['psnr_sd']:.2f}",
+                     f"{r['psnr_mean'] - prng_eq['psnr_mean']:+.2f}"] for r in sorted(eq, key=lambda r: -r["psnr_mean"])]
         ranked = sorted(fig, key=lambda r: -r["psnr_mean"])
         rank = {r["sampler"]: i + 1 for i, r in enumerate(ranked)}
         prng = next(r for r in fig if r["sampler"] == "pcg32")
@@ -247,6 +264,12 @@ there to reach the RMSE PRNG has at {prng_spp} spp ({target:.4g}), log-log inter
            "time (s)", "paths/s", "rays/s", "time to PRNG's error (s)"], table)}
 
 ![contact sheet]({sheet})
+
+### Equal time
+Every sampler at the spp that takes PRNG's {spp}-spp time ({budget:.2f} s): {spp} x that time / its own {spp}-spp
+time; the time column is what the render then took.
+
+{md_table(["sampler", "spp", "time (s)", f"PSNR over {seeds} seeds (dB)", "gain over PRNG (dB)"], eq_table)}
 
 ![sweep]({sweep_png})
 
