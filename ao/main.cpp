@@ -69,19 +69,6 @@ struct Options {
     uint32_t seeds = 1;
 };
 
-std::vector<std::string> split(const std::string &text, const std::string &flag)
-{
-    std::vector<std::string> parts;
-    size_t start = 0;
-    for (;;) {
-        size_t comma = text.find(',', start);
-        parts.push_back(text.substr(start, comma - start));
-        if (parts.back().empty()) throw Error(flag + " '" + text + "' has an empty item");
-        if (comma == std::string::npos) return parts;
-        start = comma + 1;
-    }
-}
-
 Options parse(int argc, char **argv)
 {
     Options o;
@@ -109,13 +96,7 @@ Options parse(int argc, char **argv)
         else if (a == "--seed") o.ao.seed = udm1app::parse_u64(value(a), "--seed", 0, UINT64_MAX);
         else if (a == "--randomize") o.ao.randomize = udm1app::parse_randomize(value(a));
         else if (a == "--size") {
-            std::string v = value(a);
-            size_t x = v.find('x');
-            if (x == std::string::npos) throw Error("--size '" + v + "' is not WxH");
-            o.ao.width = (int)udm1app::parse_u64(v.substr(0, x), "--size", 1, 16384);
-            o.ao.height = (int)udm1app::parse_u64(v.substr(x + 1), "--size", 1, 16384);
-            if ((uint64_t)o.ao.width * o.ao.height > MAX_PIXELS)
-                throw Error("--size '" + v + "' has more than " + std::to_string(MAX_PIXELS) + " pixels");
+            udm1app::parse_size(value(a), a, 16384, MAX_PIXELS, &o.ao.width, &o.ao.height);
             o.size_given = true;
         } else if (a == "--maxdist") o.ao.max_distance = udm1app::parse_double(value(a), "--maxdist", 1e-12, 1e300);
         else if (a == "--jitter") o.ao.jitter = true;
@@ -128,10 +109,10 @@ Options parse(int argc, char **argv)
         } else if (a == "--threads") o.threads = (uint32_t)udm1app::parse_u64(value(a), "--threads", 1, 1024);
         else if (a == "--against") sweep_only(a), o.against = value(a);
         else if (a == "--images") sweep_only(a), o.images = value(a);
-        else if (a == "--samplers") sweep_only(a), o.samplers = split(value(a), a);
+        else if (a == "--samplers") sweep_only(a), o.samplers = udm1app::parse_list(value(a), a);
         else if (a == "--spps") {
             sweep_only(a);
-            for (const std::string &n : split(value(a), a)) o.spps.push_back((uint32_t)udm1app::parse_u64(n, a, 1, 1u << 20));
+            for (const std::string &n : udm1app::parse_list(value(a), a)) o.spps.push_back((uint32_t)udm1app::parse_u64(n, a, 1, 1u << 20));
         } else if (a == "--seeds") sweep_only(a), o.seeds = (uint32_t)udm1app::parse_u64(value(a), a, 1, 100000);
         else if (a == "-o") o.output = value(a);
         else if (a == "--png") o.png = value(a);

@@ -63,6 +63,7 @@ struct Tracer {
         Vec3 L, beta(1, 1, 1);
         bool specular_bounce = false;
         double eta_scale = 1;  // the product of eta^2 over transmissions: roulette sees beta without it (pbrt)
+        Bsdf scratch;          // a textured material's BSDF at the current vertex
         double p_b = 0;
         Vec3 prev_p;
         for (int depth = 0;; ++depth) {
@@ -86,9 +87,9 @@ struct Tracer {
             const double u_lp[2] = {u[0], u[1]}, u_lobe = u[2], u_rr = u[3], u_dir[2] = {u[4], u[5]};
 
             const udm1scene::Shape &shape = scene.shapes[h.shape];
-            Bsdf bsdf = default_bsdf;
             Vec3 ns = shading_normal(shape, h);
-            if (shape.material >= 0) bsdf = materials.at(shape.material, shape, h, wo, &ns);
+            const Bsdf &bsdf =
+                shape.material >= 0 ? materials.at(shape.material, shape, h, wo, &ns, &scratch) : default_bsdf;
             Frame frame(ns);
             Vec3 wo_l = frame.to_local(wo);
             if (wo_l.z == 0) break;

@@ -74,19 +74,6 @@ struct Options {
     bool size_given = false, sampler_given = false, spp_given = false;
 };
 
-std::vector<std::string> split(const std::string &text, const std::string &flag)
-{
-    std::vector<std::string> parts;
-    size_t start = 0;
-    for (;;) {
-        size_t comma = text.find(',', start);
-        parts.push_back(text.substr(start, comma - start));
-        if (parts.back().empty()) throw Error(flag + " '" + text + "' has an empty item");
-        if (comma == std::string::npos) return parts;
-        start = comma + 1;
-    }
-}
-
 Options parse(int argc, char **argv)
 {
     Options o;
@@ -116,13 +103,7 @@ Options parse(int argc, char **argv)
         else if (a == "--seed") o.pt.seed = udm1app::parse_u64(value(a), a, 0, UINT64_MAX);
         else if (a == "--randomize") o.pt.randomize = udm1app::parse_randomize(value(a));
         else if (a == "--size") {
-            std::string v = value(a);
-            size_t x = v.find('x');
-            if (x == std::string::npos) throw Error("--size '" + v + "' is not WxH");
-            o.pt.width = (int)udm1app::parse_u64(v.substr(0, x), a, 1, 16384);
-            o.pt.height = (int)udm1app::parse_u64(v.substr(x + 1), a, 1, 16384);
-            if ((uint64_t)o.pt.width * o.pt.height > MAX_PIXELS)
-                throw Error("--size '" + v + "' has more than " + std::to_string(MAX_PIXELS) + " pixels");
+            udm1app::parse_size(value(a), a, 16384, MAX_PIXELS, &o.pt.width, &o.pt.height);
             o.size_given = true;
         } else if (a == "--maxdepth") o.pt.max_depth = (int)udm1app::parse_u64(value(a), a, 0, 1000);
         else if (a == "--strategy") {
@@ -146,10 +127,10 @@ Options parse(int argc, char **argv)
         else if (a == "--diff") o.diff = value(a);
         else if (a == "--against") sweep_only(a), o.against = value(a);
         else if (a == "--images") sweep_only(a), o.images = value(a);
-        else if (a == "--samplers") sweep_only(a), o.samplers = split(value(a), a);
+        else if (a == "--samplers") sweep_only(a), o.samplers = udm1app::parse_list(value(a), a);
         else if (a == "--spps") {
             sweep_only(a);
-            for (const std::string &n : split(value(a), a)) o.spps.push_back((uint32_t)udm1app::parse_u64(n, a, 1, 1u << 24));
+            for (const std::string &n : udm1app::parse_list(value(a), a)) o.spps.push_back((uint32_t)udm1app::parse_u64(n, a, 1, 1u << 24));
         } else if (a == "--seeds") sweep_only(a), o.seeds = (uint32_t)udm1app::parse_u64(value(a), a, 1, 100000);
         else if (!a.empty() && a[0] == '-') throw Error("unknown option '" + a + "'");
         else o.positional.push_back(a);

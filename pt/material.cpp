@@ -251,19 +251,26 @@ void surface_derivatives(const udm1scene::Shape &s, const udm1scene::Hit &h, Vec
 }
 }  // namespace
 
-Bsdf Materials::at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns) const
+const Bsdf &Materials::at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns,
+                          Bsdf *scratch) const
 {
-    double u, v;
-    hit_uv(shape, h, &u, &v);
-    Vec3 p = h.p;
+    double u = 0, v = 0;  // texture coordinates, computed only if a texture is read
+    bool have_uv = false;
+    auto need_uv = [&] {
+        if (!have_uv) hit_uv(shape, h, &u, &v), have_uv = true;
+    };
     const MaterialModel *m = &models_[material];
     while (m->mix) {
-        double amount = m->amount_tex >= 0 ? textures_.value(m->amount_tex, u, v) : m->amount;
+        double amount = m->amount;
+        if (m->amount_tex >= 0) need_uv(), amount = textures_.value(m->amount_tex, u, v);
         int next = amount <= 0 ? m->parts[0] : amount >= 1 ? m->parts[1]
-                                                          : (hash_unit(p, wo) < amount ? m->parts[1] : m->parts[0]);
+                                                          : (hash_unit(h.p, wo) < amount ? m->parts[1] : m->parts[0]);
         m = &models_[next];
     }
-    Bsdf b = m->base;
+    if (m->reflectance_tex < 0 && m->roughness_tex < 0 && m->displacement_tex < 0) return m->base;
+    need_uv();
+    Bsdf &b = *scratch;
+    b = m->base;
     if (m->reflectance_tex >= 0) {
         Vec3 r = textures_.rgb(m->reflectance_tex, u, v);
         (b.kind == Bsdf::Diffuse ? b.diffuse.R : b.coated.bottom.R) = r;

@@ -37,7 +37,9 @@ public:
     // normal: the caller's (interpolated or geometric) on entry, bumped as pbrt-v4's BumpMap if the
     // material has a displacement texture (finite differences of 0.0005 in u and v: udm1-pt has no ray
     // differentials, pbrt-v4's own fallback; the normal's change dn/du is taken as 0).
-    Bsdf at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns) const;
+    // An untextured material's BSDF is returned as it is; a textured one is written to *scratch.
+    const Bsdf &at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns,
+                   Bsdf *scratch) const;
     size_t size() const { return models_.size(); }
 
 private:

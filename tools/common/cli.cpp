@@ -43,4 +43,29 @@ uint32_t parse_randomize(const std::string &text)
     throw Error("--randomize '" + text + "' is not one of none, default, shift, permute, owen");
 }
 
+std::vector<std::string> parse_list(const std::string &text, const std::string &flag)
+{
+    std::vector<std::string> parts;
+    size_t start = 0;
+    for (;;) {
+        size_t comma = text.find(',', start);
+        parts.push_back(text.substr(start, comma - start));
+        if (parts.back().empty()) throw Error(flag + " '" + text + "' has an empty item");
+        if (comma == std::string::npos) return parts;
+        start = comma + 1;
+    }
+}
+
+void parse_size(const std::string &text, const std::string &flag, int max_side, uint64_t max_pixels, int *width,
+                int *height)
+{
+    size_t x = text.find('x');
+    if (x == std::string::npos) throw Error(flag + " '" + text + "' is not WxH");
+    int w = (int)parse_u64(text.substr(0, x), flag, 1, (uint64_t)max_side);
+    int h = (int)parse_u64(text.substr(x + 1), flag, 1, (uint64_t)max_side);
+    if ((uint64_t)w * h > max_pixels)
+        throw Error(flag + " '" + text + "' has more than " + std::to_string(max_pixels) + " pixels");
+    *width = w, *height = h;
+}
+
 }  // namespace udm1app

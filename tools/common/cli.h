@@ -7,6 +7,7 @@
 #include <exception>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace udm1app {
 
@@ -22,6 +23,13 @@ double parse_double(const std::string &text, const std::string &what, double lo,
 
 // udm1_randomize from "none", "default", "shift", "permute", "owen".
 uint32_t parse_randomize(const std::string &text);
+
+// "a,b,c" as its items; an empty item is an Error naming `flag`.
+std::vector<std::string> parse_list(const std::string &text, const std::string &flag);
+
+// "WxH", each side in 1..max_side and W x H at most max_pixels; otherwise an Error naming `flag`.
+void parse_size(const std::string &text, const std::string &flag, int max_side, uint64_t max_pixels, int *width,
+                int *height);
 
 // A tool's main: run `body` (returning the exit code); an Error prints "<tool>: <message>" and exits
 // with its code, any other exception prints the same and exits 1.
