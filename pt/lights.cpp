@@ -182,6 +182,8 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
     const Light &l = lights_[i];
     s->shape = l.shape, s->sphere = l.sphere;
     Vec3 q, nq;
+    double omega = 0;
+    bool spherical = false;  // a triangle sampled by solid angle
     if (l.sphere) {
         Vec3 dc = l.center - p;
         double dc2 = dot(dc, dc), r2 = l.radius * l.radius;
@@ -216,8 +218,7 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
         q = l.center + nq * l.radius;
     } else {
         // by solid angle where the spherical triangle is well formed (pbrt-v4), else by area
-        double omega;
-        bool spherical = by_solid_angle(l, p, &omega);
+        spherical = by_solid_angle(l, p, &omega);
         if (!spherical || !sample_spherical_triangle(p, l.p0, l.p1, l.p2, u1, u2, &q)) {
             if (spherical) return false;
             double su = std::sqrt(u1), b0 = 1 - su, b1 = u2 * su;
@@ -231,7 +232,9 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
     s->dist = std::sqrt(d2);
     s->wi = d * (1 / s->dist);
     s->L = radiance(l, nq, -s->wi);
-    s->pdf = prob_[i] * pdf_light(l, p, q, nq);
+    // the density pdf_light() gives, without deciding the sampling method again
+    double c = std::fabs(dot(nq, d)) / s->dist;
+    s->pdf = prob_[i] * (spherical ? 1 / omega : c > 0 ? d2 / (c * l.area) : 0);
     return s->pdf > 0 && std::isfinite(s->pdf) && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
 }
 
