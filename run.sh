@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # run.sh - the project's entry point (see README.md).
 #
-#   ./run.sh          the main job: build, then write report/ (sequence and sampler reports)
+#   ./run.sh [--full] the main job: build, then write report/index.html: speed against error for every
+#                     sampler in every application (tools/report/main_report.py; --quick, --full, --fresh)
 #   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C tests
 #                     again under AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
@@ -26,23 +27,14 @@ build() { # build <dir> [cmake options...]
 
 cmd="${1:-report}"
 case "$cmd" in
-report)
-    shift || true
+report | --*)
+    if [[ $# -gt 0 && "$1" == report ]]; then shift; fi
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
     export PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1"
-    udm1_log "writing report/: the sequence report"
-    "$PY" tools/report/sequence_report.py --out "$ROOT/report" "$@"
-    udm1_log "writing report/: the sampler report (every sampler, about 2 minutes)"
-    "$PY" tools/report/sampler_report.py --bench "$ROOT/build/tools/udm1_bench_samplers" --out "$ROOT/report" "$@"
-    udm1_log "writing report/noise/: the paper's Figures 2 and 3 (udm1-noise figures)"
-    mkdir -p "$ROOT/report/noise"
-    ./build/noise/udm1-noise figures -o "$ROOT/report/noise"
-    udm1_log "writing report/ao.html: the paper's Figure 6 with udm1-ao (every sampler, about 3 minutes the first time)"
-    "$PY" tools/report/ao_report.py --ao "$ROOT/build/ao/udm1-ao" --out "$ROOT/report"
-    udm1_log "writing report/pt.html: the paper's Figure 8/10 protocol with udm1-pt (about 3 minutes the first time)"
-    "$PY" tools/report/pt_report.py --pt "$ROOT/build/pt/udm1-pt" --out "$ROOT/report"
-    udm1_log "done: open report/index.html"
+    udm1_log "writing report/: speed against error for every sampler and application (tools/report/main_report.py;"
+    udm1_log "about 7 minutes the first time, finished steps are reused on the next run; --full for the shared scenes)"
+    "$PY" tools/report/main_report.py --build "$ROOT/build" --out "$ROOT/report" "$@"
     ;;
 test)
     udm1_bootstrap "$ROOT"

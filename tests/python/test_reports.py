@@ -29,11 +29,11 @@ def links(html: str) -> list[str]:
 def test_sequence_report(tmp_path):
     r = run_report("sequence_report.py", tmp_path)
     assert r.returncode == 0, r.stderr
-    html = (tmp_path / "index.html").read_text()
+    html = (tmp_path / "sequences.html").read_text()
     for link in links(html):
         if link not in ("samplers.html", "noise/figures.md", "ao.html", "pt.html"):  # written by the other report steps
             assert (tmp_path / link).exists(), link
-    data = json.loads((tmp_path / "data.json").read_text())
+    data = json.loads((tmp_path / "sequences.json").read_text())
     worst = [c for c in data["check"] if c["preset"] == "wmmr" and c["d"] == 22][0]
     assert f"{worst['worst_l2_star']:.3g}" in html
 

@@ -54,7 +54,7 @@ def summarize(rows, spp: int, seeds: int) -> list[dict]:
     for s in dict.fromkeys(r["sampler"] for r in rows):
         rs = [r for r in rows if r["sampler"] == s and r["spp"] == spp]
         ps = [r["psnr"] for r in rs]
-        out.append({"sampler": s, "spp": spp, "psnr_seed1": rs[0]["psnr"], "psnr_mean": float(np.mean(ps)),
+        out.append({"sampler": s, "spp": spp, "n_seeds": len(ps), "psnr_seed1": rs[0]["psnr"], "psnr_mean": float(np.mean(ps)),
                     "psnr_sd": float(np.std(ps, ddof=1)) if seeds > 1 else 0.0,
                     "rmse_mean": float(np.sqrt(np.mean([r["rmse"] ** 2 for r in rs]))),
                     "seconds": float(np.median([r["seconds"] for r in rs])), "paper_set": s in PAPER_SET})

@@ -132,15 +132,21 @@ def plot_sweep(rows, out: Path, name: str, title: str) -> str:
     return name
 
 
+def compare(rows: list[dict], a: str, b: str) -> str:
+    """Whether sampler a beats b in mean PSNR over seeds: "holds", "tie" or "fails". A difference within two
+    standard errors of the difference of the means (at least 0.05 dB) is a tie."""
+    r = {x["sampler"]: x for x in rows}
+    d = r[a]["psnr_mean"] - r[b]["psnr_mean"]
+    tol = max(0.05, 2 * math.sqrt((r[a]["psnr_sd"] ** 2 + r[b]["psnr_sd"] ** 2) / r[a]["n_seeds"]))
+    return "holds" if d > tol else ("tie" if abs(d) <= tol else "fails")
+
+
 def verdicts(fig: list[dict]) -> list[list[str]]:
     """The paper's claims, checked on this scene's mean PSNR."""
     p = {r["sampler"]: r["psnr_mean"] for r in fig}
-    sd = {r["sampler"]: r["psnr_sd"] for r in fig}
-    n = fig[0]["n_seeds"]
 
-    def cmp(a, b):  # a difference within two standard errors of the difference of means (at least 0.05 dB) is a tie
-        d, tol = p[a] - p[b], max(0.05, 2 * math.sqrt((sd[a] ** 2 + sd[b] ** 2) / n))
-        return "holds" if d > tol else ("tie" if abs(d) <= tol else "fails")
+    def cmp(a, b):
+        return compare(fig, a, b)
 
     weyl = ["wr", "wmmr", "hwmmr"]
     rows = [[f"{NAMES[w]} beats PRNG", f"{p[w] - p['pcg32']:+.2f} dB", cmp(w, "pcg32")] for w in weyl]

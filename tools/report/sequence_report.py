@@ -2,8 +2,9 @@
 check for the paper's Weyl sets, next to random points and scrambled Sobol,
 and the exactness of udm1's integer arithmetic against fmod(n*alpha, 1).
 
-Writes OUT/index.html, OUT/report.md, OUT/*.png, OUT/data.json and
-OUT/discrepancy.csv. Run through ./run.sh (the README's main job), or:
+Writes OUT/sequences.html, OUT/sequences.md, OUT/*.png, OUT/sequences.json and
+OUT/discrepancy.csv; a step of the main report (tools/report/main_report.py,
+which writes OUT/index.html). On its own:
 
     PYTHONPATH=python python tools/report/sequence_report.py --out report
 """
@@ -215,7 +216,7 @@ def main(argv=None) -> int:
                "udm1": udm1.version(), "numpy": np.__version__}
     data = {"discrepancy": disc, "check": checks, "exactness": exact_rows, "machine": machine,
             "seeds": args.seeds, "seconds": time.time() - t0}
-    (out / "data.json").write_text(json.dumps(data, indent=1))
+    (out / "sequences.json").write_text(json.dumps(data, indent=1))
 
     # ---- report.md ----
     big_n = ns[-1]
@@ -266,9 +267,9 @@ A ratio above 1 means that some pair of dimensions is worse than independent ran
 ## Machine
 {md_table(["key", "value"], [[k, v] for k, v in machine.items()])}
 """
-    (out / "report.md").write_text(md)
-    (out / "index.html").write_text(md_to_html(md))
-    log(f"wrote {out}/index.html, report.md, data.json, discrepancy.csv and {len(METHODS) + 2} figures "
+    (out / "sequences.md").write_text(md)
+    (out / "sequences.html").write_text(md_to_html(md, "udm1 sequence report"))
+    log(f"wrote {out}/sequences.html, sequences.md, sequences.json, discrepancy.csv and {len(METHODS) + 2} figures "
         f"in {time.time() - t0:.0f} s")
     return 0
 

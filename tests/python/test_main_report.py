@@ -1,0 +1,182 @@
+"""The main report (tools/report/main_report.py, the README's main job) on its quick configuration:
+every figure, page and table it links exists; the numbers in index.html are those of report.json, and
+those come from the steps' own JSON; every sampler a step ran is in every table made from it; a second
+run reuses the finished steps; a failed step is shown failed (its stale numbers are not shown); an
+interrupted step runs again."""
+
+import csv
+import json
+import os
+import subprocess
+import sys
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+import udm1
+
+ROOT = Path(__file__).resolve().parents[2]
+ENV = {k: os.environ.get(k, "") for k in ("UDM1_BENCH_SAMPLERS", "UDM1_BENCH_NOISE", "UDM1_NOISE_TOOL", "UDM1_AO_TOOL",
+                                          "UDM1_PT_TOOL", "UDM1_BUILD_DIR")}
+pytestmark = pytest.mark.skipif(not all(ENV.values()), reason="the tools' paths (UDM1_*_TOOL, UDM1_BENCH_*, "
+                                "UDM1_BUILD_DIR) are not set: run through CTest")
+
+
+def run(out, *extra, ao=None):
+    cmd = [sys.executable, str(ROOT / "tools" / "report" / "main_report.py"), "--quick", "--out", str(out),
+           "--build", ENV["UDM1_BUILD_DIR"], "--bench-samplers", ENV["UDM1_BENCH_SAMPLERS"],
+           "--bench-noise", ENV["UDM1_BENCH_NOISE"], "--noise", ENV["UDM1_NOISE_TOOL"],
+           "--ao", ao or ENV["UDM1_AO_TOOL"], "--pt", ENV["UDM1_PT_TOOL"], *extra]
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=900,
+                          env={**os.environ, "PYTHONPATH": str(ROOT / "python")})
+
+
+class Tables(HTMLParser):
+    """Every <table id=...> of a page as rows of cell texts, and every src/href."""
+
+    def __init__(self):
+        super().__init__()
+        self.tables, self.links, self.current, self.row, self.text = {}, [], None, None, None
+
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        for k in ("src", "href"):
+            if k in a:
+                self.links.append(a[k])
+        if tag == "table":
+            self.current = a.get("id")
+            self.tables[self.current] = []
+        elif tag == "tr" and self.current is not None:
+            self.row = []
+            self.tables[self.current].append(self.row)
+        elif tag in ("td", "th") and self.row is not None:
+            self.text = ""
+
+    def handle_endtag(self, tag):
+        if tag in ("td", "th") and self.text is not None:
+            self.row.append(self.text)
+            self.text = None
+        elif tag == "table":
+            self.current, self.row = None, None
+
+    def handle_data(self, data):
+        if self.text is not None:
+            self.text += data
+
+
+def parse(path: Path) -> Tables:
+    t = Tables()
+    t.feed(path.read_text())
+    return t
+
+
+def shown(value, fmt):
+    """The test's own statement of how a number must appear: None as '-', else Python's format()."""
+    if value is None:
+        return "-"
+    if fmt and isinstance(value, (int, float)) and not isinstance(value, bool):
+        return format(value, fmt)
+    return str(value)
+
+
+def check_page(out: Path) -> dict:
+    report = json.loads((out / "report.json").read_text())
+    page = parse(out / "index.html")
+    for link in page.links:  # every figure, page and table the index links exists
+        assert (out / link).exists(), link
+    md = (out / "report.md").read_text()
+    for tid, t in report["tables"].items():
+        rows = page.tables[tid]
+        assert rows[0] == [c[1] for c in t["columns"]], tid
+        assert len(rows) - 1 == len(t["rows"]), tid
+        for html_row, raw in zip(rows[1:], t["rows"]):  # the HTML numbers are the JSON numbers
+            assert html_row == [shown(raw.get(c[0]), c[2]) for c in t["columns"]], (tid, html_row, raw)
+            assert "| " + " | ".join(html_row) + " |" in md, (tid, html_row)  # and the Markdown's
+        with open(out / "csv" / f"{tid}.csv") as f:  # the CSV holds the same raw values
+            got = list(csv.DictReader(f))
+        assert len(got) == len(t["rows"])
+        for c in t["columns"]:
+            for g, raw in zip(got, t["rows"]):
+                v = raw.get(c[0])
+                if isinstance(v, float):
+                    assert float(g[c[0]]) == pytest.approx(v, rel=1e-12), (tid, c[0])
+                else:
+                    assert g[c[0]] == ("" if v is None else str(v)), (tid, c[0])
+    assert set(page.tables) == set(report["tables"])  # no table in the page that the JSON lacks
+    return report
+
+
+def test_main_report(tmp_path):
+    out = tmp_path / "report"
+    r = run(out)
+    assert r.returncode == 0, r.stderr[-3000:]
+    assert "[1/6 sequences]" in r.stderr and "[6/6 pt]" in r.stderr  # progress on the terminal
+    report = check_page(out)
+    assert {s: v["status"] for s, v in report["steps"].items()} == {s: "ok" for s in report["steps"]}
+    tables = report["tables"]
+
+    # every sampler a step ran is in every table made from it, with the step's own numbers
+    ao = json.loads((out / "ao.json").read_text())
+    fig6 = {row["sampler"]: row for row in ao["figure6"]}
+    assert {row["sampler"] for row in tables["ao"]["rows"]} == set(fig6) and len(fig6) == 19
+    for row in tables["ao"]["rows"]:
+        assert row["psnr"] == fig6[row["sampler"]]["psnr_mean"]
+    pt = json.loads((out / "pt.json").read_text())
+    fig = {row["sampler"]: row for row in pt["scenes"][0]["figure"]}
+    assert {row["sampler"] for row in tables["pt_s0"]["rows"]} == set(fig) and len(fig) == 9
+    for row in tables["pt_s0"]["rows"]:
+        assert row["psnr"] == fig[row["sampler"]]["psnr_mean"]
+        assert row["gain"] == pytest.approx(fig[row["sampler"]]["psnr_mean"] - fig["pcg32"]["psnr_mean"])
+    gains = tables["pt_gains"]["rows"]
+    assert [g["source"].split(",")[0] for g in gains] == ["paper", "paper", "ours"]
+    assert gains[0]["halton"] == pytest.approx(1.47, abs=0.005)  # the paper's Figure 8, Halton over PRNG
+    samplers = json.loads((out / "samplers.json").read_text())
+    assert {row["sampler"] for row in tables["integration"]["rows"]} == {r["sampler"] for r in samplers["error"]}
+    presets = {p.name for p in udm1.presets() if p.max_dimensions >= 2}  # every 2D-capable sampler
+    assert {row["sampler"] for row in tables["throughput"]["rows"] if row["d"] == 2} == presets | {"(memset)"}
+    assert any(row["anchor"].startswith("FastNoise") for row in tables["noise_speed"]["rows"])
+    claims = tables["claims"]["rows"]
+    assert {c["figure"] for c in claims} == {"6", "8", "10", "8, 10"}
+    assert all(c["verdict"].split(" ")[0] in ("holds", "tie", "fails", "partly") for c in claims)
+    assert set(report["figures"]) == {"speed_vs_error.png", "equal_time.png"}
+
+    # a second run reuses every finished step and gives the same tables
+    r = run(out)
+    assert r.returncode == 0, r.stderr[-3000:]
+    again = check_page(out)
+    assert {v["status"] for v in again["steps"].values()} == {"reused"}
+    assert {k: v for k, v in again["tables"].items() if k not in ("steps", "machine")} == \
+        {k: v for k, v in tables.items() if k not in ("steps", "machine")}
+
+    # a failing step is shown failed, with its error, and its stale numbers (ao.json is still there) are not shown
+    r = run(out, ao=str(tmp_path / "missing" / "udm1-ao"))
+    assert r.returncode == 1
+    failed = check_page(out)
+    assert failed["steps"]["ao"]["status"] == "failed" and "missing/udm1-ao" in failed["steps"]["ao"]["error"]
+    assert failed["failed"] == ["ao"] and (out / "ao.json").exists()
+    assert all(v["status"] == "reused" for s, v in failed["steps"].items() if s != "ao")
+    assert "ao" not in failed["tables"] and not any(c["figure"] == "6" for c in failed["tables"]["claims"]["rows"])
+    steps_row = next(row for row in parse(out / "index.html").tables["steps"] if row[0] == "ao")
+    assert steps_row[2] == "failed" and "missing/udm1-ao" in steps_row[4]
+    assert "This step failed" in (out / "index.html").read_text()
+
+    # an interrupted step (left "running") runs again; the failed one too; the others are reused
+    state = json.loads((out / "steps.json").read_text())
+    state["pt"]["status"] = "running"
+    (out / "steps.json").write_text(json.dumps(state))
+    r = run(out)
+    assert r.returncode == 0, r.stderr[-3000:]
+    final = check_page(out)
+    assert {s: v["status"] for s, v in final["steps"].items()} == {
+        "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "reused", "ao": "ok", "pt": "ok"}
+    assert "ao" in final["tables"]
+
+
+def test_bad_arguments(tmp_path):
+    r = run(tmp_path / "r", "--only", "sequences,nonsense")
+    assert r.returncode == 2 and "nonsense" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    r = run(blocker / "sub")
+    assert r.returncode == 1 and "cannot write" in r.stderr and len(r.stderr.strip().splitlines()) == 1

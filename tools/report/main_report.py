@@ -1,0 +1,390 @@
+"""The main report: speed against error for every sampler in every application, in one folder.
+
+Runs the report steps one after another, each a program of its own whose progress is shown on the
+terminal, and records what each did in OUT/steps.json:
+
+    sequences   point plots, discrepancy against N, the constant-set check, exactness (sequence_report.py)
+    samplers    integration RMSE against N and time, slopes, spectra, zone plates (sampler_report.py)
+    throughput  every sampler's values per second, bulk and per sample (udm1_bench_samplers throughput)
+    noise       the paper's Figures 2 and 3 (udm1-noise figures) and noise evaluations per second against
+                libnoise (udm1_bench_noise) and FastNoise Lite (bench_noise.py)
+    ao          the paper's Figure 6 with udm1-ao (ao_report.py)
+    pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
+
+then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
+the steps (a failed step is shown failed, with its error, and its numbers are not shown), the paper's
+claims from Figures 6, 8 and 10 next to ours with a verdict per claim, speed against error per
+application (tables and plots), and the machine, versions and commands. Every table of the index is also
+in OUT/report.json (raw numbers, with the format each cell is shown with) and OUT/csv/<table>.csv.
+
+Resumable: a step whose command, programs and scripts are unchanged since it last finished is reused
+(--fresh redoes everything); a failed or interrupted step runs again. Exit status 1 if a step failed.
+
+    python tools/report/main_report.py --build build --out report [--quick | --full]
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import hashlib
+import html
+import json
+import math
+import os
+import platform
+import re
+import shutil
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from report_common import inline, log, md_table, writable_folder  # noqa: E402
+import report_summary as summary  # noqa: E402
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parents[1]
+SHARED = ROOT.parent / "shared" / "scenes"
+
+
+@dataclass
+class Step:
+    name: str
+    title: str
+    commands: list[list[str]]            # run in order; a non-zero exit fails the step
+    outputs: list[str]                   # files (relative to OUT) the step leaves; all must exist to reuse it
+    page: str | None = None              # the step's own page, linked from the index
+    stdout: dict[int, str] = field(default_factory=dict)  # command index -> file (relative to OUT) for its stdout
+
+
+def plan(args, out: Path) -> list[Step]:
+    """The steps and their exact commands for this configuration."""
+    py, b = sys.executable, Path(args.build)
+    tools = {"bench_samplers": args.bench_samplers or str(b / "tools" / "udm1_bench_samplers"),
+             "bench_noise": args.bench_noise or str(b / "tools" / "udm1_bench_noise"),
+             "noise": args.noise or str(b / "noise" / "udm1-noise"),
+             "ao": args.ao or str(b / "ao" / "udm1-ao"),
+             "pt": args.pt or str(b / "pt" / "udm1-pt")}
+    q = ["--quick"] if args.quick else []
+    o = ["--out", str(out)]
+    seeds = "16" if args.full else "8"
+    reps = "4" if args.quick else ("64" if args.full else "32")
+    seconds = "0.01" if args.quick else ("0.5" if args.full else "0.1")
+    noise_reps = "1" if args.quick else "5"
+    ao = [py, str(HERE / "ao_report.py"), "--ao", tools["ao"], *o, *q]
+    if args.full:
+        ao += ["--size", "512x512", "--sweep-size", "256x256"]
+    pt = [py, str(HERE / "pt_report.py"), "--pt", tools["pt"], *o, *q] + (["--full"] if args.full else [])
+    return [
+        Step("sequences", "Sequences: points, discrepancy, constant-set check, exactness",
+             [[py, str(HERE / "sequence_report.py"), *o, "--seeds", seeds, *q]], ["sequences.json"], "sequences.html"),
+        Step("samplers", "Integration error against N and against time, every sampler",
+             [[py, str(HERE / "sampler_report.py"), "--bench", tools["bench_samplers"], *o, "--reps", reps, *q]],
+             ["samplers.json"], "samplers.html"),
+        Step("throughput", "Sampler throughput (values per second, one thread)",
+             [[tools["bench_samplers"], "throughput", "--seconds", seconds]], ["throughput.txt"],
+             stdout={0: "throughput.txt"}),
+        Step("noise", "Noise: the paper's Figures 2 and 3, evaluations per second",
+             [[tools["noise"], "figures", "-o", str(out / "noise")],
+              [tools["bench_noise"], "--reps", noise_reps],
+              [py, str(ROOT / "tools" / "bench_noise.py"), "--reps", noise_reps]],
+             ["noise/figures.md", "noise_libnoise.txt", "noise_fastnoise.txt"], "noise/figures.md",
+             stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
+        Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html"),
+        Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html"),
+    ]
+
+
+def file_digest(path: str) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def step_key(step: Step) -> str:
+    """What a step's result depends on: its commands, and the content of every program and script they name
+    (and of the report's shared module)."""
+    h = hashlib.sha256(json.dumps(step.commands).encode())
+    for cmd in step.commands:
+        for a in cmd:
+            if a != sys.executable and os.path.isfile(a) and not a.endswith((".json", ".txt")):
+                h.update(file_digest(a).encode())
+    h.update(file_digest(str(HERE / "report_common.py")).encode())
+    return h.hexdigest()
+
+
+def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) -> None:
+    """Run one command with its stderr shown as progress; its stdout goes to a file written under a temporary
+    name and renamed on success. Raises RuntimeError with the command's last error line on failure."""
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT / "python"),
+                                                                    os.environ.get("PYTHONPATH")]))}
+    target = out / stdout_name if stdout_name else None
+    tmp = target.with_name(target.name + ".tmp") if target else None
+    try:
+        with open(tmp, "w") if tmp else open(os.devnull, "w") as sink:
+            proc = subprocess.Popen(cmd, stdout=sink, stderr=subprocess.PIPE, text=True, env=env)
+    except OSError as exc:
+        raise RuntimeError(f"cannot run '{cmd[0]}': {exc.strerror}") from None
+    last = []
+    for line in proc.stderr:
+        line = line.rstrip()
+        if line:
+            print(f"  [{label}] {line.removeprefix('[report] ')}", file=sys.stderr, flush=True)
+            last = (last + [line])[-3:]
+    if proc.wait() != 0:
+        if tmp and tmp.exists():
+            tmp.unlink()
+        why = next((x for x in reversed(last) if not x.startswith("[report]")), last[-1] if last else "")
+        raise RuntimeError(f"{Path(cmd[1] if cmd[0] == sys.executable else cmd[0]).name} exited with status "
+                           f"{proc.returncode}" + (f": {why.removeprefix('[report] ')}" if why else ""))
+    if tmp:
+        tmp.replace(target)
+
+
+def run_steps(steps: list[Step], out: Path, args) -> dict:
+    state_path = out / "steps.json"
+    try:
+        previous = json.loads(state_path.read_text()) if state_path.exists() and not args.fresh else {}
+    except (OSError, ValueError):
+        previous = {}
+    state = {}
+    only = set(args.only.split(",")) if args.only else None
+    for k, step in enumerate(steps):
+        label = f"{k + 1}/{len(steps)} {step.name}"
+        key = step_key(step)
+        old = previous.get(step.name, {})
+        record = {"title": step.title, "commands": [" ".join(c) for c in step.commands], "key": key}
+        reusable = old.get("status") in ("ok", "reused") and old.get("key") == key and \
+            all((out / o).exists() for o in step.outputs)
+        if reusable:
+            log(f"[{label}] reused: unchanged since it finished at {old.get('finished')} ({old.get('seconds', 0):.0f} s)")
+            state[step.name] = {**record, "status": "reused", "seconds": old.get("seconds", 0.0), "error": "",
+                                "finished": old.get("finished")}
+            continue
+        if only is not None and step.name not in only:
+            log(f"[{label}] not run (not in --only, and no finished result to reuse)")
+            state[step.name] = {**record, "status": "not run", "seconds": 0.0, "error": ""}
+            continue
+        log(f"[{label}] {step.title}")
+        t0 = time.time()
+        state[step.name] = {**record, "status": "running", "seconds": 0.0, "error": ""}
+        # written before it runs, so that an interrupted step is not "ok" on the next run (later steps keep theirs)
+        state_path.write_text(json.dumps({**previous, **state}, indent=1))
+        try:
+            for i, cmd in enumerate(step.commands):
+                run_command(cmd, out, step.stdout.get(i), step.name)
+            missing = [o for o in step.outputs if not (out / o).exists()]
+            if missing:
+                raise RuntimeError(f"finished without writing {', '.join(missing)}")
+            status, error = "ok", ""
+        except RuntimeError as exc:
+            status, error = "failed", str(exc)
+        state[step.name].update(status=status, error=error, seconds=time.time() - t0,
+                                finished=time.strftime("%Y-%m-%d %H:%M:%S"))
+        log(f"[{label}] {status} in {time.time() - t0:.0f} s" + (f": {error}" if error else ""))
+        state_path.write_text(json.dumps({**previous, **state}, indent=1))
+    state_path.write_text(json.dumps(state, indent=1))
+    return state
+
+
+# ---- the index: blocks rendered to Markdown and HTML from the same data -------------------------------------
+
+def cell(value, fmt: str) -> str:
+    """How a value is shown: None as "-", numbers with their format, anything else as text."""
+    if value is None:
+        return "-"
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and fmt:
+        if isinstance(value, float) and not math.isfinite(value):
+            return str(value)
+        return format(value, fmt)
+    return str(value)
+
+
+class Document:
+    def __init__(self):
+        self.blocks: list[tuple] = []
+        self.tables: dict[str, dict] = {}
+
+    def heading(self, level: int, text: str, anchor: str = ""):
+        self.blocks.append(("h", level, text, anchor))
+
+    def para(self, text: str):
+        self.blocks.append(("p", text))
+
+    def image(self, src: str, alt: str):
+        self.blocks.append(("img", src, alt))
+
+    def table(self, tid: str, title: str, columns: list[tuple[str, str, str]], rows: list[dict]):
+        """columns: (key, label, format); the raw rows go to report.json and csv/<tid>.csv."""
+        self.tables[tid] = {"title": title, "columns": [list(c) for c in columns], "rows": rows}
+        self.blocks.append(("table", tid))
+
+    def markdown(self) -> str:
+        parts = []
+        for b in self.blocks:
+            if b[0] == "h":
+                parts.append("#" * b[1] + " " + b[2])
+            elif b[0] == "p":
+                parts.append(b[1])
+            elif b[0] == "img":
+                parts.append(f"![{b[2]}]({b[1]})")
+            else:
+                t = self.tables[b[1]]
+                parts.append(md_table([c[1] for c in t["columns"]],
+                                      [[cell(r.get(c[0]), c[2]) for c in t["columns"]] for r in t["rows"]])
+                             + f"\n\n[{b[1]}.csv](csv/{b[1]}.csv)")
+        return "\n\n".join(parts) + "\n"
+
+    def html(self, title: str) -> str:
+        body = []
+        for b in self.blocks:
+            if b[0] == "h":
+                anchor = f' id="{b[3]}"' if b[3] else ""
+                body.append(f"<h{b[1]}{anchor}>{inline(b[2])}</h{b[1]}>")
+            elif b[0] == "p":
+                body.append(f"<p>{inline(b[1])}</p>")
+            elif b[0] == "img":
+                body.append(f'<p><img alt="{html.escape(b[2])}" src="{html.escape(b[1])}"></p>')
+            else:
+                t = self.tables[b[1]]
+                head = "".join(f"<th>{html.escape(c[1])}</th>" for c in t["columns"])
+                rows = "".join("<tr>" + "".join(
+                    f"<td class='{cls(r.get(c[0]))}'>{html.escape(cell(r.get(c[0]), c[2]))}</td>" for c in t["columns"])
+                    + "</tr>" for r in t["rows"])
+                body.append(f'<table id="{b[1]}"><tr>{head}</tr>{rows}</table>'
+                            f'<p class="raw"><a href="csv/{b[1]}.csv">{b[1]}.csv</a></p>')
+        style = ("body{font-family:sans-serif;max-width:1150px;margin:auto;padding:1em}table{border-collapse:collapse}"
+                 "td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}img{max-width:100%}"
+                 "td.failed,td.fails{background:#fdd}td.ok,td.holds{background:#dfd}td.tie{background:#ffd}"
+                 ".raw{font-size:80%;margin-top:2px}")
+        return (f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
+                f"<style>{style}</style></head><body>{''.join(body)}</body></html>\n")
+
+
+def cls(value) -> str:
+    s = str(value).split(" ")[0] if isinstance(value, str) else ""
+    return s if s in ("failed", "fails", "ok", "holds", "tie", "reused") else ""
+
+
+def machine_info(build: Path) -> dict:
+    info = {"date": time.strftime("%Y-%m-%d %H:%M:%S %Z"), "platform": platform.platform(),
+            "python": platform.python_version(), "cores": os.cpu_count()}
+    try:
+        cpu = re.search(r"model name\s*:\s*(.*)", Path("/proc/cpuinfo").read_text())
+        info["cpu"] = cpu.group(1) if cpu else platform.processor()
+        mem = re.search(r"MemTotal:\s*(\d+)", Path("/proc/meminfo").read_text())
+        info["memory"] = f"{int(mem.group(1)) / 2**20:.1f} GiB" if mem else "?"
+    except OSError:
+        info["cpu"] = platform.processor()
+    try:
+        os_release = dict(re.findall(r'^(\w+)="?([^"\n]*)"?$', Path("/etc/os-release").read_text(), re.M))
+        info["os"] = os_release.get("PRETTY_NAME", "?")
+    except OSError:
+        pass
+    try:
+        cache = (build / "CMakeCache.txt").read_text()
+        compiler = re.search(r"CMAKE_CXX_COMPILER:[A-Z]+=(.*)", cache)
+        build_type = re.search(r"CMAKE_BUILD_TYPE:[A-Z]+=(.*)", cache)
+        if compiler:
+            info["compiler"] = subprocess.run([compiler.group(1), "--version"], capture_output=True,
+                                              text=True).stdout.splitlines()[0]
+        info["build type"] = build_type.group(1) if build_type else "?"
+    except (OSError, IndexError):
+        pass
+    try:
+        import udm1
+        info["udm1"] = udm1.version()
+    except Exception as exc:  # the library may be what failed to build or load
+        info["udm1"] = f"not loaded ({exc})"
+    for mod in ("numpy", "scipy", "matplotlib", "mitsuba"):
+        try:
+            info[mod] = __import__(mod).__version__
+        except Exception:
+            info[mod] = "not installed"
+    if shutil.which("dpkg-query"):
+        r = subprocess.run(["dpkg-query", "-W", "-f", "${Package} ${Version}\n", "libembree-dev",
+                            "libopenimageio-dev", "libtbb-dev", "libnoise-dev", "povray"],
+                           capture_output=True, text=True)
+        for line in r.stdout.splitlines():
+            name, _, version = line.partition(" ")
+            if version:
+                info[name] = version
+    if (ROOT / ".git").exists() and shutil.which("git"):
+        r = subprocess.run(["git", "-C", str(ROOT), "describe", "--always", "--dirty"], capture_output=True, text=True)
+        if r.returncode == 0:
+            info["git"] = r.stdout.strip()
+    return info
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--build", default=str(ROOT / "build"), help="the CMake build folder with the tools (default build)")
+    ap.add_argument("--out", default=str(ROOT / "report"), help="output folder (default report)")
+    size = ap.add_mutually_exclusive_group()
+    size.add_argument("--quick", action="store_true", help="tiny sizes, for tests (a minute or two)")
+    size.add_argument("--full", action="store_true", help="the shared pbrt-v4 scenes, larger sizes, more seeds")
+    ap.add_argument("--fresh", action="store_true", help="redo every step (default: reuse unchanged finished steps)")
+    ap.add_argument("--only", help="run only these steps (comma list); the others are reused if finished")
+    for tool in ("bench-samplers", "bench-noise", "noise", "ao", "pt"):
+        ap.add_argument(f"--{tool}", help=f"path of the {tool} program (default: found in --build)")
+    args = ap.parse_args(argv)
+    out = writable_folder(args.out, "main_report")
+    if out is None:
+        return 1
+    out = out.resolve()
+    (out / "noise").mkdir(exist_ok=True)  # udm1-noise figures writes into an existing folder
+    steps = plan(args, out)
+    if args.only:
+        unknown = [s for s in args.only.split(",") if s not in {st.name for st in steps}]
+        if unknown:
+            print(f"main_report: unknown step '{unknown[0]}' in --only (steps: "
+                  f"{', '.join(s.name for s in steps)})", file=sys.stderr)
+            return 2
+    t0 = time.time()
+    mode = "quick" if args.quick else ("full" if args.full else "default")
+    log(f"the main report ({mode} configuration) into {out}: {len(steps)} steps, progress below")
+    state = run_steps(steps, out, args)
+    log("writing index.html, report.md, report.json and csv/ from the steps' results")
+    doc = Document()
+    figures = summary.build(doc, out, steps, state, mode)
+    info = machine_info(Path(args.build))
+    doc.heading(2, "Machine, versions and commands", "machine")
+    doc.table("machine", "machine", [("key", "key", ""), ("value", "value", "")],
+              [{"key": k, "value": str(v)} for k, v in info.items()])
+    invoked = "python tools/report/main_report.py " + " ".join(argv if argv is not None else sys.argv[1:])
+    doc.para(f"This report: `{invoked.strip()}` (through `./run.sh`, the README's main job). Each step's commands "
+             "are in the steps table's JSON (report.json, \"steps\").")
+    csv_dir = out / "csv"
+    csv_dir.mkdir(exist_ok=True)
+    for tid, t in doc.tables.items():
+        with open(csv_dir / f"{tid}.csv", "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=[c[0] for c in t["columns"]], extrasaction="ignore")
+            w.writeheader()
+            w.writerows(t["rows"])
+    failed = [s for s, r in state.items() if r["status"] == "failed"]
+    report = {"mode": mode, "steps": state, "tables": doc.tables, "figures": figures, "machine": info,
+              "failed": failed, "seconds": time.time() - t0}
+    tmp = out / "report.json.tmp"
+    tmp.write_text(json.dumps(report, indent=1, default=str))
+    tmp.replace(out / "report.json")
+    (out / "report.md").write_text(doc.markdown())
+    (out / "index.html").write_text(doc.html("udm1 report"))
+    plt.close("all")
+    if failed:
+        log(f"done with {len(failed)} failed step(s): {', '.join(failed)}; see {out / 'index.html'}")
+        return 1
+    log(f"done in {time.time() - t0:.0f} s: open {out / 'index.html'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

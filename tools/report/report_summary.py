@@ -1,0 +1,416 @@
+"""The main report's content: tables and plots made from the steps' JSON and text outputs.
+
+`build(doc, out, steps, state, mode)` adds, in order: the steps table, the paper's claims with a verdict
+each, the paper's path-tracing numbers next to ours, the speed-against-error plots, and one section per
+application. A step that failed or did not run is shown as such, and none of its (possibly stale) numbers
+are read. Every sampler a step ran appears in each table made from that step.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from pt_report import NAMES as PT_NAMES, PAPER as PT_PAPER, compare  # noqa: E402
+from ao_report import PAPER_SET as AO_PAPER_SET  # noqa: E402
+
+WEYL = {"wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd"}
+ORDER = ["wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "pcg32", "drand48", "halton", "halton-owen",
+         "sobol", "sobol-owen", "hammersley", "lp", "cmj", "grps", "pmj02"]
+SMOOTH_2D, DISCONTINUOUS_2D, SMOOTH_8D = "gaussian", "disk", "genz-oscillatory"
+
+
+def style(sampler: str) -> dict:
+    cmap = plt.get_cmap("tab20")
+    k = ORDER.index(sampler) if sampler in ORDER else len(ORDER)
+    weyl = sampler in WEYL
+    return {"color": cmap(k % 20), "ls": "-" if weyl else "--", "lw": 1.8 if weyl else 1.1,
+            "marker": "o" if weyl else ".", "ms": 3, "label": sampler}
+
+
+def done(state: dict, name: str) -> bool:
+    return state.get(name, {}).get("status") in ("ok", "reused")
+
+
+def not_shown(doc, state: dict, name: str) -> bool:
+    """If the step did not finish, say so in its section (and return True: show none of its numbers)."""
+    if done(state, name):
+        return False
+    r = state.get(name, {})
+    status = r.get("status", "not run")
+    if status == "failed":
+        doc.para(f"**This step failed**: {r.get('error', '')}. Its numbers are not shown (any files an earlier run "
+                 "left are not read). Run `./run.sh` again to retry it; the finished steps are reused.")
+    else:
+        doc.para(f"**This step did not run** ({status}).")
+    return True
+
+
+def load(out: Path, name: str) -> dict:
+    return json.loads((out / name).read_text())
+
+
+# ---- the steps' text outputs ---------------------------------------------------------------------------------
+
+def parse_throughput(text: str) -> list[dict]:
+    rows = []
+    for line in text.splitlines()[1:]:
+        f = line.split()
+        if len(f) == 7:
+            rows.append({"sampler": f[0], "d": int(f[1]), "bulk": float(f[2]), "bulk_x_wr": float(f[3]),
+                         "per_sample": float(f[5]), "per_sample_x_wr": float(f[6])})
+        elif len(f) == 5 and f[0] == "(memset)":
+            rows.append({"sampler": "(memset)", "d": int(f[1]), "bulk": float(f[2]), "bulk_x_wr": float(f[3]),
+                         "per_sample": None, "per_sample_x_wr": None})
+    return rows
+
+
+def parse_libnoise(text: str) -> list[dict]:
+    """udm1_bench_noise: a 44-character name column, then evaluations per second and a ratio."""
+    rows, anchor = [], None
+    for line in text.splitlines():
+        m = re.match(r"^(.{44})\s+([0-9.e+-]+)\s+([0-9.]+)\s*$", line)
+        if not m:
+            continue
+        name = m.group(1).strip()
+        if name.startswith("image"):
+            anchor = "udm1 image, 1 thread"
+        elif anchor is None:
+            anchor = "libnoise GradientCoherentNoise3D"
+        rows.append({"method": name, "per_second": float(m.group(2)), "ratio": float(m.group(3)), "anchor": anchor})
+    return rows
+
+
+def parse_fastnoise(text: str) -> list[dict]:
+    rows = []
+    for line in text.splitlines():
+        m = re.match(r"^\s*(\d)\s+(.*?)\s+([0-9.e+-]+)\s+([0-9.]+)\s*$", line)
+        if m:
+            rows.append({"method": f"{m.group(2)} ({m.group(1)}D)", "per_second": float(m.group(3)),
+                         "ratio": float(m.group(4)), "anchor": f"FastNoise Lite Perlin {m.group(1)}D"})
+    return rows
+
+
+# ---- sections --------------------------------------------------------------------------------------------------
+
+def steps_section(doc, steps, state, mode: str):
+    doc.heading(1, "udm1 report: speed against error, every sampler, every application")
+    doc.para(f"Configuration: **{mode}**. Each step is a program of its own (commands in report.json); a step "
+             "whose inputs have not changed since it last finished is reused on the next run. Pages with every "
+             "detail: " + ", ".join(f"[{s.name}]({s.page})" for s in steps if s.page and done(state, s.name)) + ".")
+    doc.heading(2, "Steps", "steps")
+    rows = [{"step": s.name, "what": s.title, "status": state[s.name]["status"], "seconds": state[s.name]["seconds"],
+             "error": state[s.name].get("error") or ""} for s in steps]
+    doc.table("steps", "steps", [("step", "step", ""), ("what", "what", ""), ("status", "status", ""),
+                                 ("seconds", "time (s)", ".1f"), ("error", "error", "")], rows)
+
+
+def claims_section(doc, out: Path, state):
+    doc.heading(2, "The paper's claims next to ours", "claims")
+    doc.para("Each claim of the paper's Figures 6 (ambient occlusion, 64 spp), 8 (San Miguel) and 10 (the Crown), "
+             "checked on our scenes with mean PSNR over seeds: a difference within two standard errors of the "
+             "difference of the means (at least 0.05 dB) is a tie. Our scenes are not the paper's (the Crown has "
+             "its own report, docs/crown/), so a verdict says whether the claim carries over.")
+    rows = []
+    if done(state, "ao"):
+        ao = load(out, "ao.json")
+        for table, when in (("figure6", "equal spp"), ("equal_time", "equal time")):
+            fig = [r for r in ao[table] if r["sampler"] in AO_PAPER_SET]
+            ranked = sorted(fig, key=lambda r: -r["psnr_mean"])
+            rank = {r["sampler"]: k + 1 for k, r in enumerate(ranked)}
+            best_other = next(r for r in ranked if r["sampler"] != "episwr")
+            v = compare(fig, "episwr", best_other["sampler"])
+            rows.append({"figure": "6", "scene": f"AO, {when}", "claim": "EPISWR gives the best PSNR of the paper's "
+                         "11 AO samplers" + (" (the paper: at equal spp)" if when == "equal time" else ""),
+                         "paper": "first", "ours": f"rank {rank['episwr']}; against {best_other['sampler']}",
+                         "ours_db": next(r["psnr_mean"] for r in fig if r["sampler"] == "episwr") - best_other["psnr_mean"],
+                         "verdict": {"holds": "holds", "tie": "tie", "fails": "fails"}[v]})
+            last_two = {r["sampler"] for r in ranked[-2:]}
+            hs = {"halton", "sobol"} & last_two
+            rows.append({"figure": "6", "scene": f"AO, {when}", "claim": "Halton and Sobol are the poorest of the 11",
+                         "paper": "last two", "ours": f"Halton rank {rank['halton']}, Sobol rank {rank['sobol']} of "
+                         f"{len(fig)}", "ours_db": None,
+                         "verdict": "holds" if len(hs) == 2 else ("partly" if hs else "fails")})
+    if done(state, "pt"):
+        pt = load(out, "pt.json")
+        p8, p10 = PT_PAPER["Figure 8 (San Miguel)"], PT_PAPER["Figure 10 (Crown)"]
+        for sc in pt["scenes"]:
+            fig = sc["figure"]
+            p = {r["sampler"]: r["psnr_mean"] for r in fig}
+            scene = f"PT, {sc['title']}"
+            for w in ("wr", "wmmr", "hwmmr"):
+                rows.append({"figure": "8, 10", "scene": scene, "claim": f"{PT_NAMES[w]} beats PRNG",
+                             "paper": f"{p8[w] - p8['pcg32']:+.2f} / {p10[w] - p10['pcg32']:+.2f} dB",
+                             "ours": "", "ours_db": p[w] - p["pcg32"], "verdict": compare(fig, w, "pcg32")})
+            for w in ("wr", "wmmr", "hwmmr"):
+                for q in ("halton", "sobol"):
+                    v = compare(fig, w, q)
+                    rows.append({"figure": "8, 10", "scene": scene, "claim": f"{PT_NAMES[w]} matches or beats "
+                                 f"{PT_NAMES[q]}", "paper": f"{p8[w] - p8[q]:+.2f} / {p10[w] - p10[q]:+.2f} dB",
+                                 "ours": "", "ours_db": p[w] - p[q], "verdict": "holds (tie)" if v == "tie" else v})
+            six = [r for r in fig if r["sampler"] in p8]
+            for figname, claimed in (("8", "hwmmr"), ("10", "sobol")):
+                best_other = max((r for r in six if r["sampler"] != claimed), key=lambda r: r["psnr_mean"])
+                rows.append({"figure": figname, "scene": scene, "claim": f"{PT_NAMES[claimed]} is the best of the "
+                             "paper's six samplers", "paper": "best", "ours": f"against {PT_NAMES[best_other['sampler']]}",
+                             "ours_db": p[claimed] - best_other["psnr_mean"],
+                             "verdict": compare(six, claimed, best_other["sampler"])})
+    if not rows:
+        doc.para("**No claims checked**: the ao and pt steps did not finish (see the steps table).")
+        return
+    doc.table("claims", "the paper's claims", [
+        ("figure", "figure", ""), ("scene", "our scene", ""), ("claim", "claim", ""), ("paper", "paper (Fig. 8 / 10)", ""),
+        ("ours", "ours", ""), ("ours_db", "ours (dB)", "+.2f"), ("verdict", "verdict", "")], rows)
+    counts = {}
+    for r in rows:
+        key = r["verdict"].split(" ")[0]
+        counts[key] = counts.get(key, 0) + 1
+    doc.para("In all: " + ", ".join(f"{v} {k}" for k, v in sorted(counts.items())) + f" of {len(rows)} checks.")
+
+
+def pt_gains_section(doc, out: Path, state):
+    if not done(state, "pt"):
+        return
+    pt = load(out, "pt.json")
+    samplers = [r["sampler"] for r in pt["scenes"][0]["figure"]]
+    rows = []
+    for figname, vals in PT_PAPER.items():
+        rows.append({"source": f"paper, {figname}", "spp": 4096,
+                     **{s: (vals[s] - vals["pcg32"]) if s in vals else None for s in samplers}})
+    for sc in pt["scenes"]:
+        p = {r["sampler"]: r["psnr_mean"] for r in sc["figure"]}
+        rows.append({"source": f"ours, {sc['title']} ({sc['size']})", "spp": sc["spp"],
+                     **{s: p[s] - p["pcg32"] for s in samplers}})
+    doc.heading(3, "Path tracing: PSNR gain over PRNG at equal spp, the paper's figures and ours")
+    doc.table("pt_gains", "PSNR gain over PRNG (dB)", [("source", "source", ""), ("spp", "spp", "d")]
+              + [(s, PT_NAMES.get(s, s), "+.2f") for s in samplers], rows)
+
+
+def speed_error_plots(out: Path, state) -> list[str]:
+    """Error against time, one panel per application and scene; and equal-time gains over PRNG."""
+    panels = []
+    if done(state, "samplers"):
+        err = load(out, "samplers.json")["error"]
+        for integ in (SMOOTH_2D, DISCONTINUOUS_2D, SMOOTH_8D):
+            rs = [r for r in err if r["integrand"] == integ]
+            panels.append((f"integration: {integ} (d={rs[0]['d'] if rs else '?'})", "seconds per estimate (1 thread)",
+                           "relative RMSE", {s: sorted((r["seconds_per_estimate"], r["relative_rmse"]) for r in rs
+                                                       if r["sampler"] == s) for s in dict.fromkeys(r["sampler"] for r in rs)}))
+    if done(state, "ao"):
+        sw = load(out, "ao.json")["sweep"]
+        panels.append(("ambient occlusion (udm1-ao)", "render time (s, all cores)", "RMSE",
+                       {s: sorted((r["seconds"], r["rmse"]) for r in sw if r["sampler"] == s)
+                        for s in dict.fromkeys(r["sampler"] for r in sw)}))
+    if done(state, "pt"):
+        for sc in load(out, "pt.json")["scenes"]:
+            sw = sc["sweep"]
+            panels.append((f"path tracing: {sc['title']}", "render time (s, all cores)", "RMSE",
+                           {s: sorted((r["seconds"], r["rmse"]) for r in sw if r["sampler"] == s)
+                            for s in dict.fromkeys(r["sampler"] for r in sw)}))
+    names = []
+    if panels:
+        cols = min(3, len(panels))
+        nrows = math.ceil(len(panels) / cols)
+        fig, axes = plt.subplots(nrows, cols, figsize=(5.2 * cols, 4.2 * nrows), squeeze=False)
+        for ax in axes.ravel()[len(panels):]:
+            ax.axis("off")
+        for ax, (title, xl, yl, curves) in zip(axes.ravel(), panels):
+            for s, pts in curves.items():
+                ax.loglog([p[0] for p in pts], [p[1] for p in pts], **style(s))
+            ax.set_title(title, fontsize=9)
+            ax.set_xlabel(xl, fontsize=8)
+            ax.set_ylabel(yl, fontsize=8)
+            ax.tick_params(labelsize=7)
+            ax.grid(True, which="both", alpha=0.25)
+            ax.legend(fontsize=5.5, ncol=2)
+        fig.suptitle("Error against time: lower left is better (Weyl sets solid, the others dashed)", fontsize=11)
+        fig.tight_layout()
+        fig.savefig(out / "speed_vs_error.png", dpi=90)
+        plt.close(fig)
+        names.append("speed_vs_error.png")
+    bars = []
+    if done(state, "ao"):
+        eq = load(out, "ao.json")["equal_time"]
+        bars.append(("ambient occlusion", eq))
+    if done(state, "pt"):
+        for sc in load(out, "pt.json")["scenes"]:
+            bars.append((f"path tracing: {sc['title']}", sc["equal_time"]))
+    if bars:
+        fig, axes = plt.subplots(1, len(bars), figsize=(5.5 * len(bars), 4.2), squeeze=False)
+        for ax, (title, eq) in zip(axes.ravel(), bars):
+            base = next(r["psnr_mean"] for r in eq if r["sampler"] == "pcg32")
+            rs = sorted(eq, key=lambda r: -r["psnr_mean"])
+            ax.barh([r["sampler"] for r in rs], [r["psnr_mean"] - base for r in rs],
+                    color=[style(r["sampler"])["color"] for r in rs],
+                    edgecolor=["#a00" if r["sampler"] in WEYL else "none" for r in rs])
+            ax.invert_yaxis()
+            ax.axvline(0, color="k", lw=0.8)
+            ax.set_title(title, fontsize=9)
+            ax.set_xlabel("PSNR gain over PRNG at equal time (dB)", fontsize=8)
+            ax.tick_params(labelsize=7)
+        fig.suptitle("Equal time: every sampler given the same render time (Weyl sets outlined in red)", fontsize=10)
+        fig.tight_layout()
+        fig.savefig(out / "equal_time.png", dpi=90)
+        plt.close(fig)
+        names.append("equal_time.png")
+    return names
+
+
+def sequences_section(doc, out: Path, state):
+    doc.heading(2, "Sequences", "sequences")
+    if not_shown(doc, state, "sequences"):
+        return
+    data = load(out, "sequences.json")
+    big = max(r["n"] for r in data["discrepancy"])
+    doc.image("points_256.png", "points")
+    doc.para(f"Discrepancy of the 2D sets at n = {big}, mean over {data['seeds']} randomizations (CD and WD "
+             "squared, as scipy.stats.qmc.discrepancy); every N in [sequences](sequences.html).")
+    doc.table("discrepancy", "2D discrepancy", [("set", "set", ""), ("n", "n", "d"), ("CD", "CD", ".3g"),
+                                                 ("L2-star", "L2-star", ".3g"), ("WD", "WD", ".3g")],
+              [r for r in data["discrepancy"] if r["n"] == big])
+    doc.para("The constant-set check: the worst 2D projection of the many-dimensional sets against independent "
+             "random points (above 1: worse than random).")
+    doc.table("check", "worst 2D projection", [("preset", "set", ""), ("d", "d", "d"), ("n", "n", "d"),
+                                                ("worst_l2_star", "worst L2-star", ".3g"), ("ratio", "x random", ".2f")],
+              data["check"])
+
+
+def integration_section(doc, out: Path, state):
+    doc.heading(2, "Integration: error against N and against time", "integration")
+    if not_shown(doc, state, "samplers"):
+        return
+    data = load(out, "samplers.json")
+    err, slopes = data["error"], data["slopes"]
+    samplers = list(dict.fromkeys(r["sampler"] for r in err))
+    n_max = max(r["n"] for r in err if r["integrand"] == SMOOTH_2D)
+    at = {(r["sampler"], r["integrand"]): r for r in err if r["n"] == n_max}
+    rows = []
+    for s in samplers:
+        g, d, o = at.get((s, SMOOTH_2D)), at.get((s, DISCONTINUOUS_2D)), at.get((s, SMOOTH_8D))
+        rows.append({"sampler": s, "weyl": "yes" if s in WEYL else "",
+                     "slope_smooth": slopes.get(f"{s}|{SMOOTH_2D}"), "slope_disc": slopes.get(f"{s}|{DISCONTINUOUS_2D}"),
+                     "slope_8d": slopes.get(f"{s}|{SMOOTH_8D}"),
+                     "rel_smooth": g["relative_rmse"] if g else None, "rel_disc": d["relative_rmse"] if d else None,
+                     "rel_8d": o["relative_rmse"] if o else None,
+                     "us_smooth": g["seconds_per_estimate"] * 1e6 if g else None})
+    doc.para(f"Relative RMSE over {data['reps']} randomizations at N = {n_max} and the fitted slope of log RMSE "
+             f"against log N (N >= 256): {SMOOTH_2D} (smooth, 2D), {DISCONTINUOUS_2D} (discontinuous, 2D), "
+             f"{SMOOTH_8D} (smooth, 8D); time per estimate of N points, one thread. Thirteen integrands in "
+             "[samplers](samplers.html).")
+    doc.table("integration", "integration error", [
+        ("sampler", "sampler", ""), ("weyl", "Weyl", ""), ("slope_smooth", f"slope {SMOOTH_2D}", ".2f"),
+        ("slope_disc", f"slope {DISCONTINUOUS_2D}", ".2f"), ("slope_8d", f"slope {SMOOTH_8D}", ".2f"),
+        ("rel_smooth", f"rel. RMSE {SMOOTH_2D}", ".3g"), ("rel_disc", f"rel. RMSE {DISCONTINUOUS_2D}", ".3g"),
+        ("rel_8d", f"rel. RMSE {SMOOTH_8D}", ".3g"), ("us_smooth", "us per estimate", ".3g")], rows)
+    for key, when in (("verdicts", "equal N"), ("verdicts_equal_time", "equal time")):
+        v = data[key]
+        wins = sum(1 for r in v if "wins" in r[-1])
+        doc.para(f"At {when}, the best of the paper's sets beats the best baseline in {wins} of {len(v)} "
+                 "(integrand, N) cases.")
+
+
+def throughput_section(doc, out: Path, state):
+    doc.heading(2, "Sampler throughput", "throughput")
+    if not_shown(doc, state, "throughput"):
+        return
+    rows = parse_throughput((out / "throughput.txt").read_text())
+    doc.para("Values per second, one thread, bulk fill of 4096 points and one call per value, against WR and "
+             "memset (the write bandwidth) measured in the same run; `udm1_bench_samplers throughput`.")
+    doc.table("throughput", "throughput", [
+        ("sampler", "sampler", ""), ("d", "d", "d"), ("bulk", "bulk values/s", ".3g"), ("bulk_x_wr", "x WR", ".2f"),
+        ("per_sample", "per-sample values/s", ".3g"), ("per_sample_x_wr", "x WR", ".2f")], rows)
+
+
+def noise_section(doc, out: Path, state):
+    doc.heading(2, "Noise", "noise")
+    if not_shown(doc, state, "noise"):
+        return
+    doc.para("The paper's Figure 2 (noise) and Figure 3 (patterns): tables from WR (top) and drand48 (bottom); "
+             "[noise/figures.md](noise/figures.md).")
+    doc.image("noise/figure2.png", "Figure 2")
+    doc.image("noise/figure3.png", "Figure 3")
+    rows = parse_libnoise((out / "noise_libnoise.txt").read_text()) + \
+        parse_fastnoise((out / "noise_fastnoise.txt").read_text())
+    doc.para("Evaluations per second, each ratio against the anchor named in its row, measured in the same run "
+             "(udm1_bench_noise and tools/bench_noise.py).")
+    doc.table("noise_speed", "noise speed", [("method", "method", ""), ("per_second", "per second", ".3g"),
+                                             ("ratio", "ratio", ".2f"), ("anchor", "anchor", "")], rows)
+
+
+def ao_section(doc, out: Path, state):
+    doc.heading(2, "Ambient occlusion (udm1-ao)", "ao")
+    if not_shown(doc, state, "ao"):
+        return
+    ao = load(out, "ao.json")
+    eq = {r["sampler"]: r for r in ao["equal_time"]}
+    base = eq["pcg32"]["psnr_mean"]
+    fig = ao["figure6"]
+    spp = fig[0]["spp"]
+    rows = [{"sampler": r["sampler"], "paper": "yes" if r["paper_set"] else "", "psnr": r["psnr_mean"],
+             "sd": r["psnr_sd"], "ms": r["seconds"] * 1e3, "eq_spp": eq[r["sampler"]]["spp"],
+             "eq_psnr": eq[r["sampler"]]["psnr_mean"], "eq_gain": eq[r["sampler"]]["psnr_mean"] - base}
+            for r in sorted(fig, key=lambda r: -r["psnr_mean"])]
+    doc.para(f"Every sampler at {spp} spp against the reference (`{ao['reference']}`), mean PSNR over seeds, "
+             f"and at equal time (EPISWR's {spp}-spp time, {ao['budget_seconds'] * 1e3:.0f} ms); details in "
+             "[ao](ao.html).")
+    doc.table("ao", "ambient occlusion", [
+        ("sampler", "sampler", ""), ("paper", "paper's set", ""), ("psnr", f"PSNR at {spp} spp (dB)", ".2f"),
+        ("sd", "sd", ".2f"), ("ms", "time (ms)", ".1f"), ("eq_spp", "equal-time spp", "d"),
+        ("eq_psnr", "equal-time PSNR (dB)", ".2f"), ("eq_gain", "gain over PRNG (dB)", "+.2f")], rows)
+    doc.image("ao_figure6.png", "Figure 6")
+
+
+def pt_section(doc, out: Path, state):
+    doc.heading(2, "Path tracing (udm1-pt)", "pt")
+    if not_shown(doc, state, "pt"):
+        return
+    pt = load(out, "pt.json")
+    for k, sc in enumerate(pt["scenes"]):
+        eq = {r["sampler"]: r for r in sc["equal_time"]}
+        prng = next(r for r in sc["figure"] if r["sampler"] == "pcg32")
+        rows = [{"sampler": r["sampler"], "psnr": r["psnr_mean"], "sd": r["psnr_sd"],
+                 "gain": r["psnr_mean"] - prng["psnr_mean"], "seconds": r["seconds"],
+                 "eq_spp": eq[r["sampler"]]["spp"], "eq_psnr": eq[r["sampler"]]["psnr_mean"],
+                 "eq_gain": eq[r["sampler"]]["psnr_mean"] - eq["pcg32"]["psnr_mean"],
+                 "time_to": sc["time_to_target"].get(r["sampler"])}
+                for r in sorted(sc["figure"], key=lambda r: -r["psnr_mean"])]
+        doc.heading(3, f"{sc['title']}: {sc['size']}, {sc['spp']} spp, reference {sc['ref_spp']} spp")
+        doc.para(f"Mean PSNR over {sc['seeds']} seeds; equal time is PRNG's {sc['spp']}-spp time "
+                 f"({sc['budget_seconds']:.2f} s); \"time to PRNG's error\" is the time to reach the RMSE PRNG has at "
+                 f"{sc['target_spp']} spp in the sweep at {sc['sweep_size']} (empty: not reached).")
+        doc.table(f"pt_s{k}", sc["title"], [
+            ("sampler", "sampler", ""), ("psnr", f"PSNR at {sc['spp']} spp (dB)", ".2f"), ("sd", "sd", ".2f"),
+            ("gain", "gain over PRNG (dB)", "+.2f"), ("seconds", "time (s)", ".2f"), ("eq_spp", "equal-time spp", "d"),
+            ("eq_psnr", "equal-time PSNR (dB)", ".2f"), ("eq_gain", "equal-time gain (dB)", "+.2f"),
+            ("time_to", "time to PRNG's error (s)", ".3g")], rows)
+        doc.image(f"pt_s{k}_sheet.png", f"{sc['title']} contact sheet")
+    doc.para("Details, sweeps and verdicts per scene in [pt](pt.html).")
+
+
+def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
+    steps_section(doc, steps, state, mode)
+    claims_section(doc, out, state)
+    pt_gains_section(doc, out, state)
+    figures = speed_error_plots(out, state)
+    doc.heading(2, "Speed against error", "speed")
+    if figures:
+        doc.para("Error against time for each application (integration: one thread per estimate; renderers: all "
+                 "cores), and each sampler's PSNR gain over PRNG when every sampler gets the same time.")
+        for f in figures:
+            doc.image(f, f)
+    else:
+        doc.para("**No plots**: none of the samplers, ao and pt steps finished.")
+    sequences_section(doc, out, state)
+    integration_section(doc, out, state)
+    throughput_section(doc, out, state)
+    noise_section(doc, out, state)
+    ao_section(doc, out, state)
+    pt_section(doc, out, state)
+    return figures
