@@ -6,8 +6,8 @@ terminal, and records what each did in OUT/steps.json:
     sequences   point plots, discrepancy against N, the constant-set check, exactness (sequence_report.py)
     samplers    integration RMSE against N and time, slopes, spectra, zone plates (sampler_report.py)
     throughput  every sampler's values per second, bulk and per sample (udm1_bench_samplers throughput)
-    noise       the paper's Figures 2 and 3 (udm1-noise figures) and noise evaluations per second against
-                libnoise (udm1_bench_noise) and FastNoise Lite (bench_noise.py)
+    noise       the paper's Figures 2 and 3 (udm1-noise figures), noise evaluations per second against
+                libnoise (udm1_bench_noise) and FastNoise Lite (bench_noise.py), spectra (noise_report.py)
     ao          the paper's Figure 6 with udm1-ao (ao_report.py)
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
 
@@ -91,11 +91,12 @@ def plan(args, out: Path) -> list[Step]:
         Step("throughput", "Sampler throughput (values per second, one thread)",
              [[tools["bench_samplers"], "throughput", "--seconds", seconds]], ["throughput.txt"],
              stdout={0: "throughput.txt"}),
-        Step("noise", "Noise: the paper's Figures 2 and 3, evaluations per second",
+        Step("noise", "Noise: the paper's Figures 2 and 3, evaluations per second, spectra",
              [[tools["noise"], "figures", "-o", str(out / "noise")],
               [tools["bench_noise"], "--reps", noise_reps],
-              [py, str(ROOT / "tools" / "bench_noise.py"), "--reps", noise_reps]],
-             ["noise/figures.md", "noise_libnoise.txt", "noise_fastnoise.txt"], "noise/figures.md",
+              [py, str(ROOT / "tools" / "bench_noise.py"), "--reps", noise_reps],
+              [py, str(HERE / "noise_report.py"), *o, *q]],
+             ["noise/figures.md", "noise_libnoise.txt", "noise_fastnoise.txt", "noise_spectra.json"], "noise/figures.md",
              stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
         Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html"),
         Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html"),

@@ -193,6 +193,18 @@ def pt_gains_section(doc, out: Path, state):
               + [(s, PT_NAMES.get(s, s), "+.2f") for s in samplers], rows)
 
 
+def slope_guides(ax, curves: dict):
+    """Dotted guides error ~ time^-1/2 and time^-1 (time is proportional to N) through the slowest curve's start."""
+    pts = [p for c in curves.values() for p in c if p[0] > 0 and p[1] > 0]
+    if len(pts) < 2:
+        return
+    t0, t1 = min(p[0] for p in pts), max(p[0] for p in pts)
+    e0 = max(p[1] for p in pts if p[0] <= t0 * 1.5)
+    for k, lab in ((0.5, "t^-1/2"), (1.0, "t^-1")):
+        ax.loglog([t0, t1], [e0, e0 * (t1 / t0) ** -k], color="0.55", lw=0.8, ls=":", zorder=0)
+        ax.text(t1, e0 * (t1 / t0) ** -k, lab, fontsize=6, color="0.4")
+
+
 def speed_error_plots(out: Path, state) -> list[str]:
     """Error against time, one panel per application and scene; and equal-time gains over PRNG."""
     panels = []
@@ -224,13 +236,15 @@ def speed_error_plots(out: Path, state) -> list[str]:
         for ax, (title, xl, yl, curves) in zip(axes.ravel(), panels):
             for s, pts in curves.items():
                 ax.loglog([p[0] for p in pts], [p[1] for p in pts], **style(s))
+            slope_guides(ax, curves)
             ax.set_title(title, fontsize=9)
             ax.set_xlabel(xl, fontsize=8)
             ax.set_ylabel(yl, fontsize=8)
             ax.tick_params(labelsize=7)
             ax.grid(True, which="both", alpha=0.25)
             ax.legend(fontsize=5.5, ncol=2)
-        fig.suptitle("Error against time: lower left is better (Weyl sets solid, the others dashed)", fontsize=11)
+        fig.suptitle("Error against time: lower left is better (Weyl sets solid, the others dashed; dotted: "
+                     "slope guides, error ~ time^-1/2 and time^-1)", fontsize=11)
         fig.tight_layout()
         fig.savefig(out / "speed_vs_error.png", dpi=90)
         plt.close(fig)
@@ -277,6 +291,7 @@ def sequences_section(doc, out: Path, state):
               [r for r in data["discrepancy"] if r["n"] == big])
     doc.para("The constant-set check: the worst 2D projection of the many-dimensional sets against independent "
              "random points (above 1: worse than random).")
+    doc.image("discrepancy_CD.png", "CD discrepancy against n")
     doc.table("check", "worst 2D projection", [("preset", "set", ""), ("d", "d", "d"), ("n", "n", "d"),
                                                 ("worst_l2_star", "worst L2-star", ".3g"), ("ratio", "x random", ".2f")],
               data["check"])
@@ -309,6 +324,10 @@ def integration_section(doc, out: Path, state):
         ("slope_disc", f"slope {DISCONTINUOUS_2D}", ".2f"), ("slope_8d", f"slope {SMOOTH_8D}", ".2f"),
         ("rel_smooth", f"rel. RMSE {SMOOTH_2D}", ".3g"), ("rel_disc", f"rel. RMSE {DISCONTINUOUS_2D}", ".3g"),
         ("rel_8d", f"rel. RMSE {SMOOTH_8D}", ".3g"), ("us_smooth", "us per estimate", ".3g")], rows)
+    doc.image("samplers_rmse_2d.png", "integration RMSE against N, 2D")
+    doc.para("Each sampler's 2D points as a power spectrum (white noise = 0 on the log scale; a lattice shows as "
+             "isolated peaks):")
+    doc.image("samplers_spectra.png", "spectra")
     for key, when in (("verdicts", "equal N"), ("verdicts_equal_time", "equal time")):
         v = data[key]
         wins = sum(1 for r in v if "wins" in r[-1])
@@ -342,6 +361,14 @@ def noise_section(doc, out: Path, state):
              "(udm1_bench_noise and tools/bench_noise.py).")
     doc.table("noise_speed", "noise speed", [("method", "method", ""), ("per_second", "per second", ".3g"),
                                              ("ratio", "ratio", ".2f"), ("anchor", "anchor", "")], rows)
+    spec = load(out, "noise_spectra.json")
+    doc.para(f"Power spectra of improved noise ({spec['size']} x {spec['size']}, {spec['cell']} pixels per lattice "
+             f"cell) with tables from each source: the udm1 tables give the same band as random (drand48) tables, "
+             "without the peaks a lattice-like permutation would add. The table: the largest factor by which a "
+             "source's radial spectrum departs from the mean of the others between 0.05 and 2 cycles per cell.")
+    doc.image("noise_spectra.png", "noise spectra")
+    doc.table("noise_spectra", "noise spectra", [("source", "table source", ""), ("factor", "largest departure (x)", ".2f")],
+              [{"source": t, "factor": math.exp(v)} for t, v in spec["max_log_ratio_to_others"].items()])
 
 
 def ao_section(doc, out: Path, state):
@@ -391,6 +418,7 @@ def pt_section(doc, out: Path, state):
             ("eq_psnr", "equal-time PSNR (dB)", ".2f"), ("eq_gain", "equal-time gain (dB)", "+.2f"),
             ("time_to", "time to PRNG's error (s)", ".3g")], rows)
         doc.image(f"pt_s{k}_sheet.png", f"{sc['title']} contact sheet")
+        doc.image(f"pt_s{k}_sweep.png", f"{sc['title']}: error against spp and time")
     doc.para("Details, sweeps and verdicts per scene in [pt](pt.html).")
 
 
