@@ -10,6 +10,7 @@ terminal, and records what each did in OUT/steps.json:
                 libnoise (udm1_bench_noise) and FastNoise Lite (bench_noise.py), spectra (noise_report.py)
     ao          the paper's Figure 6 with udm1-ao (ao_report.py)
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
+    crown       with --full, where ../shared has it: the same protocol on the paper's Crown at 100 x 140
 
 then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
 the steps (a failed step is shown failed, with its error, and its numbers are not shown), the paper's
@@ -100,7 +101,20 @@ def plan(args, out: Path) -> list[Step]:
              stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
         Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html"),
         Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html"),
-    ]
+    ] + crown_step(args, py, tools["pt"], out)
+
+
+def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
+    """--full: the paper's Figure 10 scene itself, where ../shared has it."""
+    crown = SHARED / "crown" / "crown.pbrt"
+    if not args.full:
+        return []
+    if not crown.exists():
+        log(f"{crown} is absent: the Crown step is left out")
+        return []
+    return [Step("crown", "Path tracing: the Crown, the paper's Figure 10 scene (udm1-pt, 100 x 140)",
+                 [[py, str(HERE / "pt_report.py"), "--pt", pt, "--out", str(out / "crown"), "--scene", str(crown),
+                   "--size", "100x140", "--sweep-size", "50x70"]], ["crown/pt.json"], "crown/pt.html")]
 
 
 def file_digest(path: str) -> str:

@@ -57,6 +57,15 @@ def load(out: Path, name: str) -> dict:
     return json.loads((out / name).read_text())
 
 
+PT_STEPS = (("pt", ""), ("crown", "crown/"))  # the path tracing steps and the folder each writes into
+
+
+def pt_scenes(out: Path, state) -> list[tuple[str, str, dict]]:
+    """(step, folder prefix, scene result) for every scene of the path tracing steps that finished."""
+    return [(step, prefix, sc) for step, prefix in PT_STEPS if done(state, step)
+            for sc in load(out, prefix + "pt.json")["scenes"]]
+
+
 # ---- the steps' text outputs ---------------------------------------------------------------------------------
 
 def parse_throughput(text: str) -> list[dict]:
@@ -116,8 +125,9 @@ def claims_section(doc, out: Path, state):
     doc.heading(2, "The paper's claims next to ours", "claims")
     doc.para("Each claim of the paper's Figures 6 (ambient occlusion, 64 spp), 8 (San Miguel) and 10 (the Crown), "
              "checked on our scenes with mean PSNR over seeds: a difference within two standard errors of the "
-             "difference of the means (at least 0.05 dB) is a tie. Our scenes are not the paper's (the Crown has "
-             "its own report, docs/crown/), so a verdict says whether the claim carries over.")
+             "difference of the means (at least 0.05 dB) is a tie. Our scenes are not the paper's, so a verdict "
+             "says whether the claim carries over; `./run.sh --full` adds the Crown itself, Figure 10's scene "
+             "(docs/crown/ shows it).")
     rows = []
     if done(state, "ao"):
         ao = load(out, "ao.json")
@@ -138,10 +148,9 @@ def claims_section(doc, out: Path, state):
                          "paper": "last two", "ours": f"Halton rank {rank['halton']}, Sobol rank {rank['sobol']} of "
                          f"{len(fig)}", "ours_db": None,
                          "verdict": "holds" if len(hs) == 2 else ("partly" if hs else "fails")})
-    if done(state, "pt"):
-        pt = load(out, "pt.json")
+    if pt_scenes(out, state):
         p8, p10 = PT_PAPER["Figure 8 (San Miguel)"], PT_PAPER["Figure 10 (Crown)"]
-        for sc in pt["scenes"]:
+        for _, _, sc in pt_scenes(out, state):
             fig = sc["figure"]
             p = {r["sampler"]: r["psnr_mean"] for r in fig}
             scene = f"PT, {sc['title']}"
@@ -176,15 +185,15 @@ def claims_section(doc, out: Path, state):
 
 
 def pt_gains_section(doc, out: Path, state):
-    if not done(state, "pt"):
+    scenes = pt_scenes(out, state)
+    if not scenes:
         return
-    pt = load(out, "pt.json")
-    samplers = [r["sampler"] for r in pt["scenes"][0]["figure"]]
+    samplers = [r["sampler"] for r in scenes[0][2]["figure"]]
     rows = []
     for figname, vals in PT_PAPER.items():
         rows.append({"source": f"paper, {figname}", "spp": 4096,
                      **{s: (vals[s] - vals["pcg32"]) if s in vals else None for s in samplers}})
-    for sc in pt["scenes"]:
+    for _, _, sc in scenes:
         p = {r["sampler"]: r["psnr_mean"] for r in sc["figure"]}
         rows.append({"source": f"ours, {sc['title']} ({sc['size']})", "spp": sc["spp"],
                      **{s: p[s] - p["pcg32"] for s in samplers}})
@@ -220,12 +229,11 @@ def speed_error_plots(out: Path, state) -> list[str]:
         panels.append(("ambient occlusion (udm1-ao)", "render time (s, all cores)", "RMSE",
                        {s: sorted((r["seconds"], r["rmse"]) for r in sw if r["sampler"] == s)
                         for s in dict.fromkeys(r["sampler"] for r in sw)}))
-    if done(state, "pt"):
-        for sc in load(out, "pt.json")["scenes"]:
-            sw = sc["sweep"]
-            panels.append((f"path tracing: {sc['title']}", "render time (s, all cores)", "RMSE",
-                           {s: sorted((r["seconds"], r["rmse"]) for r in sw if r["sampler"] == s)
-                            for s in dict.fromkeys(r["sampler"] for r in sw)}))
+    for _, _, sc in pt_scenes(out, state):
+        sw = sc["sweep"]
+        panels.append((f"path tracing: {sc['title']}", "render time (s, all cores)", "RMSE",
+                       {s: sorted((r["seconds"], r["rmse"]) for r in sw if r["sampler"] == s)
+                        for s in dict.fromkeys(r["sampler"] for r in sw)}))
     names = []
     if panels:
         cols = min(3, len(panels))
@@ -253,9 +261,8 @@ def speed_error_plots(out: Path, state) -> list[str]:
     if done(state, "ao"):
         eq = load(out, "ao.json")["equal_time"]
         bars.append(("ambient occlusion", eq))
-    if done(state, "pt"):
-        for sc in load(out, "pt.json")["scenes"]:
-            bars.append((f"path tracing: {sc['title']}", sc["equal_time"]))
+    for _, _, sc in pt_scenes(out, state):
+        bars.append((f"path tracing: {sc['title']}", sc["equal_time"]))
     if bars:
         fig, axes = plt.subplots(1, len(bars), figsize=(5.5 * len(bars), 4.2), squeeze=False)
         for ax, (title, eq) in zip(axes.ravel(), bars):
@@ -394,12 +401,12 @@ def ao_section(doc, out: Path, state):
     doc.image("ao_figure6.png", "Figure 6")
 
 
-def pt_section(doc, out: Path, state):
-    doc.heading(2, "Path tracing (udm1-pt)", "pt")
-    if not_shown(doc, state, "pt"):
+def pt_section(doc, out: Path, state, step: str = "pt", prefix: str = ""):
+    title = "Path tracing (udm1-pt)" if step == "pt" else "Path tracing: the Crown, the paper's Figure 10 scene"
+    doc.heading(2, title, step)
+    if not_shown(doc, state, step):
         return
-    pt = load(out, "pt.json")
-    for k, sc in enumerate(pt["scenes"]):
+    for k, sc in enumerate(load(out, prefix + "pt.json")["scenes"]):
         eq = {r["sampler"]: r for r in sc["equal_time"]}
         prng = next(r for r in sc["figure"] if r["sampler"] == "pcg32")
         rows = [{"sampler": r["sampler"], "psnr": r["psnr_mean"], "sd": r["psnr_sd"],
@@ -412,14 +419,14 @@ def pt_section(doc, out: Path, state):
         doc.para(f"Mean PSNR over {sc['seeds']} seeds; equal time is PRNG's {sc['spp']}-spp time "
                  f"({sc['budget_seconds']:.2f} s); \"time to PRNG's error\" is the time to reach the RMSE PRNG has at "
                  f"{sc['target_spp']} spp in the sweep at {sc['sweep_size']} (empty: not reached).")
-        doc.table(f"pt_s{k}", sc["title"], [
+        doc.table(f"{step}_s{k}", sc["title"], [
             ("sampler", "sampler", ""), ("psnr", f"PSNR at {sc['spp']} spp (dB)", ".2f"), ("sd", "sd", ".2f"),
             ("gain", "gain over PRNG (dB)", "+.2f"), ("seconds", "time (s)", ".2f"), ("eq_spp", "equal-time spp", "d"),
             ("eq_psnr", "equal-time PSNR (dB)", ".2f"), ("eq_gain", "equal-time gain (dB)", "+.2f"),
             ("time_to", "time to PRNG's error (s)", ".3g")], rows)
-        doc.image(f"pt_s{k}_sheet.png", f"{sc['title']} contact sheet")
-        doc.image(f"pt_s{k}_sweep.png", f"{sc['title']}: error against spp and time")
-    doc.para("Details, sweeps and verdicts per scene in [pt](pt.html).")
+        doc.image(f"{prefix}pt_s{k}_sheet.png", f"{sc['title']} contact sheet")
+        doc.image(f"{prefix}pt_s{k}_sweep.png", f"{sc['title']}: error against spp and time")
+    doc.para(f"Details, sweeps and verdicts per scene in [{step}]({prefix}pt.html).")
 
 
 def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
@@ -441,4 +448,6 @@ def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
     noise_section(doc, out, state)
     ao_section(doc, out, state)
     pt_section(doc, out, state)
+    if "crown" in state:
+        pt_section(doc, out, state, "crown", "crown/")
     return figures
