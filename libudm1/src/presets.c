@@ -36,6 +36,19 @@ static const spec HWMMR[] = {PHI,        HALF_1_SQRT3, E_,          E2_,        
                              SQRT(17),   SQRT(293),    SQRT(47),    SQRT(2213), SQRT(67),   SQRT(4493),
                              SQRT(97),   SQRT(9413),   SQRT(167),   SQRT(27893), SQRT(193), SQRT(37253),
                              SQRT(277),  SQRT(76733),  SQRT(307),   SQRT(94253)};
+/* Beyond the paper: 64 square roots of primes chosen by udm1's greedy search so that the worst 2D
+ * projection stays close to random-shifted quality at every N from 32 to 4096 (wrap-around L2
+ * discrepancy, exact for Kronecker sets); made by
+ * tools/alpha_search.py --dims 64 --max-prime 16384 --n-min 32 --n-max 4096. */
+static const spec WOPT[] = {
+    SQRT(6761), SQRT(1999), SQRT(9677), SQRT(10369), SQRT(12011), SQRT(647), SQRT(9319), SQRT(3467),
+    SQRT(15299), SQRT(14197), SQRT(11393), SQRT(829), SQRT(10889), SQRT(12791), SQRT(8237), SQRT(4919),
+    SQRT(877), SQRT(15061), SQRT(14929), SQRT(15731), SQRT(14563), SQRT(16007), SQRT(15149), SQRT(4297),
+    SQRT(10949), SQRT(9883), SQRT(13597), SQRT(3371), SQRT(14827), SQRT(3613), SQRT(14923), SQRT(9839),
+    SQRT(73), SQRT(7867), SQRT(8527), SQRT(4999), SQRT(7433), SQRT(769), SQRT(16249), SQRT(8753),
+    SQRT(14369), SQRT(6607), SQRT(5749), SQRT(3797), SQRT(2749), SQRT(13397), SQRT(1693), SQRT(12301),
+    SQRT(11833), SQRT(8087), SQRT(9431), SQRT(1993), SQRT(1973), SQRT(6581), SQRT(5801), SQRT(641),
+    SQRT(3469), SQRT(2309), SQRT(9649), SQRT(12659), SQRT(15467), SQRT(1637), SQRT(6529), SQRT(10271)};
 static const spec GOLDEN[] = {PHI};
 static const spec EPISWR_WEYL[] = {SQRT(137)};
 
@@ -77,6 +90,7 @@ static udm1_status init_wgr(udm1_seq_t *seq) { return from_list(seq, WGR); }
 static udm1_status init_wmmr(udm1_seq_t *seq) { return from_list(seq, WMMR); }
 static udm1_status init_hwmmr(udm1_seq_t *seq) { return from_list(seq, HWMMR); }
 static udm1_status init_golden(udm1_seq_t *seq) { return from_list(seq, GOLDEN); }
+static udm1_status init_wopt(udm1_seq_t *seq) { return from_list(seq, WOPT); }
 
 static udm1_status init_rd(udm1_seq_t *seq)
 {
@@ -136,6 +150,9 @@ static const udm1_preset PRESETS[] = {
      POINT_SET | PAIRS, UDM1_MODE_STREAMS, udm1_init_grps},
     {"pmj02", "Progressive multi-jittered (0,2) (Christensen et al. 2018, Pharr 2019), in pairs", 64,
      POINT_SET | PAIRS, UDM1_MODE_PERMUTE, udm1_init_pmj02},
+    /* beyond the paper (appended: the indices of the presets above do not change) */
+    {"wopt", "Weyl set from udm1's search: 64 square roots of primes, worst 2D projection kept near random-shift "
+     "quality (tools/alpha_search.py)", COUNT(WOPT), 0, UDM1_MODE_SHIFT, init_wopt},
 };
 
 size_t udm1_preset_count(void) { return sizeof(PRESETS) / sizeof(PRESETS[0]); }

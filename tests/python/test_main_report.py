@@ -119,12 +119,12 @@ def test_main_report(tmp_path):
     # every sampler a step ran is in every table made from it, with the step's own numbers
     ao = json.loads((out / "ao.json").read_text())
     fig6 = {row["sampler"]: row for row in ao["figure6"]}
-    assert {row["sampler"] for row in tables["ao"]["rows"]} == set(fig6) and len(fig6) == 19
+    assert {row["sampler"] for row in tables["ao"]["rows"]} == set(fig6) and len(fig6) == 20
     for row in tables["ao"]["rows"]:
         assert row["psnr"] == fig6[row["sampler"]]["psnr_mean"]
     pt = json.loads((out / "pt.json").read_text())
     fig = {row["sampler"]: row for row in pt["scenes"][0]["figure"]}
-    assert {row["sampler"] for row in tables["pt_s0"]["rows"]} == set(fig) and len(fig) == 9
+    assert {row["sampler"] for row in tables["pt_s0"]["rows"]} == set(fig) and len(fig) == 10
     for row in tables["pt_s0"]["rows"]:
         assert row["psnr"] == fig[row["sampler"]]["psnr_mean"]
         assert row["gain"] == pytest.approx(fig[row["sampler"]]["psnr_mean"] - fig["pcg32"]["psnr_mean"])

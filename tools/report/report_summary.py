@@ -21,8 +21,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 from pt_report import NAMES as PT_NAMES, PAPER as PT_PAPER, compare  # noqa: E402
 from ao_report import PAPER_SET as AO_PAPER_SET  # noqa: E402
 
-WEYL = {"wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd"}
-ORDER = ["wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "pcg32", "drand48", "halton", "halton-owen",
+WEYL = {"wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "wopt"}
+ORDER = ["wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "wopt", "pcg32", "drand48", "halton", "halton-owen",
          "sobol", "sobol-owen", "hammersley", "lp", "cmj", "grps", "pmj02"]
 SMOOTH_2D, DISCONTINUOUS_2D, SMOOTH_8D = "gaussian", "disk", "genz-oscillatory"
 

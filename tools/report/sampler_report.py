@@ -35,16 +35,17 @@ from report_common import log, md_table, md_to_html, writable_folder  # noqa: E4
 PAPER = ["wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd"]
 BASELINES = ["pcg32", "drand48", "halton", "halton-owen", "sobol", "sobol-owen", "hammersley", "lp", "cmj", "grps",
              "pmj02"]
+BEYOND = ["wopt"]  # udm1's own sets beyond the paper: shown everywhere, not counted in the paper's verdicts
 SMOOTH = {"gaussian", "product-peak", "bilinear", "genz-oscillatory", "genz-product-peak", "genz-corner-peak",
           "genz-gaussian", "genz-continuous"}
 
 
 def style(name: str) -> dict:
     """Paper sets solid, baselines dashed; a stable colour per sampler."""
-    names = PAPER + BASELINES
+    names = PAPER + BASELINES + BEYOND
     cmap = plt.get_cmap("tab20")
     return {"color": cmap(names.index(name) % 20) if name in names else "k",
-            "linestyle": "-" if name in PAPER else "--", "marker": "o" if name in PAPER else "s", "ms": 3}
+            "linestyle": "-" if name in PAPER + BEYOND else "--", "marker": "o" if name in PAPER + BEYOND else "s", "ms": 3}
 
 
 def run_bench(bench: str, reps: int, quick: bool) -> list[dict]:
@@ -240,7 +241,7 @@ def main(argv=None) -> int:
                                "Genz families, d = 8: relative RMSE against time per estimate"),
     }
     log("discrepancy against N")
-    samplers_2d = [s for s in PAPER + BASELINES]
+    samplers_2d = [s for s in PAPER + BASELINES + BEYOND]
     disc_ns = [64, 256] if args.quick else [64, 256, 1024, 4096]
     disc = discrepancy_rows(samplers_2d, disc_ns, 2 if args.quick else 4)
     figs["disc"] = plot_discrepancy(disc, out)

@@ -129,7 +129,8 @@ def plot_discrepancy(out: Path, rows: list[dict], method: str) -> str:
 
 def check_table(ns: list[int]) -> list[dict]:
     rows = []
-    for preset, dims in [("wr", [8, 16, 22, 32]), ("wmmr", [8, 16, 22]), ("hwmmr", [8, 16, 22]), ("rd", [8, 16, 22, 32])]:
+    for preset, dims in [("wr", [8, 16, 22, 32, 64]), ("wmmr", [8, 16, 22]), ("hwmmr", [8, 16, 22]),
+                         ("rd", [8, 16, 22, 32, 64]), ("wopt", [8, 16, 22, 32, 64])]:
         for d in dims:
             seq = udm1.Sequence(preset, d, randomize=False)
             for n in ns:
