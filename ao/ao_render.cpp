@@ -130,6 +130,7 @@ udm1_seq *make_sampler(const Options &opt)
     d.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? opt.spp : 0;
     d.seed = opt.seed;
     d.randomize = opt.randomize;
+    if (opt.randomize == UDM1_RANDOMIZE_SCREEN) d.screen_spp = opt.spp;  // a pixel's segment of one sequence
     udm1_seq *s = nullptr;
     if (udm1_seq_create_desc(&d, &s) != UDM1_OK) throw std::runtime_error(udm1_last_error());
     return s;

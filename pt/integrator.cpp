@@ -182,6 +182,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     desc.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? opt.spp : 0;
     desc.seed = opt.seed;
     desc.randomize = opt.randomize;
+    if (opt.randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = opt.spp;  // the whole render's spp: ranges merge
     udm1_seq *seq = nullptr;
     if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
 

@@ -53,7 +53,7 @@ const char *USAGE =
     "  --spp N           samples per pixel of the whole render (default 16)\n"
     "  --spp-first F     render only sample indices [F, F + C) of it ...\n"
     "  --spp-count C     ... (merge joins such ranges; the merged image equals the whole render)\n"
-    "  --seed S          sampler seed (default 1)   --randomize none|default|shift|permute|owen\n"
+    "  --seed S          sampler seed (default 1)   --randomize none|default|shift|permute|owen|screen\n"
     "  --size WxH        image size (default: 256x256 for built-in scenes, else the scene's film)\n"
     "  --maxdepth D      maximum bounces (default: the scene's, pbrt's 5)\n"
     "  --strategy S      mis|nee|bsdf: light found by both (MIS), light sampling, or BSDF sampling\n"

@@ -9,6 +9,7 @@
  */
 #include "hash.h"
 #include "internal.h"
+#include "screen_shift.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -163,7 +164,7 @@ static udm1_status fill_generic(const char *fn, int kind, const udm1_seq *seq, u
     uint64_t stack_buf[CHUNK_VALUES];
     uint64_t *raw = ndims > CHUNK_VALUES ? malloc(sizeof(uint64_t) * ndims) : stack_buf;
     if (!raw) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %u dimensions", fn, ndims);
-    uint64_t skey = udm1_stream_key(seq->seed_key, stream);
+    uint64_t skey = udm1_seq_stream_key(seq, stream);
     for (size_t i0 = 0; i0 < count; i0 += rows) {
         size_t n = count - i0 < rows ? count - i0 : rows;
         if (seq->fill) {
@@ -214,7 +215,8 @@ static udm1_status fill(const char *fn, int kind, const udm1_seq *seq, uint64_t 
     if (seq->value) return fill_generic(fn, kind, seq, stream, first, count, dim0, ndims, out, stride);
 
     uint64_t lo[BLOCK], hi[BLOCK], inc_lo[BLOCK], inc_hi[BLOCK];
-    uint64_t skey = udm1_stream_key(seq->seed_key, stream);
+    uint64_t skey = udm1_seq_stream_key(seq, stream);
+    first = udm1_screen_index(seq, skey, first); /* a pixel's segment of one sequence in screen mode */
 
     for (uint32_t c0 = 0; c0 < ndims; c0 += BLOCK) {
         uint32_t cw = ndims - c0 < BLOCK ? ndims - c0 : BLOCK;
@@ -231,7 +233,7 @@ static udm1_status fill(const char *fn, int kind, const udm1_seq *seq, uint64_t 
             uint32_t dim = dim0 + c0 + jj;
             const udm1_generator *g = &seq->gen[dim];
             uint64_t o = seq->offset[dim];
-            if (seq->mode == UDM1_MODE_SHIFT) o += udm1_shift(skey, seq->dim_key[dim]);
+            o += udm1_weyl_shift(seq, skey, dim);
             /* increment P A (mod 2^128) */
             uint64_t phi, plo;
             udm1_mul64((uint64_t)rows_per_block, g->lo, &phi, &plo);

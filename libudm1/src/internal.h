@@ -40,7 +40,8 @@ enum udm1_mode {
     UDM1_MODE_SHIFT = 1,   /* add r_j modulo 1 (Cranley-Patterson) */
     UDM1_MODE_PERMUTE = 2, /* base 2: XOR with r_j; base b: a random permutation per digit */
     UDM1_MODE_OWEN = 3,    /* nested uniform (Owen) scrambling by hashing */
-    UDM1_MODE_STREAMS = 4  /* PRNGs: an independent stream per stream id, no transform */
+    UDM1_MODE_STREAMS = 4, /* PRNGs: an independent stream per stream id, no transform */
+    UDM1_MODE_SCREEN = 5   /* Weyl: a shift from the pixel's Morton index (screen_shift.h) */
 };
 
 typedef struct udm1_seq udm1_seq_t;
@@ -64,6 +65,7 @@ struct udm1_seq {
     uint64_t *offset;      /* dims base offsets o_j (0.64) */
     uint64_t *dim_key;     /* dims per-dimension hash keys K_j */
     void *data;            /* other kinds: their tables (freed with free()) */
+    uint64_t screen_spp;   /* UDM1_MODE_SCREEN: samples per pixel N (screen_shift.h) */
 };
 
 /* A noise's tables (noise.c); the patterns (patterns.c) read the wave sources. */

@@ -3,6 +3,7 @@
 #include "hash.h"
 #include "internal.h"
 #include "scramble.h"
+#include "screen_shift.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -75,6 +76,19 @@ udm1_status udm1_user_generator(const char *fn, uint32_t j, const udm1_alpha *a,
     return UDM1_OK;
 }
 
+/* UDM1_RANDOMIZE_SCREEN: Weyl sequences (not point sets) and a sample count per pixel (screen_shift.h). */
+static udm1_status screen_init(const char *fn, udm1_seq *seq, uint32_t spp)
+{
+    if (!seq->gen || seq->point_count)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                         "%s: UDM1_RANDOMIZE_SCREEN applies to Weyl sequences (not point sets), not '%s'", fn, seq->name);
+    if (spp == 0)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                         "%s: UDM1_RANDOMIZE_SCREEN needs desc.screen_spp, the samples per pixel (>= 1)", fn);
+    seq->screen_spp = spp;
+    return UDM1_OK;
+}
+
 udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
 {
     static const char fn[] = "udm1_seq_create";
@@ -85,8 +99,10 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
                          "%s: desc.struct_size %u is not a udm1_seq_desc size (call udm1_seq_desc_init)", fn,
                          desc->struct_size);
-    if (desc->reserved != 0) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.reserved must be 0", fn);
-    if (desc->randomize > UDM1_RANDOMIZE_OWEN)
+    if (desc->screen_spp != 0 && desc->randomize != UDM1_RANDOMIZE_SCREEN)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.screen_spp %u is for UDM1_RANDOMIZE_SCREEN only", fn,
+                         desc->screen_spp);
+    if (desc->randomize > UDM1_RANDOMIZE_SCREEN)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.randomize %u is not a udm1_randomize", fn,
                          desc->randomize);
     uint32_t dims = desc->dimensions;
@@ -134,7 +150,8 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
         if (desc->offsets) seq->offset[j] = desc->offsets[j];
         seq->dim_key[j] = udm1_dim_key(seq->seed_key, j);
     }
-    static const uint32_t modes[] = {UDM1_MODE_NONE, 0, UDM1_MODE_SHIFT, UDM1_MODE_PERMUTE, UDM1_MODE_OWEN};
+    static const uint32_t modes[] = {UDM1_MODE_NONE, 0, UDM1_MODE_SHIFT, UDM1_MODE_PERMUTE, UDM1_MODE_OWEN,
+                                     UDM1_MODE_SCREEN};
     uint32_t default_mode = preset ? preset->default_mode : UDM1_MODE_SHIFT;
     seq->mode = desc->randomize == UDM1_RANDOMIZE_DEFAULT ? default_mode : modes[desc->randomize];
 
@@ -149,12 +166,14 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
         for (uint32_t j = 0; j < dims && st == UDM1_OK; ++j)
             st = udm1_user_generator(fn, j, &desc->alphas[j], &seq->gen[j], 0);
     }
+    if (st == UDM1_OK && seq->mode == UDM1_MODE_SCREEN) st = screen_init(fn, seq, desc->screen_spp);
     if (st != UDM1_OK) {
         udm1_seq_destroy(seq);
         return st;
     }
     /* Weyl sequences take the inline path for no randomization and shifts */
-    if (seq->gen && seq->mode != UDM1_MODE_NONE && seq->mode != UDM1_MODE_SHIFT) seq->value = udm1_weyl_value;
+    if (seq->gen && seq->mode != UDM1_MODE_NONE && seq->mode != UDM1_MODE_SHIFT && seq->mode != UDM1_MODE_SCREEN)
+        seq->value = udm1_weyl_value;
     *out = seq;
     return UDM1_OK;
 }
@@ -192,7 +211,7 @@ uint32_t udm1_seq_randomize(const udm1_seq *seq) { return seq ? seq->randomize :
 uint32_t udm1_seq_randomization(const udm1_seq *seq)
 {
     static const uint32_t asked[] = {UDM1_RANDOMIZE_NONE, UDM1_RANDOMIZE_SHIFT, UDM1_RANDOMIZE_PERMUTE,
-                                     UDM1_RANDOMIZE_OWEN, UDM1_RANDOMIZE_DEFAULT};
+                                     UDM1_RANDOMIZE_OWEN, UDM1_RANDOMIZE_DEFAULT, UDM1_RANDOMIZE_SCREEN};
     return seq ? asked[seq->mode] : 0;
 }
 
@@ -220,15 +239,14 @@ udm1_status udm1_seq_alpha(const udm1_seq *seq, uint32_t dim, uint64_t *hi, uint
 static inline uint64_t total_offset(const udm1_seq *seq, uint64_t stream_key, uint32_t dim)
 {
     uint64_t o = seq->offset[dim];
-    if (seq->mode == UDM1_MODE_SHIFT) o += udm1_shift(stream_key, seq->dim_key[dim]);
-    return o;
+    return o + udm1_weyl_shift(seq, stream_key, dim);
 }
 
 /* The value of (stream key, index, dim < D) for any kind. */
 static inline uint64_t value_of(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
     if (seq->value) return seq->value(seq, skey, index, dim);
-    return udm1_weyl_raw(&seq->gen[dim], total_offset(seq, skey, dim), index);
+    return udm1_weyl_raw(&seq->gen[dim], total_offset(seq, skey, dim), udm1_screen_index(seq, skey, index));
 }
 
 uint64_t udm1_weyl_value(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)
@@ -244,7 +262,10 @@ udm1_status udm1_seq_offset(const udm1_seq *seq, uint64_t stream, uint32_t dim, 
         return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_offset: dimension %u of a %u-dimensional sequence", dim,
                          seq->dims);
     uint64_t o = seq->offset[dim];
-    if (seq->mode != UDM1_MODE_NONE) o += udm1_shift(udm1_stream_key(seq->seed_key, stream), seq->dim_key[dim]);
+    if (seq->mode == UDM1_MODE_SCREEN)
+        o += udm1_weyl_shift(seq, udm1_seq_stream_key(seq, stream), dim);
+    else if (seq->mode != UDM1_MODE_NONE)
+        o += udm1_shift(udm1_stream_key(seq->seed_key, stream), seq->dim_key[dim]);
     *offset = o;
     return UDM1_OK;
 }
@@ -258,7 +279,7 @@ static udm1_status sample_raw(const char *fn, const udm1_seq *seq, uint64_t stre
     if (seq->point_count && index >= seq->point_count)
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn,
                          (unsigned long long)index, (unsigned long long)seq->point_count);
-    *raw = value_of(seq, udm1_stream_key(seq->seed_key, stream), index, dim);
+    *raw = value_of(seq, udm1_seq_stream_key(seq, stream), index, dim);
     return UDM1_OK;
 }
 
@@ -299,7 +320,7 @@ udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t
     cursor->seq = seq;
     cursor->stream = stream;
     cursor->index = index;
-    cursor->key = udm1_stream_key(seq->seed_key, stream);
+    cursor->key = udm1_seq_stream_key(seq, stream);
     cursor->dimension = first_dimension;
     cursor->padded = 0;
     return UDM1_OK;

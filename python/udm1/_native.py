@@ -35,7 +35,7 @@ class SeqDesc(ctypes.Structure):
         ("point_count", ctypes.c_uint64),
         ("seed", ctypes.c_uint64),
         ("randomize", ctypes.c_uint32),
-        ("reserved", ctypes.c_uint32),
+        ("screen_spp", ctypes.c_uint32),
     ]
 
 

@@ -12,7 +12,7 @@ from . import _native
 from ._native import lib
 
 ALPHA_SQRT, ALPHA_FIXED, ALPHA_DOUBLE = 1, 2, 3
-RANDOMIZE = {"none": 0, "default": 1, "shift": 2, "permute": 3, "owen": 4}
+RANDOMIZE = {"none": 0, "default": 1, "shift": 2, "permute": 3, "owen": 4, "screen": 5}
 
 
 class UDM1Error(ValueError):
@@ -100,7 +100,10 @@ class Sequence:
     ``Sequence("wr", 8, seed=7)``: a preset with a random shift per stream.
     ``Sequence("wr", 8, randomize=False)``: the deterministic sequence.
     ``randomize`` is True (the preset's default), False, or one of "shift",
-    "permute", "owen" (see udm1.h).
+    "permute", "owen", "screen" (see udm1.h).
+    ``Sequence("wr", 2, seed=1, randomize="screen", screen_spp=16)``: screen-space
+    decorrelation: with stream ``(y << 32) | x``, pixel (x, y) takes points
+    ``m * 16 + n`` of one shifted sequence, m its Morton index (blue-noise error).
     ``Sequence(alphas=[udm1.Sqrt(2), udm1.Sqrt(13)])``: your own generators.
     ``Sequence("episwr", 2, point_count=64, seed=1)``: a point set of K points.
 
@@ -109,7 +112,7 @@ class Sequence:
     """
 
     def __init__(self, preset: str | None = None, d: int | None = None, *, alphas=None, point_count: int = 0,
-                 seed: int = 0, randomize: bool = True, offsets=None):
+                 seed: int = 0, randomize: bool = True, offsets=None, screen_spp: int = 0):
         self._handle = None
         if (preset is None) == (alphas is None):
             raise ValueError("udm1.Sequence: give either a preset name or alphas")
@@ -129,6 +132,9 @@ class Sequence:
         desc.point_count = int(point_count)
         desc.seed = int(seed) % (1 << 64)
         desc.randomize = _randomize_code(randomize)
+        if not (0 <= int(screen_spp) < 1 << 32):
+            raise UDM1Error(3, f"udm1.Sequence: screen_spp {screen_spp} out of range")
+        desc.screen_spp = int(screen_spp)
         keep = []
         if preset is not None:
             desc.preset = str(preset).encode()
@@ -189,7 +195,7 @@ class Sequence:
 
     @property
     def randomization(self) -> str:
-        """The randomization applied ("none", "shift", "permute", "owen"; "default" for PRNG streams)."""
+        """The randomization applied ("none", "shift", "permute", "owen", "screen"; "default" for PRNG streams)."""
         code = lib.udm1_seq_randomization(self.handle)
         return [k for k, v in RANDOMIZE.items() if v == code][0]
 

@@ -93,13 +93,27 @@ static void test_create_errors(void)
     udm1_seq_desc_init(&d);
     d.dimensions = 2;
     d.preset = "wr";
-    d.randomize = UDM1_RANDOMIZE_OWEN + 1;
+    d.randomize = UDM1_RANDOMIZE_SCREEN + 1;
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
     CHECK(mentions("randomize"));
     d.randomize = UDM1_RANDOMIZE_NONE;
-    d.reserved = 1;
+    d.screen_spp = 1; /* only with UDM1_RANDOMIZE_SCREEN */
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
-    d.reserved = 0;
+    CHECK(mentions("screen_spp"));
+    d.randomize = UDM1_RANDOMIZE_SCREEN; /* which needs it */
+    d.screen_spp = 0;
+    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
+    CHECK(mentions("screen_spp"));
+    d.preset = "sobol"; /* and a Weyl sequence */
+    d.screen_spp = 16;
+    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
+    CHECK(mentions("Weyl"));
+    d.preset = "wr";
+    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_OK);
+    CHECK(udm1_seq_randomization(s) == UDM1_RANDOMIZE_SCREEN);
+    udm1_seq_destroy(s);
+    d.randomize = UDM1_RANDOMIZE_NONE;
+    d.screen_spp = 0;
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_OK);
     CHECK(udm1_seq_randomize(s) == UDM1_RANDOMIZE_NONE);
     udm1_seq_destroy(s);

@@ -111,7 +111,7 @@ def test_main_report(tmp_path):
     out = tmp_path / "report"
     r = run(out)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert "[1/6 sequences]" in r.stderr and "[6/6 pt]" in r.stderr  # progress on the terminal
+    assert "[1/7 sequences]" in r.stderr and "[7/7 screen]" in r.stderr  # progress on the terminal
     report = check_page(out)
     assert {s: v["status"] for s, v in report["steps"].items()} == {s: "ok" for s in report["steps"]}
     tables = report["tables"]
@@ -136,6 +136,8 @@ def test_main_report(tmp_path):
     presets = {p.name for p in udm1.presets() if p.max_dimensions >= 2}  # every 2D-capable sampler
     assert {row["sampler"] for row in tables["throughput"]["rows"] if row["d"] == 2} == presets | {"(memset)"}
     assert any(row["anchor"].startswith("FastNoise") for row in tables["noise_speed"]["rows"])
+    screen = json.loads((out / "screen.json").read_text())["rows"]
+    assert tables["screen"]["rows"] == screen and {r["randomize"] for r in screen} == {"shift", "screen", "default"}
     claims = tables["claims"]["rows"]
     assert {c["figure"] for c in claims} == {"6", "8", "10", "8, 10"}
     assert all(c["verdict"].split(" ")[0] in ("holds", "tie", "fails", "partly") for c in claims)
@@ -154,8 +156,8 @@ def test_main_report(tmp_path):
     assert r.returncode == 1
     failed = check_page(out)
     assert failed["steps"]["ao"]["status"] == "failed" and "missing/udm1-ao" in failed["steps"]["ao"]["error"]
-    assert failed["failed"] == ["ao"] and (out / "ao.json").exists()
-    assert all(v["status"] == "reused" for s, v in failed["steps"].items() if s != "ao")
+    assert failed["failed"] == ["ao", "screen"] and (out / "ao.json").exists()  # the screen step runs udm1-ao too
+    assert all(v["status"] == "reused" for s, v in failed["steps"].items() if s not in ("ao", "screen"))
     assert "ao" not in failed["tables"] and not any(c["figure"] == "6" for c in failed["tables"]["claims"]["rows"])
     steps_row = next(row for row in parse(out / "index.html").tables["steps"] if row[0] == "ao")
     assert steps_row[2] == "failed" and "missing/udm1-ao" in steps_row[4]
@@ -169,7 +171,8 @@ def test_main_report(tmp_path):
     assert r.returncode == 0, r.stderr[-3000:]
     final = check_page(out)
     assert {s: v["status"] for s, v in final["steps"].items()} == {
-        "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "reused", "ao": "ok", "pt": "ok"}
+        "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "reused", "ao": "ok", "pt": "ok",
+        "screen": "ok"}
     assert "ao" in final["tables"]
 
 

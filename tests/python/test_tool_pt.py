@@ -71,8 +71,9 @@ def test_furnace_through_the_tool(scene, tmp_path):
         assert np.all(np.abs(mean_of(r) - 2.0) < 0.02), (strategy, r.stdout)
 
 
-def test_identical_across_runs_threads_and_ranges(tmp_path):
-    common = ["--sampler", "wmmr", "--spp", "12", "--size", "40x30"]
+@pytest.mark.parametrize("randomize", ["default", "screen"])
+def test_identical_across_runs_threads_and_ranges(tmp_path, randomize):
+    common = ["--sampler", "wmmr", "--spp", "12", "--size", "40x30", "--randomize", randomize]
     outs = []
     for threads in ("1", "2", "8"):
         out = tmp_path / f"t{threads}.exr"
@@ -448,3 +449,12 @@ def test_sweep_against_a_reference(tmp_path):
         e4, e16 = (float(x[6]) for x in rows[1:] if x[0] == s)
         assert e16 < e4, (s, e4, e16)  # more samples, less error
     assert (tmp_path / "wmmr-16spp.png").exists()
+
+
+def test_screen_randomization_needs_a_weyl_sequence(tmp_path):
+    for sampler in ("sobol-owen", "pmj02"):
+        r = run("--sampler", sampler, "--randomize", "screen", "--spp", "4", "--size", "8x8", "-o", str(tmp_path / "x.exr"))
+        assert r.returncode != 0 and "Weyl" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+        assert not (tmp_path / "x.exr").exists()
+    r = run("--randomize", "blue", "-o", str(tmp_path / "x.exr"))
+    assert r.returncode != 0 and "screen" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr

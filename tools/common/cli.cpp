@@ -40,7 +40,8 @@ uint32_t parse_randomize(const std::string &text)
     if (text == "shift") return UDM1_RANDOMIZE_SHIFT;
     if (text == "permute") return UDM1_RANDOMIZE_PERMUTE;
     if (text == "owen") return UDM1_RANDOMIZE_OWEN;
-    throw Error("--randomize '" + text + "' is not one of none, default, shift, permute, owen");
+    if (text == "screen") return UDM1_RANDOMIZE_SCREEN;
+    throw Error("--randomize '" + text + "' is not one of none, default, shift, permute, owen, screen");
 }
 
 std::vector<std::string> parse_list(const std::string &text, const std::string &flag)

@@ -21,7 +21,7 @@ struct Error : std::runtime_error {
 uint64_t parse_u64(const std::string &text, const std::string &what, uint64_t lo, uint64_t hi);
 double parse_double(const std::string &text, const std::string &what, double lo, double hi);
 
-// udm1_randomize from "none", "default", "shift", "permute", "owen".
+// udm1_randomize from "none", "default", "shift", "permute", "owen", "screen".
 uint32_t parse_randomize(const std::string &text);
 
 // "a,b,c" as its items; an empty item is an Error naming `flag`.

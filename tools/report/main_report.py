@@ -10,6 +10,7 @@ terminal, and records what each did in OUT/steps.json:
                 libnoise (udm1_bench_noise) and FastNoise Lite (bench_noise.py), spectra (noise_report.py)
     ao          the paper's Figure 6 with udm1-ao (ao_report.py)
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
+    screen      beyond the paper: blue-noise error from screen-space decorrelation (screen_report.py)
     crown       with --full, where ../shared has it: the same protocol on the paper's Crown at 100 x 140
 
 then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
@@ -101,6 +102,9 @@ def plan(args, out: Path) -> list[Step]:
              stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
         Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html"),
         Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html"),
+        Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
+             [[py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]], ["screen.json"],
+             "screen.html"),
     ] + crown_step(args, py, tools["pt"], out)
 
 

@@ -429,6 +429,25 @@ def pt_section(doc, out: Path, state, step: str = "pt", prefix: str = ""):
     doc.para(f"Details, sweeps and verdicts per scene in [{step}]({prefix}pt.html).")
 
 
+def beyond_section(doc, out: Path, state):
+    doc.heading(2, "Beyond the paper", "beyond")
+    doc.para("**wopt**, udm1's searched set (tools/alpha_search.py: 64 square roots of primes chosen greedily to keep "
+             "every 2D projection near random-shift quality), appears in every table above; its worst 2D projection "
+             "is in the constant-set check (sequences) beside WR, WMMR, HWMMR and R_d.")
+    doc.para("**Screen-space decorrelation** (`--randomize screen`): pixel (x, y) takes the samples m N .. m N + N - 1 "
+             "of one randomly shifted sequence, m its Morton index. The low-frequency share of the error image's "
+             "energy (1 = white noise, lower = blue noise) against the usual per-pixel shift, with the RMSE, which "
+             "is what equal time compares (the cost is the same).")
+    if not_shown(doc, state, "screen"):
+        return
+    rows = load(out, "screen.json")["rows"]
+    doc.table("screen", "screen-space decorrelation", [
+        ("app", "app", ""), ("sampler", "sampler", ""), ("randomize", "randomization", ""), ("spp", "spp", "d"),
+        ("rmse", "RMSE", ".4g"), ("low_share", "low-frequency share", ".2f"), ("seconds", "time (s)", ".3f")], rows)
+    doc.image("screen_errors.png", "error images")
+    doc.image("screen_spectra.png", "error spectra")
+
+
 def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
     steps_section(doc, steps, state, mode)
     claims_section(doc, out, state)
@@ -448,6 +467,7 @@ def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
     noise_section(doc, out, state)
     ao_section(doc, out, state)
     pt_section(doc, out, state)
+    beyond_section(doc, out, state)
     if "crown" in state:
         pt_section(doc, out, state, "crown", "crown/")
     return figures
