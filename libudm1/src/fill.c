@@ -169,6 +169,8 @@ static udm1_status fill_generic(const char *fn, int kind, const udm1_seq *seq, u
         size_t n = count - i0 < rows ? count - i0 : rows;
         if (seq->fill) {
             seq->fill(seq, skey, first + i0, n, dim0, ndims, raw);
+            if (seq->tent)
+                for (size_t i = 0; i < n * ndims; ++i) raw[i] = udm1_tent(raw[i]);
         } else {
             for (size_t i = 0; i < n; ++i)
                 for (uint32_t j = 0; j < ndims; ++j) raw[i * ndims + j] = seq->value(seq, skey, first + i0 + i, dim0 + j);

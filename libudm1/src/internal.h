@@ -66,6 +66,9 @@ struct udm1_seq {
     uint64_t *dim_key;     /* dims per-dimension hash keys K_j */
     void *data;            /* other kinds: their tables (freed with free()) */
     uint64_t screen_spp;   /* UDM1_MODE_SCREEN: samples per pixel N (screen_shift.h) */
+    int tent;              /* "+tent": every value goes through udm1_tent */
+    udm1_value_fn inner_value; /* with tent: the sequence's own value function (NULL: the Weyl path) */
+    char *owned_name;      /* with tent: "NAME+tent" (name points here) */
 };
 
 /* A noise's tables (noise.c); the patterns (patterns.c) read the wave sources. */
@@ -120,6 +123,10 @@ typedef struct udm1_preset {
     udm1_init_fn init;     /* fills gen (Weyl) or value + data; dims, K, seed, mode are set */
 } udm1_preset;
 UDM1_HIDDEN const udm1_preset *udm1_preset_lookup(const char *name);
+UDM1_HIDDEN int udm1_preset_is_tent(const char *name);
+
+/* The tent (baker's) transform 1 - |2x - 1| on a raw 0.64 value, exact: 2x below 1/2, 2 - 2x above. */
+static inline uint64_t udm1_tent(uint64_t x) { return (x >> 63) ? (0 - x) << 1 : x << 1; }
 
 /* ---- sampler kinds: init functions (one file each) ---- */
 UDM1_HIDDEN udm1_status udm1_init_pcg32(udm1_seq_t *seq);

@@ -175,10 +175,18 @@ udm1_status udm1_preset_get(size_t i, udm1_preset_info *info)
     return UDM1_OK;
 }
 
+/* "NAME" or "NAME+tent" (the tent transform of preset NAME, see udm1.h). */
+int udm1_preset_is_tent(const char *name)
+{
+    size_t n = strlen(name);
+    return n > 5 && strcmp(name + n - 5, "+tent") == 0;
+}
+
 const udm1_preset *udm1_preset_lookup(const char *name)
 {
+    size_t n = strlen(name) - (udm1_preset_is_tent(name) ? 5 : 0);
     for (size_t i = 0; i < udm1_preset_count(); ++i)
-        if (strcmp(PRESETS[i].name, name) == 0) return &PRESETS[i];
+        if (strlen(PRESETS[i].name) == n && strncmp(PRESETS[i].name, name, n) == 0) return &PRESETS[i];
     return NULL;
 }
 

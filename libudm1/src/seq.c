@@ -6,6 +6,7 @@
 #include "screen_shift.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -87,6 +88,16 @@ static udm1_status screen_init(const char *fn, udm1_seq *seq, uint32_t spp)
                          "%s: UDM1_RANDOMIZE_SCREEN needs desc.screen_spp, the samples per pixel (>= 1)", fn);
     seq->screen_spp = spp;
     return UDM1_OK;
+}
+
+/* "+tent": the sequence's own value (or the Weyl path), then the tent transform. */
+static uint64_t tent_value(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    uint64_t x = seq->inner_value
+                     ? seq->inner_value(seq, skey, index, dim)
+                     : udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_weyl_shift(seq, skey, dim),
+                                     udm1_screen_index(seq, skey, index));
+    return udm1_tent(x);
 }
 
 udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
@@ -174,6 +185,19 @@ udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
     /* Weyl sequences take the inline path for no randomization and shifts */
     if (seq->gen && seq->mode != UDM1_MODE_NONE && seq->mode != UDM1_MODE_SHIFT && seq->mode != UDM1_MODE_SCREEN)
         seq->value = udm1_weyl_value;
+    if (preset && udm1_preset_is_tent(desc->preset)) {  /* every value through the tent: the generic paths */
+        size_t len = strlen(preset->name) + 6;
+        seq->owned_name = malloc(len);
+        if (!seq->owned_name) {
+            udm1_seq_destroy(seq);
+            return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory", fn);
+        }
+        snprintf(seq->owned_name, len, "%s+tent", preset->name);
+        seq->name = seq->owned_name;
+        seq->tent = 1;
+        seq->inner_value = seq->value;
+        seq->value = tent_value;
+    }
     *out = seq;
     return UDM1_OK;
 }
@@ -199,6 +223,7 @@ void udm1_seq_destroy(udm1_seq *seq)
     free(seq->data);
     free(seq->offset);
     free(seq->dim_key);
+    free(seq->owned_name);
     free(seq);
 }
 
@@ -361,6 +386,8 @@ static void cursor_fill_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
     if (seq->fill && c->dimension < seq->dims) {
         uint32_t inside = seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
         seq->fill(seq, c->key, c->index, 1, c->dimension, inside, raw);
+        if (seq->tent)
+            for (uint32_t i = 0; i < inside; ++i) raw[i] = udm1_tent(raw[i]);
         c->dimension += inside;
         k = inside;
     }

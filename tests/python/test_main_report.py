@@ -111,7 +111,7 @@ def test_main_report(tmp_path):
     out = tmp_path / "report"
     r = run(out)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert "[1/7 sequences]" in r.stderr and "[7/7 screen]" in r.stderr  # progress on the terminal
+    assert "[1/8 sequences]" in r.stderr and "[8/8 screen]" in r.stderr  # progress on the terminal
     report = check_page(out)
     assert {s: v["status"] for s, v in report["steps"].items()} == {s: "ok" for s in report["steps"]}
     tables = report["tables"]
@@ -137,6 +137,9 @@ def test_main_report(tmp_path):
     assert {row["sampler"] for row in tables["throughput"]["rows"] if row["d"] == 2} == presets | {"(memset)"}
     assert any(row["anchor"].startswith("FastNoise") for row in tables["noise_speed"]["rows"])
     screen = json.loads((out / "screen.json").read_text())["rows"]
+    tent = tables["tent"]["rows"]
+    assert {r["integrand"] for r in tent} == {r["integrand"] for r in samplers["error"]} and all(
+        r["gain_wr"] > 0 and r["best_tent"].endswith("+tent") and r["best_anchor"] in ("sobol-owen", "pmj02") for r in tent)
     assert tables["screen"]["rows"] == screen and {r["randomize"] for r in screen} == {"shift", "screen", "default"}
     claims = tables["claims"]["rows"]
     assert {c["figure"] for c in claims} == {"6", "8", "10", "8, 10"}
@@ -172,7 +175,7 @@ def test_main_report(tmp_path):
     final = check_page(out)
     assert {s: v["status"] for s, v in final["steps"].items()} == {
         "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "reused", "ao": "ok", "pt": "ok",
-        "screen": "ok"}
+        "tent": "reused", "screen": "ok"}
     assert "ao" in final["tables"]
 
 

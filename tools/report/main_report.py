@@ -10,6 +10,7 @@ terminal, and records what each did in OUT/steps.json:
                 libnoise (udm1_bench_noise) and FastNoise Lite (bench_noise.py), spectra (noise_report.py)
     ao          the paper's Figure 6 with udm1-ao (ao_report.py)
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
+    tent        beyond the paper: the tent transform's effect per integrand (udm1_bench_samplers error)
     screen      beyond the paper: blue-noise error from screen-space decorrelation (screen_report.py)
     crown       with --full, where ../shared has it: the same protocol on the paper's Crown at 100 x 140
 
@@ -66,6 +67,9 @@ class Step:
     stdout: dict[int, str] = field(default_factory=dict)  # command index -> file (relative to OUT) for its stdout
 
 
+TENT_SAMPLERS = ["wr", "wr+tent", "rd", "rd+tent", "wopt", "wopt+tent", "sobol-owen", "pmj02"]
+
+
 def plan(args, out: Path) -> list[Step]:
     """The steps and their exact commands for this configuration."""
     py, b = sys.executable, Path(args.build)
@@ -102,6 +106,9 @@ def plan(args, out: Path) -> list[Step]:
              stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
         Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html"),
         Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html"),
+        Step("tent", "Beyond the paper: the tent transform (+tent) on the integrands, against Sobol and PMJ02",
+             [[tools["bench_samplers"], "error", "--samplers", ",".join(TENT_SAMPLERS), "--reps", reps, *q]],
+             ["tent.csv"], stdout={0: "tent.csv"}),
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
              [[py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]], ["screen.json"],
              "screen.html"),
@@ -129,10 +136,12 @@ def file_digest(path: str) -> str:
     return h.hexdigest()
 
 
-def step_key(step: Step) -> str:
-    """What a step's result depends on: its commands, and the content of every program and script they name
-    (and of the report's shared module)."""
+def step_key(step: Step, library: Path | None) -> str:
+    """What a step's result depends on: its commands, the content of every program and script they name, of
+    the report's shared module and of the library they all load."""
     h = hashlib.sha256(json.dumps(step.commands).encode())
+    if library and library.exists():
+        h.update(file_digest(str(library)).encode())
     for cmd in step.commands:
         for a in cmd:
             if a != sys.executable and os.path.isfile(a) and not a.endswith((".json", ".txt")):
@@ -170,6 +179,7 @@ def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) 
 
 
 def run_steps(steps: list[Step], out: Path, args) -> dict:
+    library = Path(os.environ.get("UDM1_LIBRARY") or Path(args.build) / "libudm1" / "libudm1.so.1")
     state_path = out / "steps.json"
     try:
         previous = json.loads(state_path.read_text()) if state_path.exists() and not args.fresh else {}
@@ -179,7 +189,7 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
     only = set(args.only.split(",")) if args.only else None
     for k, step in enumerate(steps):
         label = f"{k + 1}/{len(steps)} {step.name}"
-        key = step_key(step)
+        key = step_key(step, library)
         old = previous.get(step.name, {})
         record = {"title": step.title, "commands": [" ".join(c) for c in step.commands], "key": key}
         reusable = old.get("status") in ("ok", "reused") and old.get("key") == key and \

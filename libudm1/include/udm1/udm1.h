@@ -171,6 +171,12 @@ UDM1_API const char *udm1_last_error(void);
  *             projection stays near random-shift quality for N = 32..4096;
  *             at d = 32 and 64 its worst pair is 2-4x better than wr's and rd's
  *
+ * Transform (1.4): "NAME+tent" is any preset NAME with the tent (baker's) transform
+ * x -> 1 - |2x - 1| applied to every value, exactly in the 0.64 fixed point (2x below 1/2,
+ * 2 - 2x above). It periodizes smooth integrands: the randomly shifted Weyl sets then
+ * integrate smooth non-periodic functions with a smaller error (see README, "Beyond the
+ * paper"). udm1_seq_name returns "NAME+tent"; udm1_preset_find("NAME+tent") gives NAME's info.
+ *
  * "pairs" (UDM1_PRESET_PAIRS): a 2D construction. Dimensions 2k and 2k+1 form
  * pair k; every pair is its own pattern (keyed by the seed and k) and pairs
  * k >= 1 visit the points in their own order (a hashed permutation of the K
