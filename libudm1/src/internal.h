@@ -134,6 +134,7 @@ UDM1_HIDDEN udm1_status udm1_init_drand48(udm1_seq_t *seq);
 UDM1_HIDDEN udm1_status udm1_init_halton(udm1_seq_t *seq);
 UDM1_HIDDEN udm1_status udm1_init_sobol(udm1_seq_t *seq);
 UDM1_HIDDEN udm1_status udm1_init_hammersley(udm1_seq_t *seq);
+UDM1_HIDDEN udm1_status udm1_init_lattice(udm1_seq_t *seq);
 UDM1_HIDDEN udm1_status udm1_init_lp(udm1_seq_t *seq);
 UDM1_HIDDEN udm1_status udm1_init_cmj(udm1_seq_t *seq);
 UDM1_HIDDEN udm1_status udm1_init_grps(udm1_seq_t *seq);

@@ -153,6 +153,8 @@ static const udm1_preset PRESETS[] = {
     /* beyond the paper (appended: the indices of the presets above do not change) */
     {"wopt", "Weyl set from udm1's search: 64 square roots of primes, worst 2D projection kept near random-shift "
      "quality (tools/alpha_search.py)", COUNT(WOPT), 0, UDM1_MODE_SHIFT, init_wopt},
+    {"lattice", "Rank-1 lattice {n z / K}, z by component-by-component search on the wrap-around L2 discrepancy",
+     64, POINT_SET, UDM1_MODE_SHIFT, udm1_init_lattice},
 };
 
 size_t udm1_preset_count(void) { return sizeof(PRESETS) / sizeof(PRESETS[0]); }

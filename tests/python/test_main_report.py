@@ -119,12 +119,12 @@ def test_main_report(tmp_path):
     # every sampler a step ran is in every table made from it, with the step's own numbers
     ao = json.loads((out / "ao.json").read_text())
     fig6 = {row["sampler"]: row for row in ao["figure6"]}
-    assert {row["sampler"] for row in tables["ao"]["rows"]} == set(fig6) and len(fig6) == 20
+    assert {row["sampler"] for row in tables["ao"]["rows"]} == set(fig6) and len(fig6) == 21
     for row in tables["ao"]["rows"]:
         assert row["psnr"] == fig6[row["sampler"]]["psnr_mean"]
     pt = json.loads((out / "pt.json").read_text())
     fig = {row["sampler"]: row for row in pt["scenes"][0]["figure"]}
-    assert {row["sampler"] for row in tables["pt_s0"]["rows"]} == set(fig) and len(fig) == 10
+    assert {row["sampler"] for row in tables["pt_s0"]["rows"]} == set(fig) and len(fig) == 11
     for row in tables["pt_s0"]["rows"]:
         assert row["psnr"] == fig[row["sampler"]]["psnr_mean"]
         assert row["gain"] == pytest.approx(fig[row["sampler"]]["psnr_mean"] - fig["pcg32"]["psnr_mean"])
@@ -186,3 +186,17 @@ def test_bad_arguments(tmp_path):
     blocker.write_text("x")
     r = run(blocker / "sub")
     assert r.returncode == 1 and "cannot write" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_unreadable_step_output_is_a_failed_section(tmp_path):
+    out = tmp_path / "report"
+    r = run(out, "--only", "sequences")
+    assert r.returncode == 0, r.stderr[-3000:]
+    (out / "sequences.json").write_text("{ not json")  # a finished step whose output was damaged afterwards
+    r = run(out, "--only", "sequences")
+    assert r.returncode == 1
+    report = json.loads((out / "report.json").read_text())
+    assert report["steps"]["sequences"]["status"] == "reused" and "section sequences_section" in report["failed"]
+    assert "This section failed" in (out / "index.html").read_text()
+    assert report["steps"]["ao"]["status"] == "not run"  # and what was not asked for is shown as not run
+    assert "This step did not run" in (out / "index.html").read_text()

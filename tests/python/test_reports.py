@@ -88,7 +88,8 @@ def test_pt_report(tmp_path):
         assert (tmp_path / link).exists(), link
     data = json.loads((tmp_path / "pt.json").read_text())
     names = {"pcg32": "PRNG (pcg32)", "halton": "Halton", "sobol": "Sobol", "sobol-owen": "Sobol (Owen)",
-             "pmj02": "PMJ02", "wr": "WR", "wmmr": "WMMR", "hwmmr": "HWMMR", "rd": "R_d", "wopt": "WOPT"}
+             "pmj02": "PMJ02", "wr": "WR", "wmmr": "WMMR", "hwmmr": "HWMMR", "rd": "R_d", "wopt": "WOPT",
+             "lattice": "rank-1 lattice"}
     for scene in data["scenes"]:
         fig = {row["sampler"]: row for row in scene["figure"]}
         assert set(fig) == set(names)  # every sampler the protocol names, none hidden

@@ -67,7 +67,7 @@ class Step:
     stdout: dict[int, str] = field(default_factory=dict)  # command index -> file (relative to OUT) for its stdout
 
 
-TENT_SAMPLERS = ["wr", "wr+tent", "rd", "rd+tent", "wopt", "wopt+tent", "sobol-owen", "pmj02"]
+TENT_SAMPLERS = ["wr", "wr+tent", "rd", "rd+tent", "wopt", "wopt+tent", "lattice", "lattice+tent", "sobol-owen", "pmj02"]
 
 
 def plan(args, out: Path) -> list[Step]:
@@ -242,6 +242,7 @@ class Document:
     def __init__(self):
         self.blocks: list[tuple] = []
         self.tables: dict[str, dict] = {}
+        self.failed_sections: list[str] = []
 
     def heading(self, level: int, text: str, anchor: str = ""):
         self.blocks.append(("h", level, text, anchor))
@@ -399,7 +400,7 @@ def main(argv=None) -> int:
             w = csv.DictWriter(f, fieldnames=[c[0] for c in t["columns"]], extrasaction="ignore")
             w.writeheader()
             w.writerows(t["rows"])
-    failed = [s for s, r in state.items() if r["status"] == "failed"]
+    failed = [s for s, r in state.items() if r["status"] == "failed"] + [f"section {s}" for s in doc.failed_sections]
     report = {"mode": mode, "steps": state, "tables": doc.tables, "figures": figures, "machine": info,
               "failed": failed, "seconds": time.time() - t0}
     tmp = out / "report.json.tmp"

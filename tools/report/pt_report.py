@@ -46,10 +46,11 @@ from report_common import RendererTool, log, md_table, md_to_html, writable_fold
 
 ROOT = Path(__file__).resolve().parents[2]
 SHARED = ROOT.parent / "shared" / "scenes"
-SAMPLERS = ["pcg32", "halton", "sobol", "sobol-owen", "pmj02", "wr", "wmmr", "hwmmr", "rd", "wopt"]
+SAMPLERS = ["pcg32", "halton", "sobol", "sobol-owen", "pmj02", "wr", "wmmr", "hwmmr", "rd", "wopt", "lattice"]
 WEYL = {"wr", "wmmr", "hwmmr", "rd", "wopt"}
 NAMES = {"pcg32": "PRNG (pcg32)", "halton": "Halton", "sobol": "Sobol", "sobol-owen": "Sobol (Owen)",
-         "pmj02": "PMJ02", "wr": "WR", "wmmr": "WMMR", "hwmmr": "HWMMR", "rd": "R_d", "wopt": "WOPT (udm1's search)"}
+         "pmj02": "PMJ02", "wr": "WR", "wmmr": "WMMR", "hwmmr": "HWMMR", "rd": "R_d", "wopt": "WOPT (udm1's search)",
+         "lattice": "rank-1 lattice (CBC)"}
 # The paper's PSNR (dB) at 4096 spp: Figure 8 (San Miguel, 32768 spp reference), Figure 10 (Crown, 16384)
 PAPER = {"Figure 8 (San Miguel)": {"pcg32": 25.509749, "halton": 26.980754, "sobol": 25.815170, "wr": 27.238521,
                                    "wmmr": 27.355182, "hwmmr": 27.362858},

@@ -23,7 +23,7 @@ from pt_report import NAMES as PT_NAMES, PAPER as PT_PAPER, compare  # noqa: E40
 from ao_report import PAPER_SET as AO_PAPER_SET  # noqa: E402
 
 WEYL = {"wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "wopt"}
-ORDER = ["wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "wopt", "pcg32", "drand48", "halton", "halton-owen",
+ORDER = ["wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "wopt", "lattice", "pcg32", "drand48", "halton", "halton-owen",
          "sobol", "sobol-owen", "hammersley", "lp", "cmj", "grps", "pmj02"]
 SMOOTH_2D, DISCONTINUOUS_2D, SMOOTH_8D = "gaussian", "disk", "genz-oscillatory"
 
@@ -430,6 +430,13 @@ def pt_section(doc, out: Path, state, step: str = "pt", prefix: str = ""):
     doc.para(f"Details, sweeps and verdicts per scene in [{step}]({prefix}pt.html).")
 
 
+def ratio(a: float, b: float) -> float:
+    """a / b, with an exact (zero-error) b shown as an infinite gain rather than dropped."""
+    if b == 0:
+        return float("inf") if a > 0 else 1.0
+    return a / b
+
+
 def tent_rows(out: Path) -> list[dict]:
     with open(out / "tent.csv") as f:
         rows = list(csv.DictReader(f))
@@ -446,8 +453,8 @@ def tent_rows(out: Path) -> list[dict]:
         anchors = [s for s in cost if s in ("sobol-owen", "pmj02")]
         bt, ba = min(tents, key=cost.get), min(anchors, key=cost.get)
         table.append({"integrand": integ, "d": int(get[bt]["d"]), "n": n,
-                      **{f"gain_{w}": rel[w] / rel[w + "+tent"] for w in ("wr", "rd", "wopt")},
-                      "best_tent": bt, "best_anchor": ba, "equal_time": cost[bt] / cost[ba]})
+                      **{f"gain_{w}": ratio(rel[w], rel[w + "+tent"]) for w in ("wr", "rd", "wopt", "lattice")},
+                      "best_tent": bt, "best_anchor": ba, "equal_time": ratio(cost[bt], cost[ba])})
     return table
 
 
@@ -456,13 +463,16 @@ def beyond_section(doc, out: Path, state):
     doc.para("**wopt**, udm1's searched set (tools/alpha_search.py: 64 square roots of primes chosen greedily to keep "
              "every 2D projection near random-shift quality), appears in every table above; its worst 2D projection "
              "is in the constant-set check (sequences) beside WR, WMMR, HWMMR and R_d.")
+    doc.para("**The rank-1 lattice** (`lattice`, K points {n z / K + shift}, z by a component-by-component search "
+             "on the exact wrap-around L2 discrepancy): the fixed-N counterpart of a Kronecker sequence; it is in "
+             "every table above, and with the tent transform below.")
     doc.para("**The tent transform** (`NAME+tent`, any sampler: every value x becomes 1 - |2x - 1|, exact in "
-             "integers): relative RMSE at the largest N over randomizations, each Weyl set plain and transformed "
+             "integers): relative RMSE at the largest N over randomizations, each Weyl set and the lattice plain and transformed "
              "(gain = plain / tent, above 1: the tent helps), and the best transformed Weyl set against the best "
              "of Owen-scrambled Sobol and PMJ02 at equal time (RMSE^2 x time; below 1: the Weyl set wins).")
     if not not_shown(doc, state, "tent"):
         doc.table("tent", "tent transform", [("integrand", "integrand", ""), ("d", "d", "d"), ("n", "N", "d")]
-                  + [(f"gain_{w}", f"gain {w}", ".2f") for w in ("wr", "rd", "wopt")]
+                  + [(f"gain_{w}", f"gain {w}", ".2f") for w in ("wr", "rd", "wopt", "lattice")]
                   + [("best_tent", "best +tent", ""), ("best_anchor", "best anchor", ""),
                      ("equal_time", "+tent / anchor at equal time", ".3g")], tent_rows(out))
     doc.para("**Screen-space decorrelation** (`--randomize screen`): pixel (x, y) takes the samples m N .. m N + N - 1 "
@@ -479,11 +489,25 @@ def beyond_section(doc, out: Path, state):
     doc.image("screen_spectra.png", "error spectra")
 
 
+def plots_section(doc, out: Path, state) -> list[str]:
+    return speed_error_plots(out, state)
+
+
+def guarded(doc, section, *args):
+    """Run one section; if it fails (a step's output it cannot read), say so in its place, never drop it."""
+    try:
+        return section(doc, *args)
+    except Exception as exc:  # noqa: BLE001 - any failure is reported in the page, and in the exit status
+        doc.para(f"**This section failed** ({section.__name__}): {type(exc).__name__}: {exc}")
+        doc.failed_sections.append(section.__name__)
+        return None
+
+
 def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
     steps_section(doc, steps, state, mode)
-    claims_section(doc, out, state)
-    pt_gains_section(doc, out, state)
-    figures = speed_error_plots(out, state)
+    guarded(doc, claims_section, out, state)
+    guarded(doc, pt_gains_section, out, state)
+    figures = guarded(doc, plots_section, out, state) or []
     doc.heading(2, "Speed against error", "speed")
     if figures:
         doc.para("Error against time for each application (integration: one thread per estimate; renderers: all "
@@ -492,13 +516,9 @@ def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
             doc.image(f, f)
     else:
         doc.para("**No plots**: none of the samplers, ao and pt steps finished.")
-    sequences_section(doc, out, state)
-    integration_section(doc, out, state)
-    throughput_section(doc, out, state)
-    noise_section(doc, out, state)
-    ao_section(doc, out, state)
-    pt_section(doc, out, state)
-    beyond_section(doc, out, state)
+    for section in (sequences_section, integration_section, throughput_section, noise_section, ao_section,
+                    pt_section, beyond_section):
+        guarded(doc, section, out, state)
     if "crown" in state:
-        pt_section(doc, out, state, "crown", "crown/")
+        guarded(doc, pt_section, out, state, "crown", "crown/")
     return figures

@@ -35,7 +35,7 @@ from report_common import log, md_table, md_to_html, writable_folder  # noqa: E4
 PAPER = ["wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd"]
 BASELINES = ["pcg32", "drand48", "halton", "halton-owen", "sobol", "sobol-owen", "hammersley", "lp", "cmj", "grps",
              "pmj02"]
-BEYOND = ["wopt"]  # udm1's own sets beyond the paper: shown everywhere, not counted in the paper's verdicts
+BEYOND = ["wopt", "lattice"]  # udm1's own sets beyond the paper: shown everywhere, not counted in the paper's verdicts
 SMOOTH = {"gaussian", "product-peak", "bilinear", "genz-oscillatory", "genz-product-peak", "genz-corner-peak",
           "genz-gaussian", "genz-continuous"}
 

@@ -170,6 +170,10 @@ UDM1_API const char *udm1_last_error(void);
  *             greedy search (tools/alpha_search.py) so that the worst 2D
  *             projection stays near random-shift quality for N = 32..4096;
  *             at d = 32 and 64 its worst pair is 2-4x better than wr's and rd's
+ * lattice     rank-1 lattice {n z / K}, z built         random shift            1..64
+ *             component by component on the exact wrap-around L2 discrepancy;
+ *             needs K (any K < 2^32); with "+tent" (below) error ~ K^-2 on smooth
+ *             integrands
  *
  * Transform (1.4): "NAME+tent" is any preset NAME with the tent (baker's) transform
  * x -> 1 - |2x - 1| applied to every value, exactly in the 0.64 fixed point (2x below 1/2,
