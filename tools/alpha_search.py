@@ -61,8 +61,39 @@ def ratios(h: np.ndarray, ns: np.ndarray, d: int) -> np.ndarray:
     return wd2 / expected
 
 
-def search(candidates: np.ndarray, dims: int, ns: np.ndarray, log=None) -> list[int]:
-    alphas = np.mod(np.sqrt(candidates.astype(np.float64)), 1.0)
+def candidate_pool(kinds: list[str], max_prime: int, max_cube: int, max_rd: int) -> list[tuple[str, float, object]]:
+    """(label, frac in double for the search, exact generator for the library) for each candidate:
+    sqrt(p) for primes p; cube roots of cube-free integers (algebraic of degree 3); R_d's generators
+    phi_d^-k (phi_d the root of x^(d+1) = x + 1, algebraic of degree d + 1) for d = 2 .. max_rd."""
+    pool = []
+    if "sqrt" in kinds:
+        pool += [(f"sqrt({p})", math.sqrt(p) % 1.0, udm1.Sqrt(int(p))) for p in primes_upto(max_prime)]
+    if "cbrt" in kinds or "rd" in kinds:
+        import mpmath
+        mpmath.mp.dps = 60
+
+        def fixed(x):
+            return udm1.Fixed(int(mpmath.floor(mpmath.frac(x) * mpmath.mpf(2) ** 128)))
+    if "cbrt" in kinds:
+        for k in range(2, max_cube + 1):
+            if any(k % (q ** 3) == 0 for q in range(2, int(round(k ** (1 / 3))) + 2)):
+                continue  # not cube-free (a perfect cube is not cube-free either)
+            x = mpmath.cbrt(k)
+            pool.append((f"cbrt({k})", float(mpmath.frac(x)), fixed(x)))
+    if "rd" in kinds:
+        for d in range(2, max_rd + 1):
+            phi = mpmath.findroot(lambda x, d=d: x ** (d + 1) - x - 1, 1.1)
+            for k in range(1, d + 1):
+                x = phi ** -k
+                pool.append((f"phi_{d}^-{k}", float(mpmath.frac(x)), fixed(x)))
+    return pool
+
+
+def search(candidates: np.ndarray, dims: int, ns: np.ndarray, log=None, alphas: np.ndarray | None = None) -> list[int]:
+    """Greedy choice of dims candidates; returns the chosen entries of `candidates` (square roots of those
+    integers unless `alphas`, the fractional parts, are given)."""
+    if alphas is None:
+        alphas = np.mod(np.sqrt(candidates.astype(np.float64)), 1.0)
     g = g_table(alphas, int(ns.max()))
     worst = ratios(g, ns, 1).max(axis=1)  # a candidate's own 1D quality
     chosen: list[int] = []
@@ -72,10 +103,10 @@ def search(candidates: np.ndarray, dims: int, ns: np.ndarray, log=None) -> list[
         chosen.append(k)
         free[k] = False
         if log:
-            log(f"dimension {j}: sqrt({candidates[k]}), worst pair ratio {worst[k]:.3f}")
+            log(f"dimension {j}: {candidates[k]}, worst pair ratio {worst[k]:.3f}")
         if j + 1 < dims:  # every candidate's worst pair now includes the new dimension
             worst = np.maximum(worst, ratios(g * g[k], ns, 2).max(axis=1))
-    return [int(candidates[k]) for k in chosen]
+    return [candidates[k] for k in chosen]
 
 
 def measure(seq_of, dims_list, ns) -> dict:
@@ -97,6 +128,10 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--dims", type=int, default=64, help="dimensions to choose (default 64)")
     ap.add_argument("--max-prime", type=int, default=16384, help="candidates: sqrt(p), p prime <= this (default 16384)")
+    ap.add_argument("--candidates", default="sqrt", help="comma list of sqrt (primes), cbrt (cube-free integers), "
+                    "rd (R_d's generators, d = 2..--max-rd); default sqrt, the preset wopt's pool")
+    ap.add_argument("--max-cube", type=int, default=2000, help="cbrt candidates: cube-free k <= this (default 2000)")
+    ap.add_argument("--max-rd", type=int, default=64, help="rd candidates: d up to this (default 64)")
     ap.add_argument("--n-min", type=int, default=32)
     ap.add_argument("--n-max", type=int, default=4096)
     ap.add_argument("--check-n", default="256,1024", help="n of the exact L2-star measurement (default 256,1024)")
@@ -107,21 +142,33 @@ def main(argv=None) -> int:
         print("alpha_search: need 1 <= --dims <= 1024, 3 <= --max-prime <= 4194304, 2 <= --n-min < --n-max <= 65536",
               file=sys.stderr)
         return 2
-    cands = primes_upto(args.max_prime)
-    if len(cands) < args.dims:
-        print(f"alpha_search: only {len(cands)} primes up to {args.max_prime}, fewer than --dims {args.dims}",
+    kinds = args.candidates.split(",")
+    bad = [k for k in kinds if k not in ("sqrt", "cbrt", "rd")]
+    if bad or not 2 <= args.max_cube <= 1 << 20 or not 2 <= args.max_rd <= 256:
+        print(f"alpha_search: --candidates takes sqrt, cbrt, rd (got '{args.candidates}'); --max-cube 2..1048576, "
+              "--max-rd 2..256", file=sys.stderr)
+        return 2
+    pool = candidate_pool(kinds, args.max_prime, args.max_cube, args.max_rd)
+    if len(pool) < args.dims:
+        print(f"alpha_search: only {len(pool)} candidates ({args.candidates}), fewer than --dims {args.dims}",
               file=sys.stderr)
         return 2
     ns = np.unique(np.round(np.geomspace(args.n_min, args.n_max, 48)).astype(int))
     t0 = time.time()
     log = lambda m: print(f"[alpha_search] {m}", file=sys.stderr, flush=True)  # noqa: E731
-    log(f"{len(cands)} candidates sqrt(p), p <= {args.max_prime}; N from {ns[0]} to {ns[-1]} ({len(ns)} values)")
-    ks = search(cands, args.dims, ns, log)
+    log(f"{len(pool)} candidates ({args.candidates}); N from {ns[0]} to {ns[-1]} ({len(ns)} values)")
+    labels = np.array([c[0] for c in pool], dtype=object)
+    chosen = search(np.arange(len(pool)), args.dims, ns, lambda m: log(m.replace("dimension", "dim")),
+                    alphas=np.array([c[1] for c in pool]))
+    picked = [pool[int(i)] for i in chosen]
     seconds = time.time() - t0
-    log(f"chosen in {seconds:.1f} s: {ks}")
+    log(f"chosen in {seconds:.1f} s: {[c[0] for c in picked]}")
+    exact = [c[2] for c in picked]
+    dep = udm1.check_alphas(exact, 256)
+    log(f"library check of the chosen set: {dep['message']}")
     check_ns = [int(x) for x in args.check_n.split(",")]
     dims_list = [d for d in (2, 8, 16, 32, 64, 128) if d <= args.dims]
-    sets = {"search": lambda d: udm1.Sequence(alphas=[udm1.Sqrt(k) for k in ks[:d]], randomize=False)}
+    sets = {"search": lambda d: udm1.Sequence(alphas=exact[:d], randomize=False)}
     if not args.no_compare:
         maxd = {p.name: p.max_dimensions for p in udm1.presets()}
         for name in ("wr", "wmmr", "hwmmr", "rd"):
@@ -140,12 +187,19 @@ def main(argv=None) -> int:
         out = Path(args.out)
         out.mkdir(parents=True, exist_ok=True)
         (out / "search.json").write_text(json.dumps({
-            "generators_sqrt": ks, "dims": args.dims, "max_prime": args.max_prime, "n_grid": ns.tolist(),
-            "seconds": seconds, "quality": quality}, indent=1))
-        rows = [", ".join(f"SQRT({k})" for k in ks[i:i + 8]) for i in range(0, len(ks), 8)]
-        (out / "preset.inc").write_text("/* tools/alpha_search.py --dims %d --max-prime %d --n-min %d --n-max %d */\n"
-                                        % (args.dims, args.max_prime, args.n_min, args.n_max)
-                                        + ",\n".join(rows) + "\n")
+            "generators": [c[0] for c in picked], "candidates": args.candidates, "dims": args.dims,
+            "max_prime": args.max_prime, "n_grid": ns.tolist(), "seconds": seconds, "dependent": dep["dependent"],
+            "quality": quality}, indent=1))
+
+        def spec(c):
+            if isinstance(c[2], udm1.Sqrt):
+                return f"SQRT({c[2].k})"
+            v = c[2].value
+            return f"FIXED(0x{v >> 64:016X}ull, 0x{v & (2**64 - 1):016X}ull) /* {c[0]} */"
+        (out / "preset.inc").write_text(
+            "/* tools/alpha_search.py --dims %d --candidates %s --max-prime %d --n-min %d --n-max %d */\n"
+            % (args.dims, args.candidates, args.max_prime, args.n_min, args.n_max)
+            + ",\n".join(spec(c) for c in picked) + "\n")
         log(f"wrote {out / 'search.json'} and {out / 'preset.inc'}")
     return 0
 

@@ -61,3 +61,32 @@ def test_tool_runs_and_rejects_bad_arguments(tmp_path):
     for bad in (["--dims", "0"], ["--dims", "100", "--max-prime", "100"], ["--n-min", "50", "--n-max", "40"]):
         r = subprocess.run(tool + bad, capture_output=True, text=True, env=env)
         assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)
+
+
+def test_wider_candidate_pool(tmp_path):
+    """Cube roots and R_d's generators as candidates: the exact values written for the library are the numbers
+    named, to 2^-120."""
+    import json
+
+    import mpmath
+
+    mpmath.mp.dps = 60
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
+    r = subprocess.run([sys.executable, str(ROOT / "tools" / "alpha_search.py"), "--dims", "6", "--candidates",
+                        "cbrt,rd", "--max-cube", "40", "--max-rd", "4", "--check-n", "64", "--no-compare", "--out",
+                        str(tmp_path)], capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stderr
+    names = json.loads((tmp_path / "search.json").read_text())["generators"]
+    lines = (tmp_path / "preset.inc").read_text().strip().splitlines()[1:]
+    assert len(names) == len(lines) == 6
+    for name, line in zip(names, lines):
+        hi, lo = (int(x.rstrip("ul,"), 16) for x in line.split("(")[1].split(")")[0].split(", "))
+        if name.startswith("cbrt"):
+            x = mpmath.cbrt(int(name[5:-1]))
+        else:
+            d, k = name[4:].split("^-")
+            x = mpmath.findroot(lambda t, d=int(d): t ** (d + 1) - t - 1, 1.1) ** -int(k)
+        assert abs(mpmath.mpf((hi << 64) | lo) / mpmath.mpf(2) ** 128 - mpmath.frac(x)) < mpmath.mpf(2) ** -120, name
+    r = subprocess.run([sys.executable, str(ROOT / "tools" / "alpha_search.py"), "--candidates", "sqrt,quartic"],
+                       capture_output=True, text=True, env=env)
+    assert r.returncode == 2 and "quartic" in r.stderr and len(r.stderr.strip().splitlines()) == 1
