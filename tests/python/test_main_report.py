@@ -119,7 +119,7 @@ def test_main_report(tmp_path):
     # every sampler a step ran is in every table made from it, with the step's own numbers
     ao = json.loads((out / "ao.json").read_text())
     fig6 = {row["sampler"]: row for row in ao["figure6"]}
-    assert {row["sampler"] for row in tables["ao"]["rows"]} == set(fig6) and len(fig6) == 21
+    assert {row["sampler"] for row in tables["ao"]["rows"]} == set(fig6) and len(fig6) == 23
     for row in tables["ao"]["rows"]:
         assert row["psnr"] == fig6[row["sampler"]]["psnr_mean"]
     pt = json.loads((out / "pt.json").read_text())

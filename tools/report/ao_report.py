@@ -37,7 +37,8 @@ from report_common import RendererTool, log, md_table, md_to_html, writable_fold
 
 # The paper's set for ambient occlusion (section 4.2.3), in its order, then the other samplers.
 PAPER_SET = ["pcg32", "cmj", "grps", "hammersley", "lp", "halton", "sobol", "wr-ao", "we", "wgr", "episwr"]
-OTHERS = ["drand48", "halton-owen", "sobol-owen", "pmj02", "wr", "wmmr", "hwmmr", "rd", "wopt", "lattice"]
+OTHERS = ["drand48", "halton-owen", "sobol-owen", "pmj02", "wr", "wmmr", "hwmmr", "rd", "wopt", "lattice", "wr+tent",
+          "lattice+tent"]
 WEYL = {"wr-ao", "we", "wgr", "episwr", "wr", "wmmr", "hwmmr", "rd", "wopt"}
 NAMES = {"pcg32": "PRNG (pcg32)", "cmj": "CMJ", "grps": "GRPS", "hammersley": "Hammersley", "lp": "LP",
          "halton": "Halton", "sobol": "Sobol", "wr-ao": "WR (sqrt2, sqrt13)", "we": "WE", "wgr": "WGR",
