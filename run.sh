@@ -33,7 +33,7 @@ report | --*)
     build build -DCMAKE_BUILD_TYPE=Release
     export PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1"
     udm1_log "writing report/: speed against error for every sampler and application (tools/report/main_report.py;"
-    udm1_log "about 7 minutes the first time, finished steps are reused on the next run; --full for the shared scenes)"
+    udm1_log "about 11 minutes the first time, finished steps are reused on the next run; --full for the shared scenes)"
     "$PY" tools/report/main_report.py --build "$ROOT/build" --out "$ROOT/report" "$@"
     ;;
 test)

@@ -475,6 +475,11 @@ def beyond_section(doc, out: Path, state):
                   + [(f"gain_{w}", f"gain {w}", ".2f") for w in ("wr", "rd", "wopt", "lattice")]
                   + [("best_tent", "best +tent", ""), ("best_anchor", "best anchor", ""),
                      ("equal_time", "+tent / anchor at equal time", ".3g")], tent_rows(out))
+        doc.para("An infinite gain (and an equal-time ratio of 0) means the transformed set integrated that "
+                 "integrand exactly for every randomization: the tent-transformed lattice does so for the half "
+                 "plane, whose boundary passes through the centre of the square (a symmetry of that integrand, "
+                 "not a general property; a line off the centre is not integrated exactly). The plain lattice "
+                 "is already spectrally accurate on the nearly periodic Gaussian, which the tent then spoils.")
     doc.para("**Screen-space decorrelation** (`--randomize screen`): pixel (x, y) takes the samples m N .. m N + N - 1 "
              "of one randomly shifted sequence, m its Morton index. The low-frequency share of the error image's "
              "energy (1 = white noise, lower = blue noise) against the usual per-pixel shift, with the RMSE, which "
