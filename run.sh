@@ -6,6 +6,7 @@
 #   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C tests
 #                     again under AddressSanitizer + UndefinedBehaviorSanitizer
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
+#   ./run.sh fuzz [S] every libFuzzer target for S seconds (default 60), clang + ASan + UBSan (TESTING.md)
 #
 # Each command installs what is missing (Debian packages, Python packages into
 # .venv) and skips what is there.
@@ -67,8 +68,18 @@ bench)
     udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (tools/bench_pt.py --estimators)"
     "$PY" tools/bench_pt.py --estimators --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
     ;;
+fuzz)
+    shift || true
+    UDM1_DEBIAN_PACKAGES+=(clang-14 libclang-rt-14-dev)
+    udm1_bootstrap "$ROOT"
+    udm1_log "building the libFuzzer targets with clang, ASan and UBSan (build-fuzz/)"
+    CC=clang-14 CXX=clang++-14 build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_FUZZ=ON \
+        -DUDM1_MULTIVERSION=OFF -DUDM1_PYTHON="$PY"
+    udm1_log "fuzzing every target (tools/fuzz_run.py; ${1:-60} s each)"
+    "$PY" tools/fuzz_run.py --build "$ROOT/build-fuzz" --seconds "${1:-60}" "${@:2}"
+    ;;
 *)
-    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench])" >&2
+    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench|fuzz])" >&2
     exit 2
     ;;
 esac

@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -138,6 +139,13 @@ Options parse(int argc, char **argv)
         else throw Error("unknown option '" + a + "'");
     }
     if (o.output.empty()) throw Error(o.figures ? "figures needs an output folder: -o DIR" : "no output file: -o FILE");
+    if (!o.figures) {  // the formats of the usage line, and only those
+        std::string ext = o.output.substr(o.output.find_last_of('.') == std::string::npos ? o.output.size()
+                                                                                         : o.output.find_last_of('.'));
+        for (char &c : ext) c = (char)std::tolower((unsigned char)c);
+        if (ext != ".png" && ext != ".exr" && ext != ".tif" && ext != ".tiff")
+            throw Error("-o '" + o.output + "': the texture must be .png, .exr or .tif", 2);
+    }
     return o;
 }
 

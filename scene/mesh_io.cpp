@@ -1,6 +1,8 @@
 // mesh_io.cpp - PLY and OBJ readers (see mesh_io.h).
 #include "mesh_io.h"
 
+#include "file_read.h"
+
 #include <cerrno>
 #include <cstdint>
 #include <cstdlib>
@@ -100,11 +102,7 @@ private:
 
 std::string read_all(const std::string &path)
 {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) throw SceneError(path + ": cannot open the mesh file");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
+    return read_regular_file(path, "mesh file");
 }
 
 void add_vertex(Shape *s, const Mat4 &xf, Vec3 p)
@@ -241,8 +239,8 @@ void read_ply(const std::string &path, const Mat4 &xf, Shape *shape)
                             shape->indices.insert(shape->indices.end(), {poly[0], poly[j], poly[j + 1]});
                 }
             }
-        } else {  // skip other elements
-            for (size_t i = 0; i < e.count; ++i)
+        } else {  // skip other elements (one without properties holds no data, whatever its count)
+            for (size_t i = 0; i < e.count && !e.props.empty(); ++i)
                 for (const Property &p : e.props) {
                     if (!p.list) {
                         r.value(p.type, e.name.c_str());

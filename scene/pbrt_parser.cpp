@@ -4,6 +4,8 @@
 // parameter: model only what a scene needs.
 #include "pbrt_parser.h"
 
+#include "file_read.h"
+
 #include "color.h"
 #include "mesh_io.h"
 
@@ -119,11 +121,7 @@ public:
     void parse_file(const std::string &path, int depth)
     {
         if (depth > 8) throw SceneError(path + ": Include nested too deeply");
-        std::ifstream f(path, std::ios::binary);
-        if (!f) throw SceneError(path + ": cannot open the scene file");
-        std::stringstream ss;
-        ss << f.rdbuf();
-        Lexer lex(ss.str(), path);
+        Lexer lex(read_regular_file(path, "scene file"), path);
         std::string dir = path.find('/') == std::string::npos ? "" : path.substr(0, path.find_last_of('/') + 1);
         for (;;) {
             Token t = lex.next();

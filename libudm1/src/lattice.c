@@ -18,6 +18,7 @@
 #include <stdlib.h>
 
 #define LATTICE_WORK_PER_DIM (1u << 24)
+#define UDM1_LATTICE_MAX_POINTS (1u << 24)
 
 static uint64_t gcd64(uint64_t a, uint64_t b)
 {
@@ -51,6 +52,9 @@ udm1_status udm1_init_lattice(udm1_seq_t *seq)
 {
     static const char fn[] = "udm1_seq_create";
     uint64_t k = seq->point_count;
+    if (k > UDM1_LATTICE_MAX_POINTS) /* the search keeps two arrays of K doubles and reads them once per dimension */
+        return udm1_fail(UDM1_ERROR_POINT_COUNT, "%s: a lattice has at most %u points, %llu asked", fn,
+                         UDM1_LATTICE_MAX_POINTS, (unsigned long long)k);
     uint32_t d = seq->dims;
     seq->gen = malloc(sizeof(udm1_generator) * d);
     uint64_t *z = malloc(sizeof(uint64_t) * d);

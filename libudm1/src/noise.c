@@ -259,7 +259,8 @@ static inline double dot3(const udm1_noise *n, int h, double x, double y, double
 
 double udm1_noise_3d(const udm1_noise *n, double x, double y, double z)
 {
-    if (UDM1_UNLIKELY(!(fabs(x) + fabs(y) + fabs(z) < INFINITY))) return NAN; /* NaN or infinite */
+    /* NaN or infinite; each on its own: a sum of huge finite coordinates would overflow (found by fuzzing) */
+    if (UDM1_UNLIKELY(!(fabs(x) < INFINITY && fabs(y) < INFINITY && fabs(z) < INFINITY))) return NAN;
     int X0, X1, Y0, Y1, Z0, Z1;
     cell(x, n->period[0], &X0, &X1, &x);
     cell(y, n->period[1], &Y0, &Y1, &y);
@@ -298,7 +299,7 @@ static inline double dot2(const udm1_noise *n, int h, double x, double y)
 
 double udm1_noise_2d(const udm1_noise *n, double x, double y)
 {
-    if (UDM1_UNLIKELY(!(fabs(x) + fabs(y) < INFINITY))) return NAN;
+    if (UDM1_UNLIKELY(!(fabs(x) < INFINITY && fabs(y) < INFINITY))) return NAN;
     int X0, X1, Y0, Y1;
     cell(x, n->period[0], &X0, &X1, &x);
     cell(y, n->period[1], &Y0, &Y1, &y);

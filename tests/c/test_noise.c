@@ -174,6 +174,8 @@ static void test_far_coordinates(void)
         CHECKF(isfinite(v) && fabs(v) < 1.2, "noise(%g, ...) = %g", far[i], v);
         CHECK(isfinite(udm1_noise_2d(n, far[i], 1.7)) && isfinite(udm1_noise_1d(n, far[i])));
     }
+    /* the largest doubles together: each finite, their sum not (a fuzzing finding: that sum gave NaN) */
+    CHECK(isfinite(udm1_noise_3d(n, -1.7e308, 2.5, -1.6e308)) && isfinite(udm1_noise_2d(n, 1.7e308, 1.7e308)));
     /* exact shifts by multiples of 256 do not change the value, however far */
     CHECK(udm1_noise_3d(n, 0.25, 0.5, 0.75) == udm1_noise_3d(n, 0.25 + 0x1p40, 0.5 - 0x1p45, 0.75 + 256.0 * 1e9));
     /* at 1e8 and 1e12 the noise still varies from point to point (float libraries give ~47 values) */

@@ -48,6 +48,8 @@ def test_edge_cases():
         udm1.Sequence("lattice", 65, point_count=16)
     with pytest.raises(udm1.UDM1Error):
         udm1.Sequence("lattice", 2)  # a point set needs K
+    with pytest.raises(udm1.UDM1Error, match="at most 16777216 points"):  # found by fuzzing: 2^32 points hung
+        udm1.Sequence("lattice", 2, point_count=2**24 + 1)
 
 
 def test_tent_lattice_converges_like_n_minus_2():

@@ -62,8 +62,13 @@ void parse_size(const std::string &text, const std::string &flag, int max_side, 
 {
     size_t x = text.find('x');
     if (x == std::string::npos) throw Error(flag + " '" + text + "' is not WxH");
-    int w = (int)parse_u64(text.substr(0, x), flag, 1, (uint64_t)max_side);
-    int h = (int)parse_u64(text.substr(x + 1), flag, 1, (uint64_t)max_side);
+    int w = 0, h = 0;
+    try {
+        w = (int)parse_u64(text.substr(0, x), flag, 1, (uint64_t)max_side);
+        h = (int)parse_u64(text.substr(x + 1), flag, 1, (uint64_t)max_side);
+    } catch (const Error &) {  // name the whole input, not the half that failed
+        throw Error(flag + " '" + text + "' is not WxH with sides in 1.." + std::to_string(max_side), 2);
+    }
     if ((uint64_t)w * h > max_pixels)
         throw Error(flag + " '" + text + "' has more than " + std::to_string(max_pixels) + " pixels");
     *width = w, *height = h;

@@ -172,7 +172,7 @@ UDM1_API const char *udm1_last_error(void);
  *             at d = 32 and 64 its worst pair is 2-4x better than wr's and rd's
  * lattice     rank-1 lattice {n z / K}, z built         random shift            1..64
  *             component by component on the exact wrap-around L2 discrepancy;
- *             needs K (any K < 2^32); with "+tent" (below) error ~ K^-2 on smooth
+ *             needs K (1..2^24); with "+tent" (below) error ~ K^-2 on smooth
  *             integrands
  *
  * Transform (1.4): "NAME+tent" is any preset NAME with the tent (baker's) transform

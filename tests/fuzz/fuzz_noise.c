@@ -1,0 +1,123 @@
+/* fuzz_noise.c - the noise and pattern API at any coordinates and parameters: NaN, infinities, 1e300,
+ * subnormals, huge periods and octaves, every table source.
+ *
+ * Invariants: no crash, no hang, no sanitizer report; statuses are udm1_status values with a message;
+ * finite coordinates give finite noise with |n| < 1.1; a non-finite coordinate gives NaN from the scalar
+ * functions and an error from the batch ones; batch values equal the scalar ones. */
+#include <udm1/udm1.h>
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define REQUIRE(cond)                                                                                        \
+    do {                                                                                                     \
+        if (!(cond)) {                                                                                       \
+            fprintf(stderr, "fuzz_noise: invariant failed at line %d: %s\n", __LINE__, #cond);              \
+            abort();                                                                                         \
+        }                                                                                                    \
+    } while (0)
+
+typedef struct bytes {
+    const uint8_t *p;
+    size_t n;
+} bytes;
+
+static uint64_t take(bytes *b, int k)
+{
+    uint64_t v = 0;
+    for (int i = 0; i < k; ++i) v |= (uint64_t)(b->n ? (--b->n, *b->p++) : 0) << (8 * i);
+    return v;
+}
+
+/* A coordinate: any bit pattern, or one of the hard cases. */
+static double coord(bytes *b)
+{
+    static const double hard[] = {0.0, -0.0, 0.5, -4.2, 1e12, -1e12, 2147483648.5, 4503599627370496.0, 1e300,
+                                  -1e300, 5e-324, 1e-310};
+    uint64_t sel = take(b, 1);
+    if (sel < 64) {
+        uint64_t bits = take(b, 8);
+        double v;
+        memcpy(&v, &bits, sizeof v);
+        return v;
+    }
+    if (sel < 80) return sel & 1 ? NAN : (sel & 2 ? INFINITY : -INFINITY);
+    if (sel < 160) return hard[sel % (sizeof hard / sizeof hard[0])];
+    return ((double)(int64_t)take(b, 4)) / 1024.0;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    bytes b = {data, size};
+    static const char *tables[] = {NULL, "perlin", "drand48", "wr", "wopt", "rd", "sobol", "pcg32", "nope", "lattice"};
+    udm1_noise_desc desc;
+    udm1_noise_desc_init(&desc);
+    desc.kind = (uint32_t)take(&b, 1) % 3;
+    desc.table = tables[take(&b, 1) % (sizeof tables / sizeof tables[0])];
+    desc.seed = take(&b, 8);
+    for (int i = 0; i < 3; ++i) {
+        uint64_t p = take(&b, 1);
+        desc.period[i] = p < 128 ? 0 : (p < 250 ? (uint32_t)(p - 127) : (uint32_t)take(&b, 4));
+    }
+    udm1_noise *noise = (udm1_noise *)(uintptr_t)1;
+    udm1_status st = udm1_noise_create(&desc, &noise);
+    REQUIRE(udm1_status_string(st) != NULL);
+    if (st != UDM1_OK) {
+        REQUIRE(noise == NULL && udm1_last_error()[0] != '\0');
+        return 0;
+    }
+    double pts[3 * 8];
+    int finite = 1;
+    for (int i = 0; i < 24; ++i) {
+        pts[i] = coord(&b);
+        finite &= isfinite(pts[i]) != 0;
+    }
+    for (int i = 0; i < 8; ++i) {
+        double x = pts[3 * i], y = pts[3 * i + 1], z = pts[3 * i + 2];
+        double v3 = udm1_noise_3d(noise, x, y, z), v2 = udm1_noise_2d(noise, x, y), v1 = udm1_noise_1d(noise, x);
+        int finite3 = isfinite(x) && isfinite(y) && isfinite(z);
+        if (finite3 && !(isfinite(v3) && fabs(v3) < 1.1)) {
+            fprintf(stderr, "fuzz_noise: noise_3d(%.17g, %.17g, %.17g) = %.17g\n", x, y, z, v3);
+            abort();
+        }
+        if (!finite3 && !isnan(v3)) {
+            fprintf(stderr, "fuzz_noise: noise_3d(%.17g, %.17g, %.17g) = %.17g, not NaN\n", x, y, z, v3);
+            abort();
+        }
+        if (isfinite(x) && isfinite(y)) REQUIRE(isfinite(v2) && fabs(v2) < 1.1);
+        if (isfinite(x)) REQUIRE(isfinite(v1) && fabs(v1) < 1.1);
+    }
+    double out[8];
+    st = udm1_noise_points(noise, 3, pts, 8, 3, out);
+    REQUIRE(st == (finite ? UDM1_OK : UDM1_ERROR_INVALID_ARGUMENT));
+    if (st == UDM1_OK)
+        for (int i = 0; i < 8; ++i) REQUIRE(out[i] == udm1_noise_3d(noise, pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]));
+
+    udm1_pattern_params par;
+    uint32_t pattern = (uint32_t)take(&b, 1) % 17; /* includes 0 and 16: unknown */
+    udm1_pattern_params_init(&par, pattern);
+    if (take(&b, 1) & 1) { /* any parameters */
+        par.octaves = (uint32_t)take(&b, 1) % 14;
+        par.wave = (uint32_t)take(&b, 1) % 9;
+        par.omega = coord(&b), par.lambda = coord(&b), par.frequency = coord(&b), par.phase = coord(&b);
+        par.exponent = coord(&b), par.agate_turb = coord(&b);
+        for (int i = 0; i < 3; ++i) par.turbulence[i] = coord(&b);
+    }
+    double pv[8];
+    st = udm1_pattern_points(noise, &par, pts, 8, 3, pv);
+    REQUIRE(udm1_status_string(st) != NULL);
+    if (st == UDM1_OK)
+        for (int i = 0; i < 8; ++i) REQUIRE(pv[i] == udm1_pattern_eval(noise, &par, pts[3 * i], pts[3 * i + 1],
+                                                                        pts[3 * i + 2]) ||
+                                            (isnan(pv[i]) && isnan(udm1_pattern_eval(noise, &par, pts[3 * i],
+                                                                                     pts[3 * i + 1], pts[3 * i + 2]))));
+    float grid[4 * 3];
+    double origin[3] = {pts[0], pts[1], pts[2]}, sx[3] = {pts[3], pts[4], pts[5]}, sy[3] = {pts[6], pts[7], pts[8]};
+    st = udm1_pattern_grid(noise, &par, 4, 3, 0, 3, origin, sx, sy, grid);
+    REQUIRE(udm1_status_string(st) != NULL);
+    udm1_noise_destroy(noise);
+    return 0;
+}
