@@ -103,11 +103,9 @@ Options parse(int argc, char **argv)
             else if (k == "classic") o.kind = UDM1_NOISE_CLASSIC;
             else throw Error("--kind '" + k + "' is not improved or classic");
         } else if (a == "--size") {
-            std::string v = value(a);
-            size_t x = v.find('x');
-            if (x == std::string::npos) throw Error("--size '" + v + "' is not WxH");
-            o.width = (uint32_t)udm1app::parse_u64(v.substr(0, x), "--size", 1, 16384);
-            o.height = (uint32_t)udm1app::parse_u64(v.substr(x + 1), "--size", 1, 16384);
+            int w = 0, h = 0;  // the shared parser: its errors name the whole input
+            udm1app::parse_size(value(a), "--size", 16384, (uint64_t)16384 * 16384, &w, &h);
+            o.width = (uint32_t)w, o.height = (uint32_t)h;
         } else if (a == "--scale") o.scale = udm1app::parse_double(value(a), "--scale", 1e-9, 1e12);
         else if (a == "--origin") {
             std::vector<double> v = parse_vector(value(a), "--origin", 3);

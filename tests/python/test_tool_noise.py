@@ -92,8 +92,8 @@ def test_figures(tmp_path):
 @pytest.mark.parametrize(
     "args,code,words",
     [
-        (["--size", "0x10"], 2, "--size '0'"),
-        (["--size", "100000x10"], 2, "--size '100000'"),
+        (["--size", "0x10"], 2, "--size '0x10'"),
+        (["--size", "100000x10"], 2, "--size '100000x10'"),
         (["--size", "12"], 2, "--size '12'"),
         (["--pattern", "plaid"], 2, "'plaid'"),
         (["--table", "nope"], 2, "'nope'"),
