@@ -105,6 +105,15 @@ std::string read_all(const std::string &path)
     return read_regular_file(path, "mesh file");
 }
 
+// A list's length as read (any number type): a whole number below 2^31, else the file is refused (a huge
+// or fractional value cast to size_t is undefined behaviour; found by fuzzing).
+size_t list_count(double c, const std::string &path)
+{
+    if (!(c >= 0 && c < 2147483648.0) || c != (double)(size_t)c)
+        throw SceneError(path + ": a list length of " + std::to_string(c) + " is not a whole number below 2^31");
+    return (size_t)c;
+}
+
 void add_vertex(Shape *s, const Mat4 &xf, Vec3 p)
 {
     Vec3 w = xf.point(p);
@@ -194,7 +203,7 @@ void read_ply(const std::string &path, const Mat4 &xf, Shape *shape)
                 for (size_t k = 0; k < e.props.size(); ++k) {
                     const Property &p = e.props[k];
                     if (p.list) {
-                        size_t c = (size_t)r.value(p.count_type, "vertex list");
+                        size_t c = list_count(r.value(p.count_type, "vertex list"), path);
                         for (size_t j = 0; j < c; ++j) r.value(p.type, "vertex list");
                         v[k] = 0;
                     } else {
@@ -246,7 +255,7 @@ void read_ply(const std::string &path, const Mat4 &xf, Shape *shape)
                         r.value(p.type, e.name.c_str());
                         continue;
                     }
-                    size_t c = (size_t)r.value(p.count_type, e.name.c_str());
+                    size_t c = list_count(r.value(p.count_type, e.name.c_str()), path);
                     for (size_t j = 0; j < c; ++j) r.value(p.type, e.name.c_str());
                 }
         }

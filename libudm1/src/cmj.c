@@ -49,7 +49,7 @@ static uint64_t cmj_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, 
 {
     uint32_t pair = dim / 2, N = (uint32_t)seq->point_count;
     uint32_t p = udm1_key32(seq->mode == UDM1_MODE_NONE ? seq->seed_key : skey, 0x434D4Au, pair);
-    uint32_t m = (uint32_t)isqrt64(N), n = (N + m - 1) / m;
+    uint32_t m = (uint32_t)isqrt64(N), n = (uint32_t)(((uint64_t)N + m - 1) / m); /* 64-bit: N + m wraps near 2^32 */
     uint32_t s = udm1_permute((uint32_t)index, N, p * 0x51633e2du);
     uint64_t v;
     if ((dim & 1) == 0) {

@@ -62,6 +62,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     desc.seed = take(&b, 8);
     desc.randomize = (uint32_t)take(&b, 1) % 8;            /* includes invalid values */
     desc.screen_spp = (uint32_t)take(&b, 1) % 5;
+    int debug = getenv("UDM1_FUZZ_DEBUG") != NULL; /* prints the calls, to reproduce a finding by hand */
+    if (debug)
+        fprintf(stderr, "create %s d=%u K=%llu seed=%llu randomize=%u screen_spp=%u\n", desc.preset, desc.dimensions,
+                (unsigned long long)desc.point_count, (unsigned long long)desc.seed, desc.randomize, desc.screen_spp);
     udm1_seq *seq = (udm1_seq *)(uintptr_t)1;              /* must be set to NULL on failure */
     udm1_status st = udm1_seq_create_desc(&desc, &seq);
     check_status(st);
@@ -78,6 +82,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         uint32_t dim0 = (uint32_t)take(&b, 1) % (d + 2);
         uint32_t nd = (uint32_t)take(&b, 1) % (d + 2);
         size_t stride = nd + (size_t)take(&b, 1) % 3;
+        if (debug)
+            fprintf(stderr, "fill stream=%llu first=%llu count=%zu dim0=%u nd=%u stride=%zu\n",
+                    (unsigned long long)stream, (unsigned long long)first, count, dim0, nd, stride);
         double *f64 = calloc(count * (stride ? stride : 1) + 1, sizeof(double));
         float *f32 = calloc(count * (stride ? stride : 1) + 1, sizeof(float));
         uint64_t *u64 = calloc(count * (stride ? stride : 1) + 1, sizeof(uint64_t));

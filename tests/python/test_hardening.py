@@ -88,3 +88,17 @@ def test_seq_dump_identical_across_runs(tmp_path):
         assert r.returncode == 0, r.stderr
         outs.append((tmp_path / f"d{k}.npy").read_bytes())
     assert outs[0] == outs[1] == outs[2]
+
+
+def test_point_sets_at_the_largest_point_count():
+    """Found by fuzzing: CMJ with K = 2^32 - 1 hung (N + m - 1 wrapped in 32 bits, and the permutation of an
+    empty range never ended). Every point set at its largest K gives values in [0, 1) at once."""
+    import numpy as np
+
+    import udm1
+
+    for name, k in (("cmj", 2**32 - 1), ("grps", 2**26), ("lp", 2**32 - 1), ("hammersley", 2**32 - 1),
+                    ("episwr", 2**32 - 1), ("lattice", 2**24), ("pmj02", 2**20)):
+        seq = udm1.Sequence(name, 2, point_count=k, seed=3)
+        v = np.array([seq.sample(i, j) for i in (0, 1, k // 3, k - 1) for j in (0, 1)])
+        assert np.all((v >= 0) & (v < 1)), name
