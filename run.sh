@@ -3,8 +3,9 @@
 #
 #   ./run.sh [--full] the main job: build, then write report/index.html: speed against error for every
 #                     sampler in every application (tools/report/main_report.py; --quick, --full, --fresh)
-#   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C tests
-#                     again under AddressSanitizer + UndefinedBehaviorSanitizer
+#   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C and C++ tests again
+#                     under AddressSanitizer + UndefinedBehaviorSanitizer, and the package's Python tests
+#                     against that sanitized library
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
 #   ./run.sh fuzz [S] every libFuzzer target for S seconds (default 60), clang + ASan + UBSan (TESTING.md)
 #
@@ -46,6 +47,12 @@ test)
     build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON -DUDM1_MULTIVERSION=OFF
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         ctest --test-dir build-asan -j "$JOBS" -L "^(c|cpp)$" --output-on-failure
+    udm1_log "the Python tests of the package against the sanitized library (libasan and libubsan preloaded;"
+    udm1_log "leak detection off there: the interpreter itself keeps memory until exit)"
+    (cd tests/python && LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" \
+        ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
+        "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening)'))
     udm1_log "all tests passed"
     ;;
 bench)
