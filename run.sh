@@ -4,8 +4,8 @@
 #   ./run.sh [--full] the main job: build, then write report/index.html: speed against error for every
 #                     sampler in every application (tools/report/main_report.py; --quick, --full, --fresh)
 #   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C and C++ tests again
-#                     under AddressSanitizer + UndefinedBehaviorSanitizer, and the package's Python tests
-#                     against that sanitized library
+#                     under AddressSanitizer + UndefinedBehaviorSanitizer, the package's Python tests against
+#                     that sanitized library, and the tools' tests against the sanitized tools
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
 #   ./run.sh fuzz [S] every libFuzzer target for S seconds (default 60), clang + ASan + UBSan (TESTING.md)
 #
@@ -53,6 +53,13 @@ test)
         ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
         "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening)'))
+    udm1_log "the tools' tests again, against the sanitized tools of build-asan (ASan, LSan, UBSan)"
+    (cd tests/python && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
+        UDM1_SEQ_TOOL="$ROOT/build-asan/tools/udm1-seq" UDM1_NOISE_TOOL="$ROOT/build-asan/noise/udm1-noise" \
+        UDM1_AO_TOOL="$ROOT/build-asan/ao/udm1-ao" UDM1_PT_TOOL="$ROOT/build-asan/pt/udm1-pt" \
+        "$PY" -m pytest -q -p no:cacheprovider test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py \
+        test_hardening.py)
     udm1_log "all tests passed"
     ;;
 bench)
