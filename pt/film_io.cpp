@@ -4,8 +4,9 @@
 #include "../tools/common/atomic_file.h"
 #include "../tools/common/cli.h"
 
+#include "../tools/common/image_read.h"
+
 #include <OpenImageIO/imageio.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstring>
@@ -60,8 +61,7 @@ void write_partial(const std::string &path, const Partial &p)
 
 Partial read_partial(const std::string &path)
 {
-    struct stat st;  // a device or FIFO (/dev/zero) would be read forever
-    if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw Error("cannot read '" + path + "': not a regular file", 1);
+    udm1app::require_regular_file(path);
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error("cannot read '" + path + "': " + OIIO::geterror(), 1);
     const OIIO::ImageSpec &spec = in->spec();

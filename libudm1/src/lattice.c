@@ -57,16 +57,11 @@ udm1_status udm1_init_lattice(udm1_seq_t *seq)
                          UDM1_LATTICE_MAX_POINTS, (unsigned long long)k);
     uint32_t d = seq->dims;
     seq->gen = malloc(sizeof(udm1_generator) * d);
-    uint64_t *z = malloc(sizeof(uint64_t) * d);
     double *prod = malloc(sizeof(double) * k), *g = malloc(sizeof(double) * k);
-    uint64_t *cand = NULL;
-    size_t units = 0;
-    if (seq->gen && z && prod && g) {
-        for (uint64_t c = 1; c < k; ++c) units += gcd64(c, k) == 1;
-        cand = malloc(sizeof(uint64_t) * (units ? units : 1));
-    }
-    if (!seq->gen || !z || !prod || !g || !cand) {
-        free(z), free(prod), free(g), free(cand);
+    uint64_t *cand = malloc(sizeof(uint64_t) * k); /* the units mod K: at most K - 1 */
+    char *used = calloc(k, 1);
+    if (!seq->gen || !prod || !g || !cand || !used) {
+        free(prod), free(g), free(cand), free(used);
         return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for a %llu-point lattice", fn,
                          (unsigned long long)k);
     }
@@ -78,15 +73,10 @@ udm1_status udm1_init_lattice(udm1_seq_t *seq)
     size_t nc = 0;
     for (uint64_t c = 1; c < k; ++c)
         if (gcd64(c, k) == 1) cand[nc++] = c;
+    size_t units = nc;
     /* the candidate subset when every unit would cost too much */
     size_t limit = k * (uint64_t)nc <= LATTICE_WORK_PER_DIM ? nc : (size_t)(LATTICE_WORK_PER_DIM / k);
     if (limit < 1) limit = 1;
-    char *used = calloc(k ? k : 1, 1);
-    if (!used) {
-        free(z), free(prod), free(g), free(cand);
-        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for a %llu-point lattice", fn,
-                         (unsigned long long)k);
-    }
     for (uint32_t j = 0; j < d; ++j) {
         uint64_t best = 1;
         if (j > 0 && k > 2) {
@@ -110,12 +100,12 @@ udm1_status udm1_init_lattice(udm1_seq_t *seq)
                 if (!found || s < best_sum) best_sum = s, best = c, found = 1;
             }
         }
-        z[j] = best % (k ? k : 1);
-        used[z[j]] = 1;
+        uint64_t z = best % k; /* the coordinate z_j of the generating vector */
+        used[z] = 1;
         uint64_t m = 0;
         for (uint64_t n = 0; n < k; ++n) {
             prod[n] *= g[m];
-            m += z[j];
+            m += z;
             if (m >= k) m -= k;
         }
         if (k == 1) {
@@ -123,9 +113,9 @@ udm1_status udm1_init_lattice(udm1_seq_t *seq)
             seq->gen[j].nature = UDM1_NATURE_POINT_SET;
             seq->gen[j].radical = 0;
         } else {
-            rational_generator(z[j], k, &seq->gen[j]);
+            rational_generator(z, k, &seq->gen[j]);
         }
     }
-    free(used), free(z), free(prod), free(g), free(cand);
+    free(used), free(prod), free(g), free(cand);
     return UDM1_OK;
 }

@@ -56,4 +56,11 @@ static inline uint64_t udm1_screen_index(const udm1_seq_t *seq, uint64_t skey, u
     return seq->mode == UDM1_MODE_SCREEN ? n + udm1_morton(skey) * seq->screen_spp : n;
 }
 
+/* Raw value of a Weyl sequence in mode NONE, SHIFT or SCREEN: base offset, shift and index as above. */
+static inline uint64_t udm1_weyl_shifted_raw(const udm1_seq_t *seq, uint64_t skey, uint64_t n, uint32_t dim)
+{
+    return udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_weyl_shift(seq, skey, dim),
+                         udm1_screen_index(seq, skey, n));
+}
+
 #endif

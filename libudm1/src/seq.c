@@ -93,11 +93,8 @@ static udm1_status screen_init(const char *fn, udm1_seq *seq, uint32_t spp)
 /* "+tent": the sequence's own value (or the Weyl path), then the tent transform. */
 static uint64_t tent_value(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
-    uint64_t x = seq->inner_value
-                     ? seq->inner_value(seq, skey, index, dim)
-                     : udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_weyl_shift(seq, skey, dim),
-                                     udm1_screen_index(seq, skey, index));
-    return udm1_tent(x);
+    return udm1_tent(seq->inner_value ? seq->inner_value(seq, skey, index, dim)
+                                      : udm1_weyl_shifted_raw(seq, skey, index, dim));
 }
 
 udm1_status udm1_seq_create_desc(const udm1_seq_desc *desc, udm1_seq **out)
@@ -260,18 +257,11 @@ udm1_status udm1_seq_alpha(const udm1_seq *seq, uint32_t dim, uint64_t *hi, uint
     return UDM1_OK;
 }
 
-/* O_j for a stream: base offset plus the random shift (Weyl, NONE or SHIFT). */
-static inline uint64_t total_offset(const udm1_seq *seq, uint64_t stream_key, uint32_t dim)
-{
-    uint64_t o = seq->offset[dim];
-    return o + udm1_weyl_shift(seq, stream_key, dim);
-}
-
 /* The value of (stream key, index, dim < D) for any kind. */
 static inline uint64_t value_of(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
     if (seq->value) return seq->value(seq, skey, index, dim);
-    return udm1_weyl_raw(&seq->gen[dim], total_offset(seq, skey, dim), udm1_screen_index(seq, skey, index));
+    return udm1_weyl_shifted_raw(seq, skey, index, dim);
 }
 
 uint64_t udm1_weyl_value(const udm1_seq *seq, uint64_t skey, uint64_t index, uint32_t dim)

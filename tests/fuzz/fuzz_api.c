@@ -5,32 +5,14 @@
  *  - every status is a udm1_status with a message string, and a failing call writes nothing;
  *  - every value is in [0, 1) (f64 and f32) and the raw values agree with the f64 conversion;
  *  - a bulk fill equals per-sample access and the cursor, value for value. */
+#include "fuzz_bytes.h"
+
 #include <udm1/udm1.h>
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-typedef struct bytes {
-    const uint8_t *p;
-    size_t n;
-} bytes;
-
-static uint64_t take(bytes *b, int k) /* k bytes, little endian; zeros past the end */
-{
-    uint64_t v = 0;
-    for (int i = 0; i < k; ++i) v |= (uint64_t)(b->n ? (--b->n, *b->p++) : 0) << (8 * i);
-    return v;
-}
-
-#define REQUIRE(cond)                                                                                        \
-    do {                                                                                                     \
-        if (!(cond)) {                                                                                       \
-            fprintf(stderr, "fuzz_api: invariant failed at line %d: %s\n", __LINE__, #cond);                \
-            abort();                                                                                         \
-        }                                                                                                    \
-    } while (0)
 
 static void check_status(udm1_status st)
 {

@@ -4,6 +4,8 @@
  * Invariants: no crash, no hang, no sanitizer report; statuses are udm1_status values with a message;
  * finite coordinates give finite noise with |n| < 1.1; a non-finite coordinate gives NaN from the scalar
  * functions and an error from the batch ones; batch values equal the scalar ones. */
+#include "fuzz_bytes.h"
+
 #include <udm1/udm1.h>
 
 #include <math.h>
@@ -11,26 +13,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-#define REQUIRE(cond)                                                                                        \
-    do {                                                                                                     \
-        if (!(cond)) {                                                                                       \
-            fprintf(stderr, "fuzz_noise: invariant failed at line %d: %s\n", __LINE__, #cond);              \
-            abort();                                                                                         \
-        }                                                                                                    \
-    } while (0)
-
-typedef struct bytes {
-    const uint8_t *p;
-    size_t n;
-} bytes;
-
-static uint64_t take(bytes *b, int k)
-{
-    uint64_t v = 0;
-    for (int i = 0; i < k; ++i) v |= (uint64_t)(b->n ? (--b->n, *b->p++) : 0) << (8 * i);
-    return v;
-}
 
 /* A coordinate: any bit pattern, or one of the hard cases. */
 static double coord(bytes *b)

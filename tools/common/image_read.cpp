@@ -12,10 +12,15 @@
 
 namespace udm1app {
 
+void require_regular_file(const std::string &path)
+{
+    struct stat st;
+    if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw Error("cannot read '" + path + "': not a regular file", 1);
+}
+
 LoadedImage read_image(const std::string &path)
 {
-    struct stat st;  // a device or FIFO (/dev/zero) would be read forever
-    if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw Error("cannot read '" + path + "': not a regular file", 1);
+    require_regular_file(path);
     auto in = OIIO::ImageInput::open(path);
     if (!in) throw Error("cannot read '" + path + "': " + OIIO::geterror(), 1);
     const OIIO::ImageSpec &spec = in->spec();

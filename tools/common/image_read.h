@@ -18,6 +18,10 @@ struct LoadedImage {
 // Throws Error naming the file if it cannot be read.
 LoadedImage read_image(const std::string &path);
 
+// Throws Error "cannot read 'path': not a regular file" for a device, FIFO or folder (a reader would wait on
+// /dev/zero forever); a missing file is left to the reader's own error.
+void require_regular_file(const std::string &path);
+
 // MSE over every channel of every pixel, and PSNR = 10 log10(1 / MSE): the peak is 1 on linear
 // values (AO lies in [0, 1]; radiance images are compared after clamping to [0, 1], see compare()).
 struct Comparison {

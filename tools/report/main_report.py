@@ -136,17 +136,15 @@ def file_digest(path: str) -> str:
     return h.hexdigest()
 
 
-def step_key(step: Step, library: Path | None) -> str:
-    """What a step's result depends on: its commands, the content of every program and script they name, of
-    the report's shared module and of the library they all load."""
+def step_key(step: Step, shared: str) -> str:
+    """What a step's result depends on: its commands, the content of every program and script they name, and
+    `shared`: the digest of what every step uses (the report's shared module and the library)."""
     h = hashlib.sha256(json.dumps(step.commands).encode())
-    if library and library.exists():
-        h.update(file_digest(str(library)).encode())
+    h.update(shared.encode())
     for cmd in step.commands:
         for a in cmd:
             if a != sys.executable and os.path.isfile(a) and not a.endswith((".json", ".txt")):
                 h.update(file_digest(a).encode())
-    h.update(file_digest(str(HERE / "report_common.py")).encode())
     return h.hexdigest()
 
 
@@ -180,6 +178,7 @@ def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) 
 
 def run_steps(steps: list[Step], out: Path, args) -> dict:
     library = Path(os.environ.get("UDM1_LIBRARY") or Path(args.build) / "libudm1" / "libudm1.so.1")
+    shared = file_digest(str(HERE / "report_common.py")) + (file_digest(str(library)) if library.exists() else "")
     state_path = out / "steps.json"
     try:
         previous = json.loads(state_path.read_text()) if state_path.exists() and not args.fresh else {}
@@ -189,7 +188,7 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
     only = set(args.only.split(",")) if args.only else None
     for k, step in enumerate(steps):
         label = f"{k + 1}/{len(steps)} {step.name}"
-        key = step_key(step, library)
+        key = step_key(step, shared)
         old = previous.get(step.name, {})
         record = {"title": step.title, "commands": [" ".join(c) for c in step.commands], "key": key}
         reusable = old.get("status") in ("ok", "reused") and old.get("key") == key and \

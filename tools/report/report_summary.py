@@ -9,6 +9,7 @@ are read. Every sampler a step ran appears in each table made from that step.
 from __future__ import annotations
 
 import csv
+import functools
 import json
 import math
 import re
@@ -54,7 +55,9 @@ def not_shown(doc, state: dict, name: str) -> bool:
     return True
 
 
+@functools.lru_cache(maxsize=None)
 def load(out: Path, name: str) -> dict:
+    """A step's JSON, read once per report (several sections use the same file; do not modify the result)."""
     return json.loads((out / name).read_text())
 
 

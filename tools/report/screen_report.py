@@ -17,6 +17,7 @@ renders and references go to OUT/screen/.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import subprocess
 import sys
@@ -35,10 +36,16 @@ WEYL = {"ao": ["wr", "wopt", "rd"], "pt": ["wr", "wmmr", "wopt"]}  # sequences (
 ANCHORS = ["sobol-owen", "pmj02"]
 
 
-def read_exr(path: Path) -> np.ndarray:
-    import mitsuba as mi  # reads OpenEXR; already a dependency (the path tracer's cross-check)
+@functools.cache
+def mitsuba():
+    """Mitsuba reads OpenEXR (already a dependency: the path tracer's cross-check); its variant is set once."""
+    import mitsuba as mi
     mi.set_variant("scalar_rgb")
-    a = np.array(mi.Bitmap(str(path)), dtype=np.float64)
+    return mi
+
+
+def read_exr(path: Path) -> np.ndarray:
+    a = np.array(mitsuba().Bitmap(str(path)), dtype=np.float64)
     return a[..., :3].mean(axis=2) if a.ndim == 3 else a
 
 
