@@ -150,50 +150,60 @@ double ao_at(const udm1scene::EmbreeScene &rt, Vec3 p, Vec3 n, const udm1_seq *s
 Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)
 {
     if (opt.spp == 0) throw std::runtime_error("spp must be at least 1");
-    udm1_seq *seq = make_sampler(opt);
+    const uint32_t count = opt.count ? opt.count : (opt.first < opt.spp ? opt.spp - opt.first : 0);
+    if (opt.first >= opt.spp || count > opt.spp - opt.first)
+        throw std::runtime_error("sample range [" + std::to_string(opt.first) + ", " +
+                                 std::to_string((uint64_t)opt.first + count) + ") is not inside [0, " +
+                                 std::to_string(opt.spp) + ")");
     udm1scene::Scene view = scene;  // the camera at the asked resolution
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
+    int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
+    udm1app::check_pixel_bounds(bounds, view.width, view.height);
+    udm1_seq *seq = make_sampler(opt);
     Image img;
-    img.width = view.width;
-    img.height = view.height;
+    img.width = bounds[2] - bounds[0];
+    img.height = bounds[3] - bounds[1];
     img.values.assign((size_t)img.width * img.height, 0.0f);
+    udm1app::PartialImage &sums = img.sums;
+    sums.reset(view.width, view.height, bounds[0], bounds[1], img.width, img.height, {"A"}, 1.0);
+    sums.spp = opt.spp, sums.first = opt.first, sums.count = count;
+    const uint32_t dims = opt.jitter ? 4 : 2;
     auto t0 = std::chrono::steady_clock::now();
     std::atomic<uint64_t> rays{0};
     std::string error;
     std::mutex error_mutex;
     std::atomic<bool> failed{false};
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, img.height, 16, 0, img.width, 16), [&](const tbb::blocked_range2d<int> &r) {
+    tbb::parallel_for(tbb::blocked_range2d<int>(bounds[1], bounds[3], 16, bounds[0], bounds[2], 16),
+                      [&](const tbb::blocked_range2d<int> &r) {
         Scratch scratch;
         std::vector<double> &uv = scratch.uv;
         uint64_t local_rays = 0;
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
                 uint64_t stream = ((uint64_t)y << 32) | (uint32_t)x;
-                uv.resize((size_t)opt.spp * (opt.jitter ? 4 : 2));
-                if (udm1_seq_fill_f64(seq, stream, 0, opt.spp, 0, opt.jitter ? 4 : 2, uv.data(), opt.jitter ? 4 : 2) !=
-                    UDM1_OK) {
+                uv.resize((size_t)count * dims);
+                if (udm1_seq_fill_f64(seq, stream, opt.first, count, 0, dims, uv.data(), dims) != UDM1_OK) {
                     std::lock_guard<std::mutex> lock(error_mutex);
                     error = udm1_last_error();  // per thread: copy it here
                     failed = true;
                     continue;
                 }
-                double value = 0;
-                if (!opt.jitter) {  // one primary hit at the pixel centre, spp directions
+                uint32_t free_rays = 0;
+                if (!opt.jitter) {  // one primary hit at the pixel centre, `count` directions
                     Vec3 o, d;
                     udm1scene::camera_ray(view, x + 0.5, y + 0.5, &o, &d);
                     udm1scene::Hit h;
                     ++local_rays;
                     if (!rt.intersect(o, d, 0.0, 1e300, &h)) {
-                        value = 1.0;  // the sky: nothing occludes it
+                        free_rays = count;  // the sky: nothing occludes it
                     } else {
                         Vec3 n = dot(h.ng, d) > 0 ? -h.ng : h.ng;
-                        value = (double)unoccluded(rt, rt.spawn_origin(h, d, n), Frame(n), uv.data(), opt.spp,
-                                                   opt.max_distance, opt.method, &scratch) / opt.spp;
-                        local_rays += opt.spp;
+                        free_rays = unoccluded(rt, rt.spawn_origin(h, d, n), Frame(n), uv.data(), count, opt.max_distance,
+                                               opt.method, &scratch);
+                        local_rays += count;
                     }
                 } else {  // a jittered primary ray per sample, one direction each
-                    uint32_t free_rays = 0;
-                    for (uint32_t k = 0; k < opt.spp; ++k) {
+                    for (uint32_t k = 0; k < count; ++k) {
                         Vec3 o, d;
                         udm1scene::camera_ray(view, x + uv[4 * k], y + uv[4 * k + 1], &o, &d);
                         udm1scene::Hit h;
@@ -207,9 +217,10 @@ Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, co
                                                 opt.max_distance, Method::Single, &scratch);
                         ++local_rays;
                     }
-                    value = (double)free_rays / opt.spp;
                 }
-                img.values[(size_t)y * img.width + x] = (float)value;
+                size_t i = (size_t)(y - bounds[1]) * img.width + (x - bounds[0]);
+                sums.sum[i] = free_rays;
+                img.values[i] = (float)((double)free_rays / count);
             }
         rays += local_rays;
     });

@@ -6,6 +6,8 @@
 
 #include "embree_scene.h"
 
+#include "../tools/common/partial_image.h"
+
 #include <udm1/udm1.h>
 
 #include <string>
@@ -17,7 +19,9 @@ enum class Method { Single, Packet, Stream };  // how occlusion rays go to Embre
 
 struct Options {
     std::string sampler = "episwr";  // the paper's best AO set
-    uint32_t spp = 64;
+    uint32_t spp = 64;               // the whole render's samples per pixel (point sets use K = spp)
+    uint32_t first = 0, count = 0;   // this run's sample indices [first, first + count); count 0: up to spp
+    int bounds[4] = {0, 0, 0, 0};    // the pixels rendered: [x0, x1) x [y0, y1); all zero: every pixel
     uint64_t seed = 1;
     uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
     int width = 0, height = 0;       // 0: 256 x 256 for built-in scenes, else the scene's film
@@ -32,12 +36,14 @@ struct Stats {
 };
 
 struct Image {
-    int width = 0, height = 0;
-    std::vector<float> values;  // row-major, top row first
+    int width = 0, height = 0;  // the window rendered (the whole image unless opt.bounds says otherwise)
+    std::vector<float> values;  // row-major, top row first: unoccluded rays / rays
+    udm1app::PartialImage sums; // the same as exact counts of unoccluded rays (channel "A"): ranges and
+                                // tiles of one render merge exactly (tools/common/partial_image.h)
 };
 
 // Render the AO image. The result depends only on the options (not on threads or tiles).
-// Throws std::runtime_error with udm1's message for a bad sampler or spp.
+// Throws std::runtime_error with udm1's message for a bad sampler, spp, range or window.
 Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats);
 
 // The AO estimate at one point p with normal n (facing the side sampled), from points

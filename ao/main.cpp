@@ -14,6 +14,7 @@
 #include "../tools/common/cli.h"
 #include "../tools/common/image_read.h"
 #include "../tools/common/image_write.h"
+#include "../tools/common/partial_image.h"
 #include "ao_render.h"
 #include "embree_scene.h"
 #include "scene.h"
@@ -37,6 +38,7 @@ const char *USAGE =
     "usage: udm1-ao [options] [-o IMAGE.exr|.png] [--png IMAGE.png]   (neither: writes ao.png)\n"
     "       udm1-ao reference -o REF.exr [options]   (defaults: --sampler sobol-owen --spp 8192; reuses REF.exr\n"
     "                                                if the same scene and settings made it)\n"
+    "       udm1-ao merge A.exr B.exr ... -o OUT.exr [--png OUT.png]   (sample ranges and tiles of one render)\n"
     "       udm1-ao compare IMAGE REFERENCE [--diff DIFF.png]\n"
     "       udm1-ao sweep --against REF.exr [--samplers A,B,...|all] [--spps N,M,...] [--seeds K] [--images DIR]\n"
     "                     [options]: every sampler x spp x seed 1..K, one CSV line each (sampler,spp,seed,\n"
@@ -45,6 +47,9 @@ const char *USAGE =
     "  --scene S       a .pbrt, .ply or .obj file, or builtin:cornell|plane|box|wall (default builtin:cornell)\n"
     "  --sampler S     any udm1 sampler with 2 dimensions (4 with --jitter); default episwr\n"
     "  --spp N         samples per pixel (default 64)      --seed S   sampler seed (default 1)\n"
+    "  --spp-first F   render only sample indices [F, F + C) of the --spp N ... (-o IMAGE.exr keeps exact\n"
+    "  --spp-count C   ... counts: merge joins ranges and tiles into the whole render, bit for bit)\n"
+    "  --pixel-bounds X0,Y0,X1,Y1  render only the pixels [X0, X1) x [Y0, Y1) (a tile)\n"
     "  --randomize R   none|default|shift|permute|owen|screen (default: the sampler's default; screen:\n"
     "                  Weyl sets, blue-noise error across pixels)\n"
     "  --size WxH      image size (default: 256x256 for built-in scenes, else the scene's film)\n"
@@ -61,7 +66,7 @@ struct Options {
     std::string scene = "builtin:cornell", output, png, diff;
     std::vector<std::string> positional;
     uint32_t threads = 0;
-    bool compare = false, reference = false, sweep = false, size_given = false, sampler_given = false,
+    bool compare = false, reference = false, sweep = false, merge = false, size_given = false, sampler_given = false,
          spp_given = false;
     // sweep
     std::string against, images;
@@ -82,6 +87,7 @@ Options parse(int argc, char **argv)
     if (!args.empty() && args[0] == "compare") o.compare = true, i = 1;
     if (!args.empty() && args[0] == "reference") o.reference = true, i = 1;
     if (!args.empty() && args[0] == "sweep") o.sweep = true, i = 1;
+    if (!args.empty() && args[0] == "merge") o.merge = true, i = 1;
     auto sweep_only = [&](const std::string &flag) {
         if (!o.sweep) throw Error(flag + " is an option of udm1-ao sweep");
     };
@@ -94,6 +100,9 @@ Options parse(int argc, char **argv)
         if (a == "--scene") o.scene = value(a);
         else if (a == "--sampler") o.ao.sampler = value(a), o.sampler_given = true;
         else if (a == "--spp") o.ao.spp = (uint32_t)udm1app::parse_u64(value(a), "--spp", 1, 1u << 20), o.spp_given = true;
+        else if (a == "--spp-first") o.ao.first = (uint32_t)udm1app::parse_u64(value(a), a, 0, (1u << 20) - 1);
+        else if (a == "--spp-count") o.ao.count = (uint32_t)udm1app::parse_u64(value(a), a, 1, 1u << 20);
+        else if (a == "--pixel-bounds") udm1app::parse_pixel_bounds(value(a), a, o.ao.bounds);
         else if (a == "--seed") o.ao.seed = udm1app::parse_u64(value(a), "--seed", 0, UINT64_MAX);
         else if (a == "--randomize") o.ao.randomize = udm1app::parse_randomize(value(a));
         else if (a == "--size") {
@@ -122,14 +131,23 @@ Options parse(int argc, char **argv)
         else o.positional.push_back(a);
     }
     if (o.compare && o.positional.size() != 2) throw Error("compare needs IMAGE and REFERENCE");
-    if (!o.compare && !o.positional.empty()) throw Error("unexpected argument '" + o.positional[0] + "'");
+    if (!o.compare && !o.merge && !o.positional.empty()) throw Error("unexpected argument '" + o.positional[0] + "'");
+    if (o.merge && o.positional.empty()) throw Error("merge needs the images to merge");
+    if (o.merge && o.output.empty()) throw Error("merge needs -o OUT.exr");
+    const bool part = o.ao.first || o.ao.count || o.ao.bounds[2];
+    if (part && (o.sweep || o.reference))
+        throw Error(std::string(o.sweep ? "sweep" : "reference") + " renders every sample and pixel: no --spp-first/--spp-count/--pixel-bounds");
+    if (o.ao.first >= o.ao.spp) throw Error("--spp-first " + std::to_string(o.ao.first) + " is not below --spp " + std::to_string(o.ao.spp));
+    if (o.ao.count && (uint64_t)o.ao.first + o.ao.count > o.ao.spp)
+        throw Error("--spp-first + --spp-count (" + std::to_string((uint64_t)o.ao.first + o.ao.count) + ") exceeds --spp " +
+                    std::to_string(o.ao.spp));
     if (o.sweep) {
         if (o.against.empty()) throw Error("sweep needs --against REF.exr");
         if (!o.output.empty() || !o.png.empty()) throw Error("sweep writes no -o/--png image (use --images DIR)");
         if (o.samplers.empty()) o.samplers = {o.ao.sampler};
         if (o.spps.empty()) o.spps = {o.ao.spp};
     }
-    if (!o.compare && !o.reference && !o.sweep && o.output.empty() && o.png.empty()) o.png = "ao.png";
+    if (!o.compare && !o.reference && !o.sweep && !o.merge && o.output.empty() && o.png.empty()) o.png = "ao.png";
     if (o.reference) {
         if (o.output.empty()) throw Error("reference needs -o REF.exr");
         if (!o.sampler_given) o.ao.sampler = "sobol-owen";
@@ -143,6 +161,29 @@ std::vector<float> grey_to_rgb(const std::vector<float> &v)
     std::vector<float> rgb(v.size() * 3);
     for (size_t i = 0; i < v.size(); ++i) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = v[i];
     return rgb;
+}
+
+bool is_exr(const std::string &path)
+{
+    std::string lower = path;
+    std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
+    return lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".exr") == 0;
+}
+
+int run_merge(const Options &o)
+{
+    for (const std::string &path : {o.output, o.png})
+        if (!path.empty()) udm1app::AtomicFile probe(path);
+    if (!is_exr(o.output)) throw Error("-o '" + o.output + "': merge writes OpenEXR (.exr)", 2);
+    udm1app::PartialImage p = udm1app::merge_partials(o.positional);
+    if (p.channels != std::vector<std::string>{"A"}) throw Error("'" + o.positional[0] + "' is not an udm1-ao image", 2);
+    udm1app::write_partial(o.output, p);
+    if (!o.png.empty())
+        udm1app::write_image(o.png, p.rgb(), p.width, p.height, 3, false, 8, {{"udm1:render", p.made_by}});
+    std::printf("merged %zu image(s): samples [%llu, %llu) of %llu, pixels [%d, %d) x [%d, %d)\n", o.positional.size(),
+                (unsigned long long)p.first, (unsigned long long)(p.first + p.count), (unsigned long long)p.spp, p.x0,
+                p.x0 + p.width, p.y0, p.y0 + p.height);
+    return 0;
 }
 
 int run_compare(const Options &o)
@@ -232,6 +273,8 @@ int run_render(Options o)
         std::fprintf(stderr, "udm1-ao: note: %zu kind(s) of appearance left out, first %s\n", scene.ignored.size(),
                      scene.ignored[0].c_str());
     if (!o.size_given && scene.source.rfind("builtin:", 0) == 0) o.ao.width = o.ao.height = 256;
+    if ((o.ao.first || o.ao.count || o.ao.bounds[2]) && !o.output.empty() && !is_exr(o.output))
+        throw Error("-o '" + o.output + "': a sample range or tile is written as OpenEXR (.exr), whose counts merge", 2);
     // check the outputs' folders before rendering: a bad path fails at once
     for (const std::string &path : {o.output, o.png})
         if (!path.empty()) udm1app::AtomicFile probe(path);
@@ -271,11 +314,16 @@ int run_render(Options o)
         throw Error(e.what(), 2);
     }
     const std::vector<std::pair<std::string, std::string>> meta = {{"udm1:render", made_by}};
-    if (!o.output.empty()) udm1app::write_image(o.output, grey_to_rgb(img.values), img.width, img.height, 3, false, 8, meta);
+    img.sums.made_by = made_by;
+    if (!o.output.empty()) {
+        if (is_exr(o.output)) udm1app::write_partial(o.output, img.sums);  // exact counts: ranges and tiles merge
+        else udm1app::write_image(o.output, grey_to_rgb(img.values), img.width, img.height, 3, false, 8, meta);
+    }
     if (!o.png.empty()) udm1app::write_image(o.png, grey_to_rgb(img.values), img.width, img.height, 3, false, 8, meta);
-    std::printf("sampler %s spp %u size %dx%d seconds %.4f rays %llu rays_per_second %.4g\n", o.ao.sampler.c_str(),
-                o.ao.spp, img.width, img.height, stats.seconds, (unsigned long long)stats.rays,
-                stats.rays / std::max(stats.seconds, 1e-9));
+    std::printf("sampler %s spp %u samples [%llu, %llu) size %dx%d image %dx%d at %d,%d seconds %.4f rays %llu "
+                "rays_per_second %.4g\n",
+                o.ao.sampler.c_str(), o.ao.spp, (unsigned long long)img.sums.first, (unsigned long long)(img.sums.first + img.sums.count),
+                img.width, img.height, img.sums.full_width, img.sums.full_height, img.sums.x0, img.sums.y0, stats.seconds, (unsigned long long)stats.rays, stats.rays / std::max(stats.seconds, 1e-9));
     for (const std::string &path : {o.output, o.png})
         if (!path.empty()) std::printf("wrote %s\n", path.c_str());
     return 0;
@@ -289,6 +337,6 @@ int main(int argc, char **argv)
         Options o = parse(argc, argv);
         std::unique_ptr<tbb::global_control> limit;
         if (o.threads) limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
-        return o.compare ? run_compare(o) : run_render(o);
+        return o.compare ? run_compare(o) : o.merge ? run_merge(o) : run_render(o);
     });
 }

@@ -145,14 +145,6 @@ struct Tracer {
 
 }  // namespace
 
-std::vector<float> Accumulator::mean() const
-{
-    std::vector<float> out(sum.size());
-    double k = count ? 1.0 / (SCALE * (double)count) : 0.0;
-    for (size_t i = 0; i < sum.size(); ++i) out[i] = (float)((double)sum[i] * k);
-    return out;
-}
-
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)
 {
     Materials materials(scene);
@@ -188,19 +180,22 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
 
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
+    int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
+    udm1app::check_pixel_bounds(bounds, view.width, view.height);
     Accumulator acc;
-    acc.width = view.width, acc.height = view.height, acc.first = opt.first, acc.count = count;
-    acc.sum.assign((size_t)acc.width * acc.height * 3, 0);
+    acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1], {"R", "G", "B"},
+              SAMPLE_SCALE);
+    acc.spp = opt.spp, acc.first = opt.first, acc.count = count;
     const udm1scene::CameraRays camera(view);
     Tracer tracer{scene, rt, lights, materials, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
     std::atomic<uint64_t> rays{0}, nonfinite{0}, clamped{0};
     auto t0 = std::chrono::steady_clock::now();
-    tbb::parallel_for(tbb::blocked_range2d<int>(0, acc.height, 8, 0, acc.width, 8), [&](const tbb::blocked_range2d<int> &r) {
+    tbb::parallel_for(tbb::blocked_range2d<int>(bounds[1], bounds[3], 8, bounds[0], bounds[2], 8), [&](const tbb::blocked_range2d<int> &r) {
         uint64_t local_rays = 0, local_nonfinite = 0, local_clamped = 0;
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
                 uint64_t stream = ((uint64_t)y << 32) | (uint32_t)x;
-                int64_t *px = &acc.sum[3 * ((size_t)y * acc.width + x)];
+                int64_t *px = &acc.sum[3 * ((size_t)(y - acc.y0) * acc.width + (x - acc.x0))];
                 for (uint64_t i = opt.first; i < opt.first + count; ++i) {
                     udm1_cursor c;
                     udm1_cursor_start(&c, seq, stream, i, 0);
@@ -215,8 +210,8 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                             ++local_nonfinite;
                             continue;
                         }
-                        if (v > Accumulator::MAX_SAMPLE) v = Accumulator::MAX_SAMPLE, ++local_clamped;
-                        px[k] += (int64_t)std::llround(v * Accumulator::SCALE);
+                        if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++local_clamped;
+                        px[k] += (int64_t)std::llround(v * SAMPLE_SCALE);
                     }
                 }
             }

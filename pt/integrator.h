@@ -26,6 +26,8 @@
 #include "material.h"
 #include "scene.h"
 
+#include "../tools/common/partial_image.h"
+
 #include <udm1/udm1.h>
 
 #include <string>
@@ -44,6 +46,7 @@ struct Options {
     uint32_t spp = 16;        // the whole render's samples per pixel (point sets use K = spp)
     uint64_t first = 0;       // this run's range of sample indices: [first, first + count)
     uint64_t count = 0;       // 0: all of [first, spp)
+    int bounds[4] = {0, 0, 0, 0};  // the pixels rendered: [x0, x1) x [y0, y1); all zero: every pixel
     uint64_t seed = 1;
     uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
     int width = 0, height = 0;  // 0: the scene's film
@@ -54,17 +57,12 @@ struct Options {
     double near_light = Lights::NEAR_DEFAULT;  // see Lights; `tools/bench_pt.py --estimators` measures both
 };
 
-// Per-pixel sums of the samples in fixed point (2^-24 units, int64), so that sums of
-// disjoint sample ranges add up exactly: split and whole runs give the same image bit for bit.
-struct Accumulator {
-    static constexpr double SCALE = 16777216.0;  // 2^24
-    static constexpr double MAX_SAMPLE = 1e9;    // larger sample values are clamped (and counted)
-    int width = 0, height = 0;
-    uint64_t first = 0, count = 0;   // the sample range summed
-    std::vector<int64_t> sum;        // 3 per pixel
-    uint64_t nonfinite = 0, clamped = 0;
-    std::vector<float> mean() const;  // RGB per pixel: sum / SCALE / count
-};
+// Per-pixel sums of the samples in fixed point (2^-24 units, int64, channels R, G, B), so that sums
+// of disjoint sample ranges and tiles add up exactly: split and whole runs give the same image bit
+// for bit (tools/common/partial_image.h).
+using Accumulator = udm1app::PartialImage;
+constexpr double SAMPLE_SCALE = 16777216.0;  // 2^24
+constexpr double MAX_SAMPLE = 1e9;           // larger sample values are clamped (and counted)
 
 struct Stats {
     double seconds = 0;

@@ -16,7 +16,6 @@
 #include "../tools/common/image_read.h"
 #include "../tools/common/image_write.h"
 #include "embree_scene.h"
-#include "film_io.h"
 #include "integrator.h"
 #include "scene_export.h"
 #include "scene.h"
@@ -53,6 +52,7 @@ const char *USAGE =
     "  --spp N           samples per pixel of the whole render (default 16)\n"
     "  --spp-first F     render only sample indices [F, F + C) of it ...\n"
     "  --spp-count C     ... (merge joins such ranges; the merged image equals the whole render)\n"
+    "  --pixel-bounds X0,Y0,X1,Y1  render only the pixels [X0, X1) x [Y0, Y1) (a tile; merge joins tiles)\n"
     "  --seed S          sampler seed (default 1)   --randomize none|default|shift|permute|owen|screen\n"
     "  --size WxH        image size (default: 256x256 for built-in scenes, else the scene's film)\n"
     "  --maxdepth D      maximum bounces (default: the scene's, pbrt's 5)\n"
@@ -100,6 +100,7 @@ Options parse(int argc, char **argv)
         else if (a == "--spp") o.pt.spp = (uint32_t)udm1app::parse_u64(value(a), a, 1, 1u << 24), o.spp_given = true;
         else if (a == "--spp-first") o.pt.first = udm1app::parse_u64(value(a), a, 0, (1u << 24) - 1);
         else if (a == "--spp-count") o.pt.count = udm1app::parse_u64(value(a), a, 1, 1u << 24);
+        else if (a == "--pixel-bounds") udm1app::parse_pixel_bounds(value(a), a, o.pt.bounds);
         else if (a == "--seed") o.pt.seed = udm1app::parse_u64(value(a), a, 0, UINT64_MAX);
         else if (a == "--randomize") o.pt.randomize = udm1app::parse_randomize(value(a));
         else if (a == "--size") {
@@ -145,10 +146,12 @@ Options parse(int argc, char **argv)
         if (o.output.empty()) throw Error("reference needs -o REF.exr");
         if (!o.sampler_given) o.pt.sampler = "sobol-owen";
         if (!o.spp_given) o.pt.spp = 4096;
-        if (o.pt.first || o.pt.count) throw Error("reference renders every sample: no --spp-first/--spp-count");
+        if (o.pt.first || o.pt.count || o.pt.bounds[2])
+            throw Error("reference renders every sample and pixel: no --spp-first/--spp-count/--pixel-bounds");
     }
     if (o.command == "sweep") {
         if (o.against.empty()) throw Error("sweep needs --against REF.exr");
+        if (o.pt.bounds[2]) throw Error("sweep renders whole images: no --pixel-bounds");
         if (!o.output.empty() || !o.png.empty()) throw Error("sweep writes no -o/--png image (use --images DIR)");
         if (o.samplers.empty()) o.samplers = {o.pt.sampler};
         if (o.spps.empty()) o.spps = {o.pt.spp};
@@ -219,11 +222,11 @@ int run_merge(const Options &o)
 {
     for (const std::string &path : {o.output, o.png})
         if (!path.empty()) udm1app::AtomicFile probe(path);
-    udm1pt::Partial p = udm1pt::merge_partials(o.positional);
-    udm1pt::write_partial(o.output, p);
-    if (!o.png.empty()) write_png(o.png, p.acc);
+    udm1app::PartialImage p = udm1app::merge_partials(o.positional);
+    udm1app::write_partial(o.output, p);
+    if (!o.png.empty()) write_png(o.png, p);
     std::printf("merged %zu image(s): samples [%llu, %llu) of %llu\n", o.positional.size(),
-                (unsigned long long)p.acc.first, (unsigned long long)(p.acc.first + p.acc.count),
+                (unsigned long long)p.first, (unsigned long long)(p.first + p.count),
                 (unsigned long long)p.spp);
     return 0;
 }
@@ -310,18 +313,17 @@ int run_render(Options o)
         std::printf("wrote %s/scene.json\n", o.positional[0].c_str());
         return 0;
     }
-    udm1pt::Partial part;
-    part.made_by = description(scene, o.pt, max_depth);
-    part.spp = o.pt.spp;
+    udm1pt::Accumulator part;
+    const std::string made_by = description(scene, o.pt, max_depth);
     if (o.command == "reference") {
         std::FILE *f = std::fopen(o.output.c_str(), "rb");
         if (f) {
             std::fclose(f);
             try {
-                udm1pt::Partial old = udm1pt::read_partial(o.output);
-                if (old.made_by == part.made_by && old.acc.first == 0 && old.acc.count == old.spp) {
-                    std::printf("reference %s reused (%s)\n", o.output.c_str(), part.made_by.c_str());
-                    if (!o.png.empty()) write_png(o.png, old.acc), std::printf("wrote %s\n", o.png.c_str());
+                udm1app::PartialImage old = udm1app::read_partial(o.output);
+                if (old.made_by == made_by && old.first == 0 && old.count == old.spp && old.whole()) {
+                    std::printf("reference %s reused (%s)\n", o.output.c_str(), made_by.c_str());
+                    if (!o.png.empty()) write_png(o.png, old), std::printf("wrote %s\n", o.png.c_str());
                     return 0;
                 }
             } catch (const Error &) {  // not a reference of ours: render it again
@@ -341,27 +343,29 @@ int run_render(Options o)
     if (o.command == "sweep") return run_sweep(o, scene, rt, *materials);
     udm1pt::Stats st;
     try {
-        part.acc = udm1pt::render(scene, rt, *materials, o.pt, &st);
+        part = udm1pt::render(scene, rt, *materials, o.pt, &st);
+        part.made_by = made_by;
     } catch (const udm1scene::SceneError &e) {
         throw Error(e.what(), 1);
     } catch (const std::runtime_error &e) {
         throw Error(e.what(), 2);
     }
-    if (!o.output.empty()) udm1pt::write_partial(o.output, part);
-    if (!o.png.empty()) write_png(o.png, part.acc);
-    std::printf("sampler %s spp %u samples [%llu, %llu) size %dx%d dimensions %u of %u seconds %.4f paths %llu "
-                "rays %llu paths_per_second %.4g rays_per_second %.4g mean %s\n",
-                o.pt.sampler.c_str(), o.pt.spp, (unsigned long long)part.acc.first,
-                (unsigned long long)(part.acc.first + part.acc.count), part.acc.width, part.acc.height, st.dimensions,
+    if (!o.output.empty()) udm1app::write_partial(o.output, part);
+    if (!o.png.empty()) write_png(o.png, part);
+    std::printf("sampler %s spp %u samples [%llu, %llu) size %dx%d image %dx%d at %d,%d dimensions %u of %u seconds %.4f "
+                "paths %llu rays %llu paths_per_second %.4g rays_per_second %.4g mean %s\n",
+                o.pt.sampler.c_str(), o.pt.spp, (unsigned long long)part.first,
+                (unsigned long long)(part.first + part.count), part.width, part.height, part.full_width, part.full_height,
+                part.x0, part.y0, st.dimensions,
                 st.path_dimensions, st.seconds, (unsigned long long)st.paths, (unsigned long long)st.rays,
-                st.paths / std::max(st.seconds, 1e-9), st.rays / std::max(st.seconds, 1e-9), mean_text(part.acc).c_str());
+                st.paths / std::max(st.seconds, 1e-9), st.rays / std::max(st.seconds, 1e-9), mean_text(part).c_str());
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);
     std::printf("scene %zu triangles, %zu shapes, loaded (parse, meshes, textures, BVH) in %.2f s; peak memory %.0f MiB\n",
                 scene.triangle_count(), scene.shapes.size(), load_seconds, ru.ru_maxrss / 1024.0);
-    if (part.acc.nonfinite || part.acc.clamped)
-        std::printf("warning: %llu non-finite and %llu clamped sample values\n", (unsigned long long)part.acc.nonfinite,
-                    (unsigned long long)part.acc.clamped);
+    if (part.nonfinite || part.clamped)
+        std::printf("warning: %llu non-finite and %llu clamped sample values\n", (unsigned long long)part.nonfinite,
+                    (unsigned long long)part.clamped);
     for (const std::string &path : {o.output, o.png})
         if (!path.empty()) std::printf("wrote %s\n", path.c_str());
     return 0;

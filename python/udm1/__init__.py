@@ -1,10 +1,14 @@
 """udm1: exact Weyl/Kronecker (uniformly distributed modulo 1) sampling.
 
 Python bindings (ctypes) over libudm1. See ``udm1.Sequence`` for points as
-numpy arrays, ``udm1.qmc`` for scipy.stats.qmc engines, and ``udm1.discrepancy``.
+numpy arrays, ``udm1.qmc`` for scipy.stats.qmc engines, ``udm1.discrepancy``,
+``udm1.integrate`` (exactly summed estimates) and ``udm1.distributed`` (the same over a
+Dask cluster, and AO / path-tracing renders split by sample ranges and tiles).
 """
 
 from ._native import library_path
+from .exact_sum import ExactSum
+from .integrate import Integral, integrate
 from .metrics import (
     discrepancy,
     discrepancy_random,
@@ -18,7 +22,9 @@ from .noise import Noise, patterns
 from .sequence import Fixed, Preset, Sequence, Sqrt, UDM1Error, check_alphas, presets, version
 
 __all__ = [
+    "ExactSum",
     "Fixed",
+    "Integral",
     "Noise",
     "Preset",
     "Sequence",
@@ -28,6 +34,7 @@ __all__ = [
     "discrepancy",
     "discrepancy_random",
     "integrand",
+    "integrate",
     "integrand_exact",
     "integrands",
     "min_distance",

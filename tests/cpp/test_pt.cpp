@@ -7,7 +7,6 @@
 #include "builtin.h"
 #include "color.h"
 #include "embree_scene.h"
-#include "film_io.h"
 #include "integrator.h"
 #include "../../tools/common/image_write.h"
 #include "lights.h"
@@ -501,21 +500,23 @@ static void test_deterministic()
 
 static void test_film_round_trip()
 {
-    Partial p;
+    udm1app::PartialImage p;
     p.made_by = "test render";
-    p.spp = 10;
-    p.acc.width = 3, p.acc.height = 2, p.acc.first = 2, p.acc.count = 5;
-    for (int i = 0; i < 18; ++i) p.acc.sum.push_back((int64_t)i * 0x123456789ll + (i % 3) * 7);  // distinct per channel
-    p.acc.sum[4] = (int64_t)1 << 62;
+    p.spp = 10, p.first = 2, p.count = 5;
+    p.reset(7, 5, 4, 1, 3, 2, {"R", "G", "B"}, SAMPLE_SCALE);  // a 3x2 tile at (4, 1) of a 7x5 image
+    for (int i = 0; i < 18; ++i) p.sum[i] = (int64_t)i * 0x123456789ll + (i % 3) * 7;  // distinct per channel
+    p.sum[4] = (int64_t)1 << 62;
+    p.sum[5] = -((int64_t)1 << 40);
     char path[] = "/tmp/udm1_test_pt_XXXXXX";
     int fd = mkstemp(path);
     close(fd);
     std::string file = std::string(path) + ".exr";
-    write_partial(file, p);
-    Partial q = read_partial(file);
-    CHECK(q.acc.sum == p.acc.sum);
-    CHECK(q.made_by == p.made_by && q.spp == 10 && q.acc.first == 2 && q.acc.count == 5);
-    CHECK(q.acc.width == 3 && q.acc.height == 2);
+    udm1app::write_partial(file, p);
+    udm1app::PartialImage q = udm1app::read_partial(file);
+    CHECK(q.sum == p.sum);
+    CHECK(q.made_by == p.made_by && q.spp == 10 && q.first == 2 && q.count == 5 && q.scale == SAMPLE_SCALE);
+    CHECK(q.width == 3 && q.height == 2 && q.x0 == 4 && q.y0 == 1 && q.full_width == 7 && q.full_height == 5);
+    CHECK(q.channels == p.channels && !q.whole());
     std::remove(file.c_str());
     std::remove(path);
 }

@@ -1,7 +1,8 @@
 """udm1-ao from the command line: runs with no arguments, closed forms through
 the whole pipeline, bit-identical images across thread counts and ray methods,
 the reference mode (written once, reused), compare, meshes from PLY and OBJ,
-the shared pbrt scenes, and every bad input failing with one line and no file."""
+the shared pbrt scenes, sample ranges and tiles merged into the whole render bit for bit,
+and every bad input failing with one line and no file."""
 
 import os
 import pathlib
@@ -43,7 +44,7 @@ def compare(image, reference):
 
 def test_runs_with_no_arguments(tmp_path):
     r = ok(cwd=tmp_path)
-    assert re.match(r"sampler episwr spp 64 size 256x256 seconds \S+ rays \d+ rays_per_second \S+\nwrote ao.png\n$", r.stdout)
+    assert re.match(r"sampler episwr spp 64 samples \[0, 64\) size 256x256 image 256x256 at 0,0 seconds \S+ rays \d+ rays_per_second \S+\nwrote ao.png\n$", r.stdout)
     img = read_png(tmp_path / "ao.png")
     assert img.shape == (256, 256)
     assert 0.2 < img.mean() < 0.8 and img.min() < 0.1 and img.max() > 0.9  # the Cornell box, not a blank
@@ -86,7 +87,7 @@ def test_identical_across_threads_and_methods(tmp_path):
 def test_reference_written_once_and_reused(tmp_path):
     ref = tmp_path / "ref.exr"
     r = ok("reference", "--spp", "256", "--size", "48x48", "-o", str(ref))
-    assert r.stdout.startswith("sampler sobol-owen spp 256 size 48x48")
+    assert r.stdout.startswith("sampler sobol-owen spp 256 samples [0, 256) size 48x48")
     stamp = ref.stat().st_mtime_ns
     r = ok("reference", "--spp", "256", "--size", "48x48", "-o", str(ref))
     assert r.stdout.startswith(f"reference {ref} reused") and ref.stat().st_mtime_ns == stamp
@@ -222,6 +223,83 @@ def test_bad_input(args, code, words, tmp_path):
 
 HEAD = 'LookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective" "float fov" [ 45 ]\nWorldBegin\n'
 TRI = 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
+
+
+@pytest.mark.parametrize("sampler,jitter", [("episwr", False), ("wr-ao", False), ("sobol-owen", True)])
+def test_ranges_and_tiles_merge_to_the_whole_render(sampler, jitter, tmp_path):
+    # each tile split into its own uneven ranges (a point set, a sequence, the jittered 4D variant):
+    # the merged counts are the whole render's, bit for bit, in the EXR and the PNG
+    common = ["--sampler", sampler, "--spp", "12", "--size", "37x23"] + (["--jitter"] if jitter else [])
+    ok(*common, "-o", str(tmp_path / "whole.exr"), "--png", str(tmp_path / "whole.png"))
+    tiles = {"0,0,20,23": [(0, 12)], "20,0,37,9": [(0, 7), (7, 5)], "20,9,37,23": [(0, 1), (1, 10), (11, 1)]}
+    parts = []
+    for k, (bounds, ranges) in enumerate(tiles.items()):
+        for first, count in ranges:
+            out = tmp_path / f"t{k}_{first}.exr"
+            ok(*common, "--pixel-bounds", bounds, "--spp-first", str(first), "--spp-count", str(count),
+               "--threads", str(1 + first % 2), "-o", str(out))
+            parts.append(str(out))
+    r = ok("merge", *reversed(parts), "-o", str(tmp_path / "merged.exr"), "--png", str(tmp_path / "merged.png"))
+    assert "samples [0, 12) of 12, pixels [0, 37) x [0, 23)" in r.stdout
+    assert (tmp_path / "merged.exr").read_bytes() == (tmp_path / "whole.exr").read_bytes()
+    assert (tmp_path / "merged.png").read_bytes() == (tmp_path / "whole.png").read_bytes()
+    # merging a tile's ranges first, then the tiles, gives the same
+    ok("merge", *parts[3:], "-o", str(tmp_path / "tile2.exr"))
+    ok("merge", *parts[:3], str(tmp_path / "tile2.exr"), "-o", str(tmp_path / "merged2.exr"))
+    assert (tmp_path / "merged2.exr").read_bytes() == (tmp_path / "whole.exr").read_bytes()
+
+
+def test_merge_refuses_parts_that_do_not_fit(tmp_path):
+    base = ["--spp", "8", "--size", "16x16"]
+    ok(*base, "--pixel-bounds", "0,0,16,8", "-o", str(tmp_path / "top.exr"))
+    ok(*base, "--pixel-bounds", "0,8,16,16", "--spp-first", "0", "--spp-count", "4", "-o", str(tmp_path / "low0.exr"))
+    ok(*base, "--pixel-bounds", "0,4,16,16", "-o", str(tmp_path / "overlap.exr"))
+    ok(*base, "--pixel-bounds", "0,8,16,16", "--seed", "2", "-o", str(tmp_path / "seed2.exr"))
+    ok("--spp", "8", "--size", "16x16", "--scene", "builtin:plane", "-o", str(tmp_path / "plane.exr"))
+    ok(*base, "-o", str(tmp_path / "plain.png"))
+    cases = [
+        (["top.exr", "low0.exr"], "pixel (0, 8) has samples [0, 4)"),     # half of the lower tile's samples
+        (["top.exr", "overlap.exr"], "overlap.exr"),                      # tiles overlapping
+        (["top.exr", "seed2.exr"], "seed2.exr"),                          # another render
+        (["top.exr", "plane.exr"], "plane.exr"),                          # another scene
+        (["top.exr", "plain.png"], "plain.png"),                          # not an image with counts
+    ]
+    for inputs, words in cases:
+        before = set(tmp_path.iterdir())
+        r = run("merge", *inputs, "-o", "out.exr", "--png", "out.png", cwd=tmp_path)
+        lines = r.stderr.strip().splitlines()
+        assert r.returncode != 0 and len(lines) == 1 and words in lines[0], (inputs, r.stderr)
+        assert set(tmp_path.iterdir()) == before, inputs
+    # a pt image is not an AO image
+    pt = os.environ.get("UDM1_PT_TOOL", "")
+    if pt:
+        subprocess.run([pt, "--spp", "1", "--size", "8x8", "-o", str(tmp_path / "pt.exr")], check=True,
+                       capture_output=True)
+        r = run("merge", str(tmp_path / "pt.exr"), "-o", str(tmp_path / "out.exr"))
+        assert r.returncode == 2 and "not an udm1-ao image" in r.stderr and not (tmp_path / "out.exr").exists()
+
+
+@pytest.mark.parametrize(
+    "args,words",
+    [
+        (["--pixel-bounds", "0,0,300,10"], "not inside the 256x256 image"),
+        (["--pixel-bounds", "5,5,5,9"], "empty window"),
+        (["--pixel-bounds", "1,2,3"], "X0,Y0,X1,Y1"),
+        (["--pixel-bounds", "a,0,4,4"], "--pixel-bounds 'a'"),
+        (["--spp", "8", "--spp-first", "8"], "not below --spp 8"),
+        (["--spp", "8", "--spp-first", "6", "--spp-count", "4"], "exceeds --spp 8"),
+        (["--spp", "8", "--spp-first", "2", "-o", "x.png"], "OpenEXR"),
+        (["reference", "-o", "r.exr", "--spp-first", "2"], "reference renders every sample"),
+        (["merge", "-o", "out.exr"], "merge needs"),
+        (["merge", "a.exr"], "merge needs -o"),
+    ],
+)
+def test_bad_ranges_and_tiles(args, words, tmp_path):
+    before = set(tmp_path.iterdir())
+    r = run(*args, cwd=tmp_path)
+    lines = r.stderr.strip().splitlines()
+    assert r.returncode == 2 and len(lines) == 1 and words in lines[0], r.stderr
+    assert set(tmp_path.iterdir()) == before
 
 
 @pytest.mark.parametrize(

@@ -18,7 +18,7 @@ pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt bina
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCENES = ROOT.parent / "shared" / "scenes"
 RENDER_LINE = re.compile(
-    r"sampler (\S+) spp (\d+) samples \[(\d+), (\d+)\) size (\d+)x(\d+) dimensions (\d+) of (\d+) seconds \S+ "
+    r"sampler (\S+) spp (\d+) samples \[(\d+), (\d+)\) size (\d+)x(\d+) image \d+x\d+ at \d+,\d+ dimensions (\d+) of (\d+) seconds \S+ "
     r"paths (\d+) rays (\d+) paths_per_second \S+ rays_per_second \S+ mean (\S+) (\S+) (\S+)\n")
 
 
@@ -97,6 +97,34 @@ def test_identical_across_runs_threads_and_ranges(tmp_path, randomize):
     assert (tmp_path / "merged2.exr").read_bytes() == outs[0]
     r = ok("compare", str(tmp_path / "merged.exr"), str(tmp_path / "t1.exr"))
     assert r.stdout == "mse 0 rmse 0 psnr inf\n"
+
+
+def test_tiles_and_ranges_merge_to_the_whole_render(tmp_path):
+    # four tiles, each cut into its own ranges, merged in any order: the whole render bit for bit
+    common = ["--sampler", "hwmmr", "--spp", "6", "--size", "30x22"]
+    ok(*common, "-o", str(tmp_path / "whole.exr"), "--png", str(tmp_path / "whole.png"))
+    tiles = {"0,0,13,10": [(0, 6)], "13,0,30,10": [(0, 2), (2, 4)], "0,10,13,22": [(0, 5), (5, 1)],
+             "13,10,30,22": [(0, 1), (1, 1), (2, 4)]}
+    parts = []
+    for k, (bounds, ranges) in enumerate(tiles.items()):
+        for first, count in ranges:
+            out = tmp_path / f"t{k}_{first}.exr"
+            ok(*common, "--pixel-bounds", bounds, "--spp-first", str(first), "--spp-count", str(count), "-o", str(out))
+            parts.append(str(out))
+    ok("merge", *parts[::-1], "-o", str(tmp_path / "merged.exr"), "--png", str(tmp_path / "merged.png"))
+    assert (tmp_path / "merged.exr").read_bytes() == (tmp_path / "whole.exr").read_bytes()
+    assert (tmp_path / "merged.png").read_bytes() == (tmp_path / "whole.png").read_bytes()
+    # a tile alone is a valid image of its window
+    r = ok("merge", parts[0], "-o", str(tmp_path / "tile.exr"))
+    assert "samples [0, 6) of 6" in r.stdout
+    # a missing tile or a tile given twice is refused, naming a pixel or the file
+    r = run("merge", *parts[:-1], "-o", str(tmp_path / "no.exr"))
+    assert r.returncode == 2 and "pixel (13, 10) has samples [0, 2)" in r.stderr, r.stderr
+    r = run("merge", *parts, parts[0], "-o", str(tmp_path / "no.exr"))
+    assert r.returncode == 2 and parts[0] in r.stderr, r.stderr
+    assert not (tmp_path / "no.exr").exists()
+    r = run(*common, "--pixel-bounds", "0,0,31,22", "-o", str(tmp_path / "no.exr"))
+    assert r.returncode == 2 and "not inside the 30x22 image" in r.stderr and not (tmp_path / "no.exr").exists()
 
 
 def test_merge_refuses_what_does_not_belong_together(tmp_path):

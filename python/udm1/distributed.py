@@ -1,0 +1,361 @@
+"""Split an ambient-occlusion or path-tracing render, or a Monte Carlo integral, over a Dask
+cluster (dask.distributed) and merge the parts exactly.
+
+A udm1 sample is addressed by (pixel, sample index, dimension), so any range of sample
+indices of the same sequence can be computed anywhere. Work is split by sample-index ranges
+(and by tiles for large images); each task runs udm1-ao / udm1-pt on its range and tile and
+returns the image with exact integer sums, or sums f exactly over its range of points
+(udm1.exact_sum). The merge adds integers, so the result equals a single-process run of the
+same samples bit for bit, whichever worker ran which part, in whatever order, and after a
+worker died and the scheduler ran its part again elsewhere.
+
+    import udm1.distributed as ud
+    with ud.connect(n_workers=2) as client:              # a LocalCluster; or connect("tcp://host:8786")
+        ud.render("pt", "out.exr", spp=256, args=["--scene", "builtin:cornell"], client=client)
+        est = ud.integrate(lambda x: x.prod(axis=1), "wr", d=4, n=1 << 22, client=client)
+
+Command line: ``python -m udm1.distributed render pt -o out.exr --spp 256 [--workers 2]
+[--scheduler ADDR] [--tasks T] [--tile WxH] [-- TOOL OPTIONS]`` and ``python -m udm1.distributed
+integrate --integrand NAME --sampler wr --d 8 --n 1000000``.
+
+Workers need the same udm1 (package and tools) at the same paths as the client: a LocalCluster
+has them; on other machines install the project at the same place (or pass tool=PATH).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+import uuid
+from dataclasses import dataclass, field
+
+from .integrate import Integral, IntegralSpec, _preset, integrate_range
+
+__all__ = ["connect", "integrate", "render", "split_range", "split_tiles", "tool_path", "RenderResult"]
+
+
+def _distributed():
+    try:
+        import distributed
+    except ImportError as e:  # pragma: no cover - the package's requirements have it
+        raise ImportError("udm1.distributed needs dask.distributed (pip install distributed)") from e
+    return distributed
+
+
+@contextlib.contextmanager
+def connect(address: str | None = None, *, n_workers: int | None = None, threads_per_worker: int = 1,
+            **cluster_options):
+    """A dask.distributed Client: to the scheduler at `address`, or to a new LocalCluster of
+    `n_workers` worker processes (default: one per core) with `threads_per_worker` threads."""
+    distributed = _distributed()
+    if address:
+        client = distributed.Client(address)
+        try:
+            yield client
+        finally:
+            client.close()
+        return
+    n = n_workers or os.cpu_count() or 1
+    cluster_options.setdefault("dashboard_address", ":0")  # any free port: never "port 8787 in use"
+    cluster_options.setdefault("silence_logs", 40)  # errors only: a killed worker is expected to be reported
+    with distributed.LocalCluster(n_workers=n, threads_per_worker=threads_per_worker, processes=True,
+                                  **cluster_options) as cluster, distributed.Client(cluster) as client:
+        yield client
+
+
+def split_range(n: int, parts: int) -> list[tuple[int, int]]:
+    """[0, n) as `parts` contiguous (first, count) ranges of sizes differing by at most one."""
+    parts = max(1, min(int(parts), int(n)))
+    q, r = divmod(int(n), parts)
+    out, first = [], 0
+    for k in range(parts):
+        count = q + (k < r)
+        out.append((first, count))
+        first += count
+    return out
+
+
+def split_tiles(width: int, height: int, tile: tuple[int, int]) -> list[tuple[int, int, int, int]]:
+    """The image as tiles (x0, y0, x1, y1) of at most tile = (tw, th) pixels, row by row."""
+    tw, th = max(1, int(tile[0])), max(1, int(tile[1]))
+    return [(x, y, min(x + tw, width), min(y + th, height)) for y in range(0, height, th) for x in range(0, width, tw)]
+
+
+def tool_path(tool: str) -> str:
+    """The udm1-ao or udm1-pt executable: a path as given, else $UDM1_AO_TOOL / $UDM1_PT_TOOL,
+    else the project's build folder, else PATH."""
+    if os.sep in tool:
+        return str(pathlib.Path(tool).resolve())
+    name = {"ao": "udm1-ao", "pt": "udm1-pt"}.get(tool, tool)
+    if name not in ("udm1-ao", "udm1-pt"):
+        raise ValueError(f"udm1.distributed: tool '{tool}' is not ao or pt (or a path to udm1-ao/udm1-pt)")
+    env = os.environ.get("UDM1_AO_TOOL" if name == "udm1-ao" else "UDM1_PT_TOOL")
+    built = pathlib.Path(__file__).resolve().parents[2] / "build" / name[5:] / name
+    for candidate in (env, str(built) if built.is_file() else None, shutil.which(name)):
+        if candidate:
+            return str(pathlib.Path(candidate).resolve())
+    raise FileNotFoundError(f"udm1.distributed: {name} not found (build the project, or set "
+                            f"{'UDM1_AO_TOOL' if name == 'udm1-ao' else 'UDM1_PT_TOOL'})")
+
+
+class _Progress:
+    """One status line on stderr, rewritten in place on a terminal: parts done, elapsed, left."""
+
+    def __init__(self, what: str, total: int, enabled: bool):
+        self.what, self.total, self.enabled = what, total, enabled
+        self.done, self.t0 = 0, time.perf_counter()
+        self.tty = enabled and sys.stderr.isatty()
+
+    def step(self, note: str = "") -> None:
+        self.done += 1
+        if not self.enabled:
+            return
+        elapsed = time.perf_counter() - self.t0
+        left = elapsed / self.done * (self.total - self.done)
+        width = 24
+        bar = "#" * (width * self.done // self.total) + "." * (width - width * self.done // self.total)
+        line = (f"udm1.distributed: {self.what} [{bar}] {self.done}/{self.total} parts, {elapsed:.1f} s, "
+                f"about {left:.0f} s left{(' (' + note + ')') if note else ''}")
+        end = "" if self.tty and self.done < self.total else "\n"
+        sys.stderr.write(("\r" if self.tty else "") + line + end)
+        sys.stderr.flush()
+
+
+def _run_all(client, fn, items, *, what: str, progress: bool, on_done, extra=()):
+    """Submit fn(*item, *extra) for every item, collect the results in item order, showing progress.
+    A worker that dies has its tasks run again elsewhere by the scheduler (its allowed-failures rule);
+    an exception inside a task is final (our tasks are deterministic: running them again cannot help)."""
+    distributed = _distributed()
+    token = uuid.uuid4().hex[:12]  # keys "udm1-<token>-<k>": part k of this run
+    futures = [client.submit(fn, *item, *extra, key=f"udm1-{token}-{k}") for k, item in enumerate(items)]
+    index = {f.key: k for k, f in enumerate(futures)}
+    results = [None] * len(futures)
+    bar = _Progress(what, len(futures), progress)
+    try:
+        for future, result in distributed.as_completed(futures, with_results=True):
+            k = index[future.key]
+            results[k] = result
+            bar.step(result.get("worker", "") if isinstance(result, dict) else "")
+            if on_done is not None:
+                on_done(k, result)
+    except Exception:
+        client.cancel(futures)
+        raise
+    return results
+
+
+def _worker_address() -> str:
+    try:
+        from distributed import get_worker
+
+        return get_worker().address
+    except (ImportError, ValueError):
+        return "local"
+
+
+# ------------------------------------------------------------------------------------ integrals
+
+def _integral_task(first: int, count: int, f, spec: IntegralSpec, chunk: int) -> dict:
+    t0 = time.perf_counter()
+    part = integrate_range(f, spec, first, count, chunk)
+    return {"integral": part, "worker": _worker_address(), "seconds": time.perf_counter() - t0}
+
+
+def integrate(f, sampler: str, d: int, n: int, *, seed: int = 0, randomize=True, stream: int = 0,
+              tasks: int | None = None, chunk: int = 1 << 16, client=None, address: str | None = None,
+              progress: bool = True, on_done=None) -> Integral:
+    """udm1.integrate(f, sampler, d, n, ...) computed over a Dask cluster: [0, n) is split into
+    `tasks` ranges (default: 4 per worker thread), each summed exactly on a worker, and the exact
+    sums added. The Integral equals udm1.integrate's bit for bit. f must be picklable (cloudpickle:
+    lambdas and closures are). on_done(k, result) is called as each part arrives."""
+    if int(n) < 1:
+        raise ValueError(f"udm1.distributed.integrate: n = {n} must be at least 1")
+    spec = IntegralSpec(str(sampler), int(d), int(n), int(seed), randomize, int(stream))
+    _preset(spec.sampler)
+    spec.sequence()  # a bad dimension count or randomization fails here, in one line, before any task
+    with _client(client, address) as c:
+        parts = split_range(spec.n, tasks or 4 * _threads(c))
+        results = _run_all(c, _integral_task, parts, what=f"integral of {spec.n} {spec.sampler} points",
+                           progress=progress, on_done=on_done, extra=(f, spec, int(chunk)))
+    total = results[0]["integral"]
+    for r in results[1:]:
+        total = total + r["integral"]
+    return total
+
+
+# --------------------------------------------------------------------------------------- renders
+
+_IMAGE = re.compile(r" image (\d+)x(\d+) at ")
+
+
+@dataclass
+class RenderResult:
+    output: str                 # the merged OpenEXR image (exact sums)
+    png: str | None
+    width: int
+    height: int
+    spp: int
+    seconds: float              # wall time: submit, render, transfer, merge
+    parts: list = field(default_factory=list)  # per task: bounds, first, count, worker, seconds
+
+
+def _render_task(bounds, first: int, count: int, tool: str, args: list, spp: int, threads: int) -> dict:
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="udm1-part-") as tmp:
+        out = os.path.join(tmp, "part.exr")
+        cmd = [tool, *args, "--spp", str(spp), "--spp-first", str(first), "--spp-count", str(count),
+               "--pixel-bounds", ",".join(map(str, bounds)), "--threads", str(threads), "-o", out]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            raise RuntimeError(f"{os.path.basename(tool)} failed on samples [{first}, {first + count}) pixels "
+                               f"{bounds}: {r.stderr.strip()}")
+        data = pathlib.Path(out).read_bytes()
+    return {"data": data, "bounds": tuple(bounds), "first": first, "count": count, "worker": _worker_address(),
+            "seconds": time.perf_counter() - t0}
+
+
+def probe(tool: str, args, spp: int) -> tuple[int, int]:
+    """Run the tool once on one pixel and one sample: checks the scene and options here, with the
+    tool's one-line error, and returns the image's width and height."""
+    with tempfile.TemporaryDirectory(prefix="udm1-probe-") as tmp:
+        cmd = [tool, *args, "--spp", str(spp), "--spp-first", "0", "--spp-count", "1", "--pixel-bounds",
+               "0,0,1,1", "--threads", "1", "-o", os.path.join(tmp, "probe.exr")]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise ValueError(r.stderr.strip().splitlines()[-1] if r.stderr.strip() else f"{tool} failed")
+    m = _IMAGE.search(r.stdout)
+    if not m:
+        raise RuntimeError(f"{tool} did not report its image size: {r.stdout.strip()}")
+    return int(m.group(1)), int(m.group(2))
+
+
+def render(tool: str, output: str, *, spp: int, args=(), png: str | None = None, tasks: int | None = None,
+           tile: tuple[int, int] | None = None, threads_per_task: int = 1, client=None, address: str | None = None,
+           progress: bool = True, on_done=None) -> RenderResult:
+    """Render with udm1-ao or udm1-pt (tool "ao", "pt" or a path) over a Dask cluster into `output`
+    (.exr, exact sums; `png` optional). args are the tool's options except --spp, ranges, bounds,
+    threads and outputs (e.g. ["--scene", "s.pbrt", "--sampler", "wr"]). The image is cut into tiles
+    of `tile` = (w, h) pixels (default: whole images up to 1024 x 1024, else 512 x 512 tiles) and
+    each tile's samples [0, spp) into ceil(tasks / tiles) ranges (tasks default: 4 per worker thread).
+    The merged image equals the tool's own single-process render of `spp` samples bit for bit."""
+    t0 = time.perf_counter()
+    tool = tool_path(tool)
+    args = [str(a) for a in args]
+    for a in args:
+        if a in ("--spp", "--spp-first", "--spp-count", "--pixel-bounds", "--threads", "-o", "--png"):
+            raise ValueError(f"udm1.distributed.render: pass {a} through render()'s own parameters, not args")
+    if not str(output).lower().endswith(".exr"):
+        raise ValueError(f"udm1.distributed.render: output '{output}' must be OpenEXR (.exr)")
+    out_dir = pathlib.Path(output).resolve().parent
+    if not out_dir.is_dir() or not os.access(out_dir, os.W_OK):
+        raise ValueError(f"udm1.distributed.render: output folder '{out_dir}' is not a writable folder")
+    spp = int(spp)
+    width, height = probe(tool, args, spp)
+    if tile is None:
+        tile = (width, height) if width * height <= 1024 * 1024 else (512, 512)
+    tiles = split_tiles(width, height, tile)
+    with _client(client, address) as c:
+        want = tasks or 4 * _threads(c)
+        per_tile = max(1, min(spp, -(-want // len(tiles))))
+        items = [(t, first, count) for t in tiles for first, count in split_range(spp, per_tile)]
+        results = _run_all(c, _render_task, items, what=f"{os.path.basename(tool)} {width}x{height} {spp} spp",
+                           progress=progress, on_done=on_done, extra=(tool, args, spp, int(threads_per_task)))
+    with tempfile.TemporaryDirectory(prefix=".udm1-parts-", dir=out_dir) as tmp:
+        names = []
+        for k, r in enumerate(results):
+            name = os.path.join(tmp, f"part{k}.exr")
+            pathlib.Path(name).write_bytes(r.pop("data"))
+            names.append(name)
+        cmd = [tool, "merge", *names, "-o", str(output)] + (["--png", str(png)] if png else [])
+        m = subprocess.run(cmd, capture_output=True, text=True)
+        if m.returncode != 0:
+            raise RuntimeError(f"merging the parts failed: {m.stderr.strip()}")
+    return RenderResult(str(output), png, width, height, spp, time.perf_counter() - t0, results)
+
+
+# ----------------------------------------------------------------------------------------- common
+
+def _threads(client) -> int:
+    return max(1, sum(client.nthreads().values()))
+
+
+@contextlib.contextmanager
+def _client(client, address):
+    if client is not None:
+        yield client
+    else:
+        with connect(address) as c:
+            yield c
+
+
+def main(argv=None) -> int:
+    import argparse
+
+    ap = argparse.ArgumentParser(prog="python -m udm1.distributed", description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scheduler", help="a Dask scheduler address (default: a LocalCluster)")
+    ap.add_argument("--workers", type=int, help="LocalCluster worker processes (default: one per core)")
+    ap.add_argument("--tasks", type=int, help="parts to split the work into (default: 4 per worker thread)")
+    ap.add_argument("--quiet", action="store_true", help="no progress line")
+    sub = ap.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("render", help="udm1-ao or udm1-pt over the cluster; tool options after --")
+    r.add_argument("tool", help="ao, pt, or a path to udm1-ao / udm1-pt")
+    r.add_argument("-o", dest="output", required=True, help="the merged image (.exr)")
+    r.add_argument("--png", help="also a PNG of it")
+    r.add_argument("--spp", type=int, required=True)
+    r.add_argument("--tile", help="tile size WxH (default: whole images up to 1024x1024)")
+    r.add_argument("--threads-per-task", type=int, default=1)
+    i = sub.add_parser("integrate", help="a test integrand of the library over the cluster")
+    i.add_argument("--integrand", required=True, help="a name from udm1.integrands()")
+    i.add_argument("--sampler", default="wr")
+    i.add_argument("--d", type=int, default=8)
+    i.add_argument("--n", type=int, default=1 << 20)
+    i.add_argument("--seed", type=int, default=1)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    tool_args = argv[argv.index("--") + 1:] if "--" in argv else []  # the tool's own options (--scene, ...)
+    argv = argv[:argv.index("--")] if "--" in argv else argv
+    ap.epilog = "render: the tool's options (--scene, --sampler, --size, ...) follow --"
+    a = ap.parse_args(argv)
+    try:
+        if a.command == "integrate":
+            from .metrics import integrands
+
+            if a.integrand not in integrands():  # before starting a cluster
+                raise ValueError(f"--integrand '{a.integrand}' is not one of {', '.join(integrands())}")
+        with connect(a.scheduler, n_workers=a.workers) as client:
+            if a.command == "render":
+                args = tool_args
+                tile = None
+                if a.tile:
+                    m = re.fullmatch(r"(\d+)x(\d+)", a.tile)
+                    if not m or int(m.group(1)) < 1 or int(m.group(2)) < 1:
+                        raise ValueError(f"--tile '{a.tile}' is not WxH")
+                    tile = (int(m.group(1)), int(m.group(2)))
+                res = render(a.tool, a.output, spp=a.spp, args=args, png=a.png, tasks=a.tasks, tile=tile,
+                             threads_per_task=a.threads_per_task, client=client, progress=not a.quiet)
+                workers = sorted({p["worker"] for p in res.parts})
+                print(f"wrote {res.output} ({res.width}x{res.height}, {res.spp} spp) from {len(res.parts)} parts on "
+                      f"{len(workers)} worker(s) in {res.seconds:.2f} s")
+            else:
+                from .metrics import integrand, integrand_exact
+
+                name = a.integrand
+                est = integrate(lambda x: integrand(name, x), a.sampler, a.d, a.n, seed=a.seed, tasks=a.tasks,
+                                client=client, progress=not a.quiet)
+                exact = integrand_exact(name, a.d)
+                print(f"{name} d={a.d} n={a.n} {a.sampler}: {est.value!r} (exact {exact!r}, error "
+                      f"{abs(est.value - exact):.3g}, stderr {est.stderr:.3g})")
+    except (ValueError, FileNotFoundError, RuntimeError) as e:
+        print(f"udm1.distributed: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
