@@ -19,7 +19,9 @@ Command line: ``python -m udm1.distributed render pt -o out.exr --spp 256 [--wor
 integrate --integrand NAME --sampler wr --d 8 --n 1000000``.
 
 Workers need the same udm1 (package and tools) at the same paths as the client: a LocalCluster
-has them; on other machines install the project at the same place (or pass tool=PATH).
+has them; on other machines install the project at the same place (or pass tool=PATH). For workers
+you start yourself, set MALLOC_TRIM_THRESHOLD_=268435456 and MALLOC_MMAP_THRESHOLD_=33554432 in the Dask
+config's distributed.nanny.pre-spawn-environ as connect() does for its LocalCluster (see connect).
 """
 
 from __future__ import annotations
@@ -62,11 +64,19 @@ def connect(address: str | None = None, *, n_workers: int | None = None, threads
         finally:
             client.close()
         return
+    import dask
+
     n = n_workers or os.cpu_count() or 1
     cluster_options.setdefault("dashboard_address", ":0")  # any free port: never "port 8787 in use"
     cluster_options.setdefault("silence_logs", 40)  # errors only: a killed worker is expected to be reported
-    with distributed.LocalCluster(n_workers=n, threads_per_worker=threads_per_worker, processes=True,
-                                  **cluster_options) as cluster, distributed.Client(cluster) as client:
+    # Dask starts workers with MALLOC_TRIM_THRESHOLD_=65536, which also turns off glibc's adaptive mmap
+    # threshold: every array above 128 KiB is then mapped and unmapped again, and an integral's chunks ran
+    # 3.5x slower on a worker than in the client (BENCHMARKS.md). Keep freed memory for reuse instead.
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
+    environ.update(MALLOC_TRIM_THRESHOLD_=str(256 << 20), MALLOC_MMAP_THRESHOLD_=str(32 << 20))
+    with dask.config.set({"distributed.nanny.pre-spawn-environ": environ}), \
+            distributed.LocalCluster(n_workers=n, threads_per_worker=threads_per_worker, processes=True,
+                                     **cluster_options) as cluster, distributed.Client(cluster) as client:
         yield client
 
 
