@@ -5,7 +5,7 @@
 #                     sampler in every application (tools/report/main_report.py; --quick, --full, --fresh)
 #   ./run.sh test     every test: build, CTest (C, ABI, install, Python), then the C and C++ tests again
 #                     under AddressSanitizer + UndefinedBehaviorSanitizer, the package's Python tests against
-#                     that sanitized library, and the tools' tests against the sanitized tools
+#                     that sanitized library, and the tools' and reports' tests against the sanitized tools
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
 #   ./run.sh fuzz [S] every libFuzzer target for S seconds (default 60), clang + ASan + UBSan (TESTING.md)
 #
@@ -41,8 +41,8 @@ report | --*)
 test)
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
-    udm1_log "running every test (ctest in build/)"
-    ctest --test-dir build -j "$JOBS" --output-on-failure
+    udm1_log "running every test (ctest in build/; the report tests run once, below, against the sanitized tools)"
+    ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_(reports|main_report)$'
     udm1_log "building and running the C and C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
     build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON -DUDM1_MULTIVERSION=OFF
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -53,13 +53,16 @@ test)
         ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
         "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening)'))
-    udm1_log "the tools' tests again, against the sanitized tools of build-asan (ASan, LSan, UBSan)"
+    udm1_log "the tools' tests again and the report tests, against the sanitized tools and benchmarks of build-asan"
+    udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library)"
     (cd tests/python && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
         UDM1_SEQ_TOOL="$ROOT/build-asan/tools/udm1-seq" UDM1_NOISE_TOOL="$ROOT/build-asan/noise/udm1-noise" \
         UDM1_AO_TOOL="$ROOT/build-asan/ao/udm1-ao" UDM1_PT_TOOL="$ROOT/build-asan/pt/udm1-pt" \
+        UDM1_BENCH_SAMPLERS="$ROOT/build-asan/tools/udm1_bench_samplers" \
+        UDM1_BENCH_NOISE="$ROOT/build-asan/tools/udm1_bench_noise" UDM1_BUILD_DIR="$ROOT/build-asan" \
         "$PY" -m pytest -q -p no:cacheprovider test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py \
-        test_hardening.py)
+        test_hardening.py test_distributed.py test_reports.py test_main_report.py)
     udm1_log "all tests passed"
     ;;
 bench)
