@@ -157,6 +157,16 @@ def test_distributed_integral_equals_one_process(client, sampler, d, n):
         assert est.sum == whole.sum and est.value == whole.value and est.count == n
 
 
+def test_any_scheduler_address(client):
+    # connect(address) and address= reach an existing scheduler (here the fixture's cluster)
+    address = client.scheduler.address
+    whole = udm1.integrate(prod, "halton", 3, 50000, seed=1)
+    est = ud.integrate(prod, "halton", 3, 50000, seed=1, tasks=4, address=address, progress=False)
+    assert est.sum == whole.sum
+    with ud.connect(address) as other:
+        assert set(other.nthreads()) == set(client.nthreads())
+
+
 def test_distributed_integral_survives_a_killed_worker(client):
     def slow(x):  # long enough that parts are running when the worker dies
         import time

@@ -12,6 +12,7 @@ import subprocess
 
 import numpy as np
 import pytest
+from cli_checks import fails_cleanly
 
 TOOL = os.environ.get("UDM1_AO_TOOL", "")
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_AO_TOOL (the udm1-ao binary) is not set")
@@ -265,11 +266,7 @@ def test_merge_refuses_parts_that_do_not_fit(tmp_path):
         (["top.exr", "plain.png"], "plain.png"),                          # not an image with counts
     ]
     for inputs, words in cases:
-        before = set(tmp_path.iterdir())
-        r = run("merge", *inputs, "-o", "out.exr", "--png", "out.png", cwd=tmp_path)
-        lines = r.stderr.strip().splitlines()
-        assert r.returncode != 0 and len(lines) == 1 and words in lines[0], (inputs, r.stderr)
-        assert set(tmp_path.iterdir()) == before, inputs
+        fails_cleanly(run, ["merge", *inputs, "-o", "out.exr", "--png", "out.png"], words, tmp_path)
     # a pt image is not an AO image
     pt = os.environ.get("UDM1_PT_TOOL", "")
     if pt:
@@ -295,11 +292,7 @@ def test_merge_refuses_parts_that_do_not_fit(tmp_path):
     ],
 )
 def test_bad_ranges_and_tiles(args, words, tmp_path):
-    before = set(tmp_path.iterdir())
-    r = run(*args, cwd=tmp_path)
-    lines = r.stderr.strip().splitlines()
-    assert r.returncode == 2 and len(lines) == 1 and words in lines[0], r.stderr
-    assert set(tmp_path.iterdir()) == before
+    fails_cleanly(run, args, words, tmp_path, code=2)
 
 
 @pytest.mark.parametrize(

@@ -12,6 +12,7 @@ import sys
 
 import numpy as np
 import pytest
+from cli_checks import fails_cleanly
 
 TOOL = os.environ.get("UDM1_PT_TOOL", "")
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
@@ -147,11 +148,7 @@ def test_merge_refuses_what_does_not_belong_together(tmp_path):
         (["a.exr", "nothere.exr"], "nothere.exr"),
     ]
     for inputs, words in cases:
-        before = set(tmp_path.iterdir())
-        r = run("merge", *inputs, "-o", "out.exr", "--png", "out.png", cwd=tmp_path)
-        lines = r.stderr.strip().splitlines()
-        assert r.returncode != 0 and len(lines) == 1 and words in lines[0], (inputs, r.stderr)
-        assert set(tmp_path.iterdir()) == before, inputs
+        fails_cleanly(run, ["merge", *inputs, "-o", "out.exr", "--png", "out.png"], words, tmp_path)
 
 
 def test_strategies_agree_on_the_cornell_box(tmp_path):
