@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <mutex>
 #include <vector>
 #include <cmath>
@@ -160,6 +161,7 @@ Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, co
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
     udm1app::check_pixel_bounds(bounds, view.width, view.height);
     udm1_seq *seq = make_sampler(opt);
+    std::unique_ptr<udm1_seq, void (*)(udm1_seq *)> seq_owner(seq, udm1_seq_destroy);  // freed on every path
     Image img;
     img.width = bounds[2] - bounds[0];
     img.height = bounds[3] - bounds[1];
@@ -226,7 +228,6 @@ Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, co
     });
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats->rays = rays;
-    udm1_seq_destroy(seq);
     if (failed) throw std::runtime_error(error.empty() ? "sampling failed" : error);
     return img;
 }

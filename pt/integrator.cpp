@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -175,13 +176,13 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     desc.seed = opt.seed;
     desc.randomize = opt.randomize;
     if (opt.randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = opt.spp;  // the whole render's spp: ranges merge
-    udm1_seq *seq = nullptr;
-    if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
-
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
-    udm1app::check_pixel_bounds(bounds, view.width, view.height);
+    udm1app::check_pixel_bounds(bounds, view.width, view.height);  // before anything is allocated
+    udm1_seq *seq = nullptr;
+    if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
+    std::unique_ptr<udm1_seq, void (*)(udm1_seq *)> seq_owner(seq, udm1_seq_destroy);  // freed on every path
     Accumulator acc;
     acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1], {"R", "G", "B"},
               SAMPLE_SCALE);
@@ -217,7 +218,6 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
             }
         rays += local_rays, nonfinite += local_nonfinite, clamped += local_clamped;
     });
-    udm1_seq_destroy(seq);
     acc.nonfinite = nonfinite, acc.clamped = clamped;
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats->paths = (uint64_t)acc.width * acc.height * count;
