@@ -9,7 +9,8 @@ side by side in one run, and the per-task overhead that bounds it.
 3. Overheads: a Dask round trip per task (a no-op task, 1 worker: the scheduler, the transport
    and the Python call), and the fixed cost of one render task (the tool's start, scene load and
    BVH: one pixel, one sample), and the merge of the parts.
-4. The projection for N machines of c = 2 cores that follows from them (see project()).
+4. The projection for N machines of c = 2 cores that follows from them, with the tree merge of
+   udm1.distributed.render (see project()).
 
 Writes JSON and a plot (time against workers, measured and projected) to --out.
 
@@ -148,22 +149,30 @@ def main() -> int:
     return 0
 
 
-def project(res: dict) -> dict:
-    """time(N machines of c = 2 cores, T tasks) = ceil(T / (N c)) (W / T + o) + o_tool + T m, with W the
-    one-thread work, o = Dask's round trip + the tool's start per task, and the client's merge: one tool
-    start plus m per part. For this render's W and for 100 W, with the default T = 4 tasks per core."""
+def project(res: dict, fan_in: int = 16) -> dict:
+    """Time on N machines of c = 2 cores (S = 2N slots) for T = 4 S tasks over one tile:
+    rendering ceil(T / S) (W / T + o); the merge tree on the workers, each level r -> ceil(r / G) merges of
+    G = fan_in parts taking ceil(merges / S) (o + G m); the client's last merge o_tool + r m. W is the
+    one-thread work, o = Dask's round trip + the tool's start per task, m the merge's cost per part
+    (measured: the client's merge of the 16 parts less one tool start, over 16). For this render's W and
+    for 100 W."""
     ov, cfg = res["overhead"], res["config"]
     o = ov["dask_task_seconds"] + ov["tool_task_seconds"]
     m = max(0.0, (ov["merge_seconds"] - ov["tool_task_seconds"]) / cfg["tasks"])
     out = {}
     for scale in (1, 100):
         W = res["render_seconds"]["alone-1"] * scale
-        for machines in (1, 2, 4, 8, 16, 64, 256):
+        for machines in (1, 2, 4, 8, 16, 64, 256, 1024):
             slots = 2 * machines
             tasks = 4 * slots
-            t = -(-tasks // slots) * (W / tasks + o) + ov["tool_task_seconds"] + tasks * m
-            out[f"{scale}W-{machines}"] = {"work": W, "machines": machines, "tasks": tasks, "seconds": t,
-                                           "speedup": W / t, "efficiency": W / t / slots}
+            t, r, levels = -(-tasks // slots) * (W / tasks + o), tasks, 0
+            while r > fan_in:
+                r = -(-r // fan_in)
+                t += -(-r // slots) * (o + fan_in * m)
+                levels += 1
+            t += ov["tool_task_seconds"] + r * m
+            out[f"{scale}W-{machines}"] = {"work": W, "machines": machines, "tasks": tasks, "merge_levels": levels,
+                                           "seconds": t, "speedup": W / t, "efficiency": W / t / slots}
     return out
 
 
@@ -171,10 +180,11 @@ def report(res: dict, out: Path) -> None:
     res["projection"] = proj = project(res)
     (out / "distributed.json").write_text(json.dumps(res, indent=1))
     print(json.dumps({k: res[k] for k in ("render_seconds", "integral_seconds", "overhead")}, indent=1))
-    print("projection (2-core machines, 4 tasks per core): work, machines, tasks, seconds, speed-up, efficiency")
+    print("projection (2-core machines, 4 tasks per core): work, machines, tasks, merge levels, seconds, speed-up, "
+          "efficiency")
     for v in proj.values():
-        print(f"  {v['work']:8.1f} {v['machines']:4d} {v['tasks']:5d} {v['seconds']:9.3f} {v['speedup']:8.2f} "
-              f"{v['efficiency']:6.2f}")
+        print(f"  {v['work']:8.1f} {v['machines']:5d} {v['tasks']:5d} {v['merge_levels']:2d} {v['seconds']:9.3f} "
+              f"{v['speedup']:8.2f} {v['efficiency']:6.2f}")
     try:
         import matplotlib
 
@@ -192,7 +202,7 @@ def report(res: dict, out: Path) -> None:
         m = [v for v in proj.values() if abs(v["work"] - W * scale) < 1e-9]
         ax.plot([2 * v["machines"] for v in m], [v["seconds"] for v in m], style,
                 label=f"projection, {'this render' if scale == 1 else '100x its spp'}, 2-core machines")
-        ax.plot([1, 512], [W * scale, W * scale / 512], ":", color="grey")
+        ax.plot([1, 2048], [W * scale, W * scale / 2048], ":", color="grey")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("worker cores")

@@ -213,10 +213,11 @@ class RenderResult:
     height: int
     spp: int
     seconds: float              # wall time: submit, render, transfer, merge
-    parts: list = field(default_factory=list)  # per task: bounds, first, count, worker, seconds
+    parts: list = field(default_factory=list)  # per render task: index, bounds, first, count, worker, seconds
+    merges: int = 0             # merge tasks run on the workers (the tree)
 
 
-def _render_task(bounds, first: int, count: int, tool: str, args: list, spp: int, threads: int) -> dict:
+def _render_task(bounds, first: int, count: int, index: int, tool: str, args: list, spp: int, threads: int) -> dict:
     t0 = time.perf_counter()
     with tempfile.TemporaryDirectory(prefix="udm1-part-") as tmp:
         out = os.path.join(tmp, "part.exr")
@@ -227,8 +228,40 @@ def _render_task(bounds, first: int, count: int, tool: str, args: list, spp: int
             raise RuntimeError(f"{os.path.basename(tool)} failed on samples [{first}, {first + count}) pixels "
                                f"{bounds}: {r.stderr.strip()}")
         data = pathlib.Path(out).read_bytes()
-    return {"data": data, "bounds": tuple(bounds), "first": first, "count": count, "worker": _worker_address(),
-            "seconds": time.perf_counter() - t0}
+    return {"data": data, "index": index, "bounds": tuple(bounds), "first": first, "count": count,
+            "worker": _worker_address(), "seconds": time.perf_counter() - t0}
+
+
+FAN_IN = 16  # parts per merge; a tile cut into more ranges is merged in a tree on the workers
+
+
+def _merge_files(tool: str, datas, out: str, png: str | None = None) -> None:
+    """`tool merge` of EXR parts given as bytes, into `out` (atomic: the tool writes a temporary file)."""
+    with tempfile.TemporaryDirectory(prefix=".udm1-merge-", dir=os.path.dirname(os.path.abspath(out))) as tmp:
+        names = []
+        for k, data in enumerate(datas):
+            names.append(os.path.join(tmp, f"part{k}.exr"))
+            pathlib.Path(names[-1]).write_bytes(data)
+        cmd = [tool, "merge", *names, "-o", out] + (["--png", png] if png else [])
+        r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        raise RuntimeError(f"merging the parts failed: {r.stderr.strip()}")
+
+
+def _leaves(part: dict) -> list:
+    """The render parts (without their image) that a part holds: itself, or those a merge joined."""
+    return part.get("leaves") or [{k: v for k, v in part.items() if k != "data"}]
+
+
+def _merge_task(tool: str, parts: list) -> dict:
+    t0 = time.perf_counter()
+    with tempfile.TemporaryDirectory(prefix="udm1-tree-") as tmp:
+        out = os.path.join(tmp, "merged.exr")
+        _merge_files(tool, [p["data"] for p in parts], out)
+        data = pathlib.Path(out).read_bytes()
+    return {"data": data, "bounds": parts[0]["bounds"], "first": parts[0]["first"],
+            "count": sum(p["count"] for p in parts), "worker": _worker_address(), "seconds": time.perf_counter() - t0,
+            "leaves": [leaf for p in parts for leaf in _leaves(p)]}
 
 
 def probe(tool: str, args, spp: int) -> tuple[int, int]:
@@ -248,13 +281,15 @@ def probe(tool: str, args, spp: int) -> tuple[int, int]:
 
 def render(tool: str, output: str, *, spp: int, args=(), png: str | None = None, tasks: int | None = None,
            tile: tuple[int, int] | None = None, threads_per_task: int = 1, client=None, address: str | None = None,
-           progress: bool = True, on_done=None) -> RenderResult:
+           progress: bool = True, on_done=None, fan_in: int = FAN_IN) -> RenderResult:
     """Render with udm1-ao or udm1-pt (tool "ao", "pt" or a path) over a Dask cluster into `output`
     (.exr, exact sums; `png` optional). args are the tool's options except --spp, ranges, bounds,
     threads and outputs (e.g. ["--scene", "s.pbrt", "--sampler", "wr"]). The image is cut into tiles
     of `tile` = (w, h) pixels (default: whole images up to 1024 x 1024, else 512 x 512 tiles) and
     each tile's samples [0, spp) into ceil(tasks / tiles) ranges (tasks default: 4 per worker thread).
-    The merged image equals the tool's own single-process render of `spp` samples bit for bit."""
+    A tile's parts are merged on the workers, fan_in at a time, in a tree; the client merges the tiles.
+    The merged image equals the tool's own single-process render of `spp` samples bit for bit.
+    on_done(k, {"worker": address}) is called as render part k completes."""
     t0 = time.perf_counter()
     tool = tool_path(tool)
     args = [str(a) for a in args]
@@ -266,7 +301,9 @@ def render(tool: str, output: str, *, spp: int, args=(), png: str | None = None,
     out_dir = pathlib.Path(output).resolve().parent
     if not out_dir.is_dir() or not os.access(out_dir, os.W_OK):
         raise ValueError(f"udm1.distributed.render: output folder '{out_dir}' is not a writable folder")
-    spp = int(spp)
+    spp, fan_in = int(spp), int(fan_in)
+    if fan_in < 2:
+        raise ValueError(f"udm1.distributed.render: fan_in {fan_in} must be at least 2")
     width, height = probe(tool, args, spp)
     if tile is None:
         tile = (width, height) if width * height <= 1024 * 1024 else (512, 512)
@@ -274,20 +311,42 @@ def render(tool: str, output: str, *, spp: int, args=(), png: str | None = None,
     with _client(client, address) as c:
         want = tasks or 4 * _threads(c)
         per_tile = max(1, min(spp, -(-want // len(tiles))))
-        items = [(t, first, count) for t in tiles for first, count in split_range(spp, per_tile)]
-        results = _run_all(c, _render_task, items, what=f"{os.path.basename(tool)} {width}x{height} {spp} spp",
-                           progress=progress, on_done=on_done, extra=(tool, args, spp, int(threads_per_task)))
-    with tempfile.TemporaryDirectory(prefix=".udm1-parts-", dir=out_dir) as tmp:
-        names = []
-        for k, r in enumerate(results):
-            name = os.path.join(tmp, f"part{k}.exr")
-            pathlib.Path(name).write_bytes(r.pop("data"))
-            names.append(name)
-        cmd = [tool, "merge", *names, "-o", str(output)] + (["--png", str(png)] if png else [])
-        m = subprocess.run(cmd, capture_output=True, text=True)
-        if m.returncode != 0:
-            raise RuntimeError(f"merging the parts failed: {m.stderr.strip()}")
-    return RenderResult(str(output), png, width, height, spp, time.perf_counter() - t0, results)
+        token = uuid.uuid4().hex[:12]  # keys "udm1-<token>-<k>": render part k of this run
+        extra = (tool, args, spp, int(threads_per_task))
+        leaves, merges, roots = [], [], []
+        for t in tiles:
+            group = []
+            for first, count in split_range(spp, per_tile):
+                k = len(leaves)
+                leaves.append(c.submit(_render_task, t, first, count, k, *extra, key=f"udm1-{token}-{k}"))
+                group.append(leaves[-1])
+            while len(group) > fan_in:  # a tree of merges on the workers: parts never travel to the client
+                group = [c.submit(_merge_task, tool, group[i:i + fan_in], key=f"udm1-{token}-merge-{len(merges) + j}")
+                         for j, i in enumerate(range(0, len(group), fan_in))]
+                merges.extend(group)
+            roots.extend(group)
+        _watch(c, leaves, merges, progress, on_done, f"{os.path.basename(tool)} {width}x{height} {spp} spp")
+        tops = c.gather(roots)
+    results = sorted((leaf for top in tops for leaf in _leaves(top)), key=lambda leaf: leaf["index"])
+    _merge_files(tool, [top["data"] for top in tops], str(output), str(png) if png else None)
+    return RenderResult(str(output), png, width, height, spp, time.perf_counter() - t0, results, len(merges))
+
+
+def _watch(client, leaves, merges, progress: bool, on_done, what: str) -> None:
+    """Wait for every render part and merge, showing progress, without moving images to the client.
+    on_done(k, {"worker": address}) follows each render part. A task's error cancels the rest and is raised."""
+    distributed = _distributed()
+    index = {f.key: k for k, f in enumerate(leaves)}
+    bar = _Progress(what + (f", {len(merges)} merges" if merges else ""), len(leaves) + len(merges), progress)
+    for future in distributed.as_completed(leaves + merges):
+        if future.status == "error":
+            client.cancel(leaves + merges)
+            future.result()  # raises the task's exception
+        holders = client.who_has(future).get(future.key, ())
+        worker = sorted(holders)[0] if holders else ""
+        bar.step(worker)
+        if on_done is not None and future.key in index:
+            on_done(index[future.key], {"worker": worker})
 
 
 # ----------------------------------------------------------------------------------------- common

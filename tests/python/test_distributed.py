@@ -190,17 +190,28 @@ def test_distributed_render_equals_one_process(client, tool, tmp_path):
     args = ["--size", "40x30", "--sampler", "wmmr" if tool == "pt" else "sobol-owen", "--seed", "5"]
     subprocess.run([exe, *args, "--spp", "12", "-o", str(tmp_path / "one.exr"), "--png", str(tmp_path / "one.png")],
                    check=True, capture_output=True)
-    for tasks, tile in ((3, None), (10, (16, 11))):
+    def tree_merges(ranges, fan_in):
+        m = 0
+        while ranges > fan_in:
+            ranges = -(-ranges // fan_in)
+            m += ranges
+        return m
+
+    for tasks, tile, fan_in in ((3, None, 16), (10, (16, 11), 16), (12, None, 2), (30, (27, 30), 3)):
         out = tmp_path / f"d{tasks}.exr"
         res = ud.render(exe, str(out), spp=12, args=args, png=str(tmp_path / f"d{tasks}.png"), tasks=tasks, tile=tile,
-                        client=client, progress=False)
+                        client=client, progress=False, fan_in=fan_in)
         assert out.read_bytes() == (tmp_path / "one.exr").read_bytes()
         assert (tmp_path / f"d{tasks}.png").read_bytes() == (tmp_path / "one.png").read_bytes()
         tiles = {p["bounds"] for p in res.parts}
-        assert len(tiles) == (1 if tile is None else 9) and (res.width, res.height) == (40, 30)
+        assert len(tiles) == {None: 1, (16, 11): 9, (27, 30): 2}[tile] and (res.width, res.height) == (40, 30)
+        assert [p["index"] for p in res.parts] == list(range(len(res.parts)))
+        ranges = len(res.parts) // len(tiles)
+        assert res.merges == len(tiles) * tree_merges(ranges, fan_in)
+        assert res.merges > 0 or fan_in == 16
         assert sum(p["count"] * (p["bounds"][2] - p["bounds"][0]) * (p["bounds"][3] - p["bounds"][1])
                    for p in res.parts) == 12 * 40 * 30
-    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".udm1-parts-")]
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".udm1-")]  # no temporary folder left
 
 
 @pytest.mark.skipif(not PT, reason="UDM1_PT_TOOL not set")
