@@ -3,6 +3,7 @@
 
 #include "file_read.h"
 
+#include <cmath>
 #include <cerrno>
 #include <cstdint>
 #include <cstdlib>
@@ -232,14 +233,15 @@ void read_ply(const std::string &path, const Mat4 &xf, Shape *shape)
                         continue;
                     }
                     double c = r.value(p.count_type, "faces");
-                    if (c < 0 || c > 1e6) throw SceneError(path + ": face " + std::to_string(i) + " has a bad vertex count");
+                    if (!(c >= 0 && c <= 1e6) || c != std::floor(c))  // NaN too
+                        throw SceneError(path + ": face " + std::to_string(i) + " has a bad vertex count (" + number_text(c) + ")");
                     poly.clear();
                     for (size_t j = 0; j < (size_t)c; ++j) {
                         double idx = r.value(p.type, "faces");
                         if ((int)k != il) continue;
-                        if (idx < 0 || idx >= (double)nverts || idx != (double)(uint32_t)idx)
+                        if (!(idx >= 0 && idx < (double)nverts) || idx != std::floor(idx))  // NaN too
                             throw SceneError(path + ": face " + std::to_string(i) + ": vertex index " +
-                                             std::to_string((long long)idx) + " out of range (" +
+                                             number_text(idx) + " out of range (" +
                                              std::to_string(nverts) + " vertices)");
                         poly.push_back((uint32_t)(base + (size_t)idx));
                     }

@@ -9,6 +9,7 @@
 #include "color.h"
 #include "mesh_io.h"
 
+#include <cmath>
 #include <cctype>
 #include <cerrno>
 #include <cstdlib>
@@ -486,8 +487,8 @@ private:
             else throw SceneError(here + ": trianglemesh needs \"integer indices\"");
             if (idx.size() % 3) throw SceneError(I->where + ": trianglemesh: the indices are not a multiple of 3");
             for (double v : idx)
-                if (v < 0 || v >= (double)nv || v != (double)(uint32_t)v)
-                    throw SceneError((I ? I->where : here) + ": trianglemesh: index " + std::to_string((long long)v) +
+                if (!(v >= 0 && v < (double)nv) || v != std::floor(v))  // NaN too; no cast before the range check
+                    throw SceneError((I ? I->where : here) + ": trianglemesh: index " + number_text(v) +
                                      " out of range (" + std::to_string(nv) + " vertices)");
             for (size_t k = 0; k < nv; ++k) {
                 Vec3 p = m.point(Vec3(P->numbers[3 * k], P->numbers[3 * k + 1], P->numbers[3 * k + 2]));

@@ -1,6 +1,9 @@
 // scene.cpp - parameter lookups, bounds, the camera, and load_scene's dispatch.
 #include "scene.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include "builtin.h"
 #include "mesh_io.h"
 #include "pbrt_parser.h"
@@ -29,8 +32,17 @@ double ParamSet::get_float(const std::string &name, double fallback) const
 int ParamSet::get_int(const std::string &name, int fallback) const
 {
     double v = get_float(name, fallback);
-    if (v != (double)(int)v) throw SceneError(find(name)->where + ": '" + name + "' needs a whole number");
+    if (!(v >= -2147483648.0 && v <= 2147483647.0) || v != std::floor(v))  // range first: the cast is UB outside
+        throw SceneError(find(name)->where + ": '" + name + "' needs a whole number between -2^31 and 2^31 - 1, not " +
+                         number_text(v));
     return (int)v;
+}
+
+std::string number_text(double v)
+{
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
 }
 
 bool ParamSet::get_bool(const std::string &name, bool fallback) const

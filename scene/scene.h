@@ -18,6 +18,11 @@ struct SceneError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// A number as a one-line error message shows it (any double, NaN and huge values included; never a
+// cast to an integer type, which is undefined for values out of its range).
+std::string number_text(double v);
+
+
 // One parameter of a pbrt directive: "type name" [values].
 struct Param {
     std::string type, name;

@@ -300,6 +300,8 @@ def test_bad_ranges_and_tiles(args, words, tmp_path):
     [
         (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0 1 ]\n', 4, "3 numbers per vertex"),
         (HEAD + TRI.replace("0 1 2 ]", "0 1 7 ]"), 4, "index 7 out of range"),
+        (HEAD + TRI.replace("0 1 2 ]", "0 1 1e30 ]"), 4, "index 1e+30 out of range"),  # fuzz_scene
+        ('Film "rgb" "integer xresolution" [ 2e105 ]\nWorldBegin\n' + TRI, 1, "not 1.9999999999999999e+105"),
         (HEAD + 'Shape "sphere" "float radius" [ -1 ]\n', 4, "radius"),
         (HEAD + 'Shape "plymesh" "string filename" "missing.ply"\n', 0, "missing.ply"),
         (HEAD + 'Shape "nurbs"\n', 4, "'nurbs' is not supported".replace("'", '"')),
