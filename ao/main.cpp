@@ -163,18 +163,11 @@ std::vector<float> grey_to_rgb(const std::vector<float> &v)
     return rgb;
 }
 
-bool is_exr(const std::string &path)
-{
-    std::string lower = path;
-    std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-    return lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".exr") == 0;
-}
-
 int run_merge(const Options &o)
 {
     for (const std::string &path : {o.output, o.png})
         if (!path.empty()) udm1app::AtomicFile probe(path);
-    if (!is_exr(o.output)) throw Error("-o '" + o.output + "': merge writes OpenEXR (.exr)", 2);
+    if (!udm1app::is_exr_path(o.output)) throw Error("-o '" + o.output + "': merge writes OpenEXR (.exr)", 2);
     udm1app::PartialImage p = udm1app::merge_partials(o.positional);
     if (p.channels != std::vector<std::string>{"A"}) throw Error("'" + o.positional[0] + "' is not an udm1-ao image", 2);
     udm1app::write_partial(o.output, p);
@@ -273,7 +266,7 @@ int run_render(Options o)
         std::fprintf(stderr, "udm1-ao: note: %zu kind(s) of appearance left out, first %s\n", scene.ignored.size(),
                      scene.ignored[0].c_str());
     if (!o.size_given && scene.source.rfind("builtin:", 0) == 0) o.ao.width = o.ao.height = 256;
-    if ((o.ao.first || o.ao.count || o.ao.bounds[2]) && !o.output.empty() && !is_exr(o.output))
+    if ((o.ao.first || o.ao.count || o.ao.bounds[2]) && !o.output.empty() && !udm1app::is_exr_path(o.output))
         throw Error("-o '" + o.output + "': a sample range or tile is written as OpenEXR (.exr), whose counts merge", 2);
     // check the outputs' folders before rendering: a bad path fails at once
     for (const std::string &path : {o.output, o.png})
@@ -316,7 +309,7 @@ int run_render(Options o)
     const std::vector<std::pair<std::string, std::string>> meta = {{"udm1:render", made_by}};
     img.sums.made_by = made_by;
     if (!o.output.empty()) {
-        if (is_exr(o.output)) udm1app::write_partial(o.output, img.sums);  // exact counts: ranges and tiles merge
+        if (udm1app::is_exr_path(o.output)) udm1app::write_partial(o.output, img.sums);  // exact counts: ranges and tiles merge
         else udm1app::write_image(o.output, grey_to_rgb(img.values), img.width, img.height, 3, false, 8, meta);
     }
     if (!o.png.empty()) udm1app::write_image(o.png, grey_to_rgb(img.values), img.width, img.height, 3, false, 8, meta);

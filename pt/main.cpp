@@ -333,9 +333,7 @@ int run_render(Options o)
     for (const std::string &path : {o.output, o.png})
         if (!path.empty()) udm1app::AtomicFile probe(path);
     if (!o.output.empty()) {
-        std::string lower = o.output;
-        std::transform(lower.begin(), lower.end(), lower.begin(), ::tolower);
-        if (lower.size() < 4 || lower.compare(lower.size() - 4, 4, ".exr") != 0)
+        if (!udm1app::is_exr_path(o.output))
             throw Error("-o '" + o.output + "': udm1-pt writes OpenEXR (.exr); use --png for a PNG", 2);
     }
     udm1scene::EmbreeScene rt(scene);

@@ -8,6 +8,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -203,6 +204,13 @@ PartialImage merge_partials(const std::vector<std::string> &paths)
         }
     out.first = start[0], out.count = next[0] - start[0];
     return out;
+}
+
+bool is_exr_path(const std::string &path)
+{
+    std::string lower = path;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return (char)std::tolower(c); });
+    return lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".exr") == 0;
 }
 
 void parse_pixel_bounds(const std::string &text, const std::string &flag, int bounds[4])

@@ -43,6 +43,9 @@ PartialImage read_partial(const std::string &path);
 // pixels (tiles may differ in how their range is split). Throws Error naming the offending file.
 PartialImage merge_partials(const std::vector<std::string> &paths);
 
+// Whether a path names an OpenEXR file (.exr, any case): the only format that keeps the sums.
+bool is_exr_path(const std::string &path);
+
 // "--pixel-bounds X0,Y0,X1,Y1" (pbrt's order: the window [X0, X1) x [Y0, Y1)); checked against the
 // image size later (check_pixel_bounds). Throws Error naming the flag.
 void parse_pixel_bounds(const std::string &text, const std::string &flag, int bounds[4]);
