@@ -80,6 +80,10 @@ struct udm1_noise {
     uint8_t perm[512];        /* the permutation, twice */
     double grad[256][3];      /* the table's unit gradients */
     int32_t perm32[512];      /* the same as 32-bit integers, for vector gathers */
+    int32_t pair[512];        /* perm[k] | perm[k + 1] << 8: a corner's hashes at z and z + 1 in one load */
+    uint32_t hash4[256 * 256]; /* by x * 256 + y: the bytes perm[perm[x'] + y'] for (x', y') = (x, y),
+                                * (x, y+1), (x+1, y), (x+1, y+1), wrapped to 0..255: a cell's four
+                                * column hashes (2D: its corner hashes) in one load */
     double g3[256][3];        /* the gradient the 3D evaluation uses, by corner hash */
     double g2[256][2];        /* ... the 2D one */
     double g1[256];           /* ... the 1D one */

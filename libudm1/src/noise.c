@@ -167,7 +167,17 @@ udm1_status udm1_noise_create(const udm1_noise_desc *desc, udm1_noise **out)
         return st;
     }
     memcpy(n->perm + 256, n->perm, 256);
-    for (int i = 0; i < 512; ++i) n->perm32[i] = n->perm[i];
+    for (int i = 0; i < 512; ++i) {
+        n->perm32[i] = n->perm[i];
+        n->pair[i] = n->perm[i] | (i < 511 ? n->perm[i + 1] << 8 : 0);
+    }
+    for (int x = 0; x < 256; ++x)
+        for (int y = 0; y < 256; ++y) {
+            int x1 = (x + 1) & 255, y1 = (y + 1) & 255;
+            const uint8_t *p = n->perm;
+            n->hash4[x * 256 + y] = (uint32_t)p[p[x] + y] | (uint32_t)p[p[x] + y1] << 8 |
+                                    (uint32_t)p[p[x1] + y] << 16 | (uint32_t)p[p[x1] + y1] << 24;
+        }
     for (int h = 0; h < 256; ++h) {
         n->pick3[h] = perlin_pick(h);
         int h7 = h & 7;
@@ -322,6 +332,24 @@ double udm1_noise_1d(const udm1_noise *n, double x)
     return scale * lerp(u, n->g1[n->perm[X0]] * x, n->g1[n->perm[X1]] * (x - 1));
 }
 
+/* whether every coordinate of len points is finite (a loop the compiler vectorizes where the
+ * points are packed) */
+static int coordinates_finite(const double *xyz, uint32_t dims, size_t len, size_t stride)
+{
+    uint64_t bad = 0;
+    if (stride == dims) {
+        for (size_t k = 0; k < len * dims; ++k) {
+            uint64_t bits;
+            memcpy(&bits, xyz + k, sizeof bits);
+            bad |= (~bits & 0x7FF0000000000000ull) == 0; /* exponent all ones: inf or NaN */
+        }
+    } else {
+        for (size_t i = 0; i < len; ++i)
+            for (uint32_t c = 0; c < dims; ++c) bad |= !isfinite(xyz[i * stride + c]);
+    }
+    return bad == 0;
+}
+
 udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *xyz, size_t count, size_t stride,
                               double *out)
 {
@@ -329,15 +357,24 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
     if (!n || !xyz || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: a pointer argument is NULL", fn);
     if (dims < 1 || dims > 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: dims %u is not 1, 2 or 3", fn, dims);
     if (stride < dims) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < dims %u", fn, stride, dims);
-    for (size_t i = 0; i < count; ++i)
-        for (uint32_t c = 0; c < dims; ++c)
-            if (!isfinite(xyz[i * stride + c]))
-                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, c);
-    size_t i = udm1_noise_points_fast(n, dims, xyz, count, stride, out);
-    for (; i < count; ++i) {
-        const double *q = xyz + i * stride;
-        out[i] = dims == 3 ? udm1_noise_3d(n, q[0], q[1], q[2]) : dims == 2 ? udm1_noise_2d(n, q[0], q[1])
-                                                                            : udm1_noise_1d(n, q[0]);
+    /* in chunks that stay in the cache between the check and the evaluation (one pass over memory) */
+    enum { CHUNK = 1024 };
+    for (size_t start = 0; start < count; start += CHUNK) {
+        size_t len = count - start < CHUNK ? count - start : CHUNK;
+        const double *chunk = xyz + start * stride;
+        if (!coordinates_finite(chunk, dims, len, stride))
+            for (size_t i = 0; i < len; ++i)
+                for (uint32_t c = 0; c < dims; ++c)
+                    if (!isfinite(chunk[i * stride + c]))
+                        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn,
+                                         start + i, c);
+        size_t i = udm1_noise_points_fast(n, dims, chunk, len, stride, out + start);
+        for (; i < len; ++i) {
+            const double *q = chunk + i * stride;
+            out[start + i] = dims == 3   ? udm1_noise_3d(n, q[0], q[1], q[2])
+                             : dims == 2 ? udm1_noise_2d(n, q[0], q[1])
+                                         : udm1_noise_1d(n, q[0]);
+        }
     }
     return UDM1_OK;
 }

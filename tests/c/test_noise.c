@@ -360,6 +360,33 @@ static void test_batch_equals_per_call(void)
         }
 }
 
+static void test_batch_refuses_non_finite(void)
+{
+    /* a NaN or infinity anywhere (the batch is checked in chunks) is refused and named, packed
+     * (stride = dims) and strided, in every coordinate */
+    enum { N = 5000 };
+    static double xyz[4 * N], out[N];
+    for (int i = 0; i < 4 * N; ++i) xyz[i] = (uniform() - 0.5) * 200.0;
+    udm1_noise *n = make("wr", 1, 0, 0, 0, 0);
+    static const size_t at[] = {0, 1023, 1024, 3001, N - 1};
+    static const double bad[] = {NAN, INFINITY, -INFINITY};
+    for (uint32_t dims = 1; dims <= 3; ++dims)
+        for (size_t stride = dims; stride <= 4; stride += 4 - dims > 0 ? 4 - dims : 1)
+            for (size_t k = 0; k < sizeof at / sizeof at[0]; ++k)
+                for (uint32_t c = 0; c < dims; ++c) {
+                    double *v = &xyz[at[k] * stride + c], keep = *v;
+                    *v = bad[(k + c) % 3];
+                    CHECK_STATUS(udm1_noise_points(n, dims, xyz, N, stride, out), UDM1_ERROR_INVALID_ARGUMENT);
+                    char want[64];
+                    snprintf(want, sizeof want, "point %zu coordinate %u is not finite", at[k], c);
+                    CHECKF(strstr(udm1_last_error(), want) != NULL, "dims %u stride %zu: '%s' lacks '%s'", dims,
+                           stride, udm1_last_error(), want);
+                    *v = keep;
+                }
+    CHECK_STATUS(udm1_noise_points(n, 3, xyz, N, 3, out), UDM1_OK);
+    udm1_noise_destroy(n);
+}
+
 static void test_grid_equals_eval(void)
 {
     /* image rows (batched for noise and fBm) equal the per-point evaluation bit for bit */
@@ -420,6 +447,7 @@ int main(void)
     test_patterns();
     test_color_maps();
     test_batch_equals_per_call();
+    test_batch_refuses_non_finite();
     test_grid_equals_eval();
     test_bad_input();
     CHECK_DONE();

@@ -617,7 +617,8 @@ UDM1_API double udm1_noise_3d(const udm1_noise *noise, double x, double y, doubl
 
 /* Noise values at n points of `dims` (1, 2 or 3) coordinates, point i at
  * xyz[i * stride]. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (dims, stride < dims,
- * a non-finite coordinate). */
+ * a non-finite coordinate: the message names the point; out's values are then
+ * unspecified). */
 UDM1_API udm1_status udm1_noise_points(const udm1_noise *noise, uint32_t dims, const double *xyz, size_t n,
                                        size_t stride, double *out);
 
