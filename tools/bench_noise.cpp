@@ -83,6 +83,11 @@ int main(int argc, char **argv)
     double r3 = best_rate([&] { udm1_noise_points(imp, 3, pts.data(), N, 3, out.data()); sink = out[7]; }, N, reps);
     double r2 = best_rate([&] { udm1_noise_points(imp, 2, pts.data(), N, 3, out.data()); sink = out[7]; }, N, reps);
     double rc = best_rate([&] { udm1_noise_points(cls, 3, pts.data(), N, 3, out.data()); sink = out[7]; }, N, reps);
+    // the same batch capped at AVX2 (UDM1_NOISE_ISA), for the kernels side by side
+    setenv("UDM1_NOISE_ISA", "avx2", 1);
+    double r3a = best_rate([&] { udm1_noise_points(imp, 3, pts.data(), N, 3, out.data()); sink = out[7]; }, N, reps);
+    double r2a = best_rate([&] { udm1_noise_points(imp, 2, pts.data(), N, 3, out.data()); sink = out[7]; }, N, reps);
+    unsetenv("UDM1_NOISE_ISA");
     double rs = best_rate(
         [&] {
             double acc = 0;
@@ -108,7 +113,9 @@ int main(int argc, char **argv)
     auto ratio = [&](double r) { return rl > 0 ? r / rl : 0.0; };
     std::printf("%-44s %14.4g %10.2f\n", "udm1 improved 3D, batch (udm1_noise_points)", r3, ratio(r3));
     std::printf("%-44s %14.4g %10.2f\n", "udm1 improved 3D, per call (udm1_noise_3d)", rs, ratio(rs));
+    std::printf("%-44s %14.4g %10.2f\n", "udm1 improved 3D, batch, AVX2 only", r3a, ratio(r3a));
     std::printf("%-44s %14.4g %10.2f\n", "udm1 improved 2D, batch", r2, ratio(r2));
+    std::printf("%-44s %14.4g %10.2f\n", "udm1 improved 2D, batch, AVX2 only", r2a, ratio(r2a));
     std::printf("%-44s %14.4g %10.2f\n", "udm1 classic 3D, batch", rc, ratio(rc));
 
     // whole image: 1024 x 1024 of raw noise, one thread against all

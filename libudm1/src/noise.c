@@ -338,11 +338,13 @@ static int coordinates_finite(const double *xyz, uint32_t dims, size_t len, size
 {
     uint64_t bad = 0;
     if (stride == dims) {
+        const uint64_t EXPONENT = 0x7FF0000000000000ull;
         for (size_t k = 0; k < len * dims; ++k) {
             uint64_t bits;
             memcpy(&bits, xyz + k, sizeof bits);
-            bad |= (~bits & 0x7FF0000000000000ull) == 0; /* exponent all ones: inf or NaN */
+            bad |= (bits & EXPONENT) + (1ull << 52); /* carries into bit 63 when the exponent is all ones */
         }
+        return (bad >> 63) == 0;
     } else {
         for (size_t i = 0; i < len; ++i)
             for (uint32_t c = 0; c < dims; ++c) bad |= !isfinite(xyz[i * stride + c]);
@@ -362,6 +364,13 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
     for (size_t start = 0; start < count; start += CHUNK) {
         size_t len = count - start < CHUNK ? count - start : CHUNK;
         const double *chunk = xyz + start * stride;
+#if defined(__GNUC__)
+        if (count - start > CHUNK) { /* the next chunk on its way to the cache while this one is evaluated */
+            size_t next = count - start - CHUNK < CHUNK ? count - start - CHUNK : CHUNK;
+            const char *from = (const char *)(chunk + CHUNK * stride);
+            for (size_t b = 0; b < ((next - 1) * stride + dims) * sizeof(double); b += 64) __builtin_prefetch(from + b, 0, 2);
+        }
+#endif
         if (!coordinates_finite(chunk, dims, len, stride))
             for (size_t i = 0; i < len; ++i)
                 for (uint32_t c = 0; c < dims; ++c)

@@ -6,6 +6,7 @@
  *  - tables from sequences have the spectrum of random permutations;
  *  - patterns in [0, 1], POV-Ray's closed forms, colour maps, bad inputs.
  */
+#define _DEFAULT_SOURCE /* setenv */
 #include "check.h"
 
 #include <udm1/udm1.h>
@@ -343,21 +344,25 @@ static void test_batch_equals_per_call(void)
         xyz[i] = i % 97 == 5 ? (r - 0.5) * 1e12 : i % 89 == 3 ? 2147483647.5 : (r - 0.5) * 2000.0;
     }
     static const char *tables[] = {NULL, "wr", "drand48"};
-    for (int t = 0; t < 3; ++t)
-        for (uint32_t kind = 0; kind <= 1; ++kind) {
-            udm1_noise *n = make(tables[t], 9, kind, 0, 0, 0);
-            for (uint32_t dims = 1; dims <= 3; ++dims) {
-                CHECK_STATUS(udm1_noise_points(n, dims, xyz, N, 3, a), UDM1_OK);
-                for (int i = 0; i < N; ++i) {
-                    const double *q = xyz + 3 * i;
-                    b[i] = dims == 3 ? udm1_noise_3d(n, q[0], q[1], q[2])
-                                     : dims == 2 ? udm1_noise_2d(n, q[0], q[1]) : udm1_noise_1d(n, q[0]);
-                }
-                CHECKF(memcmp(a, b, sizeof a) == 0, "table %d kind %u dims %u: batch differs from per call", t, kind,
-                       dims);
+    static const char *isa[] = {"scalar", "avx2", "avx512"}; /* every kernel this processor has */
+    for (int c = 0; c < 3 * 3 * 2; ++c) { /* instruction set, table, kind */
+        int s = c / 6, t = c / 2 % 3;
+        uint32_t kind = (uint32_t)(c % 2);
+        udm1_noise *n = make(tables[t], 9, kind, 0, 0, 0);
+        setenv("UDM1_NOISE_ISA", isa[s], 1);
+        for (uint32_t dims = 1; dims <= 3; ++dims) {
+            CHECK_STATUS(udm1_noise_points(n, dims, xyz, N, 3, a), UDM1_OK);
+            for (int i = 0; i < N; ++i) {
+                const double *q = xyz + 3 * i;
+                b[i] = dims == 3 ? udm1_noise_3d(n, q[0], q[1], q[2])
+                                 : dims == 2 ? udm1_noise_2d(n, q[0], q[1]) : udm1_noise_1d(n, q[0]);
             }
-            udm1_noise_destroy(n);
+            CHECKF(memcmp(a, b, sizeof a) == 0, "%s: table %d kind %u dims %u: batch differs from per call", isa[s], t,
+                   kind, dims);
         }
+        unsetenv("UDM1_NOISE_ISA");
+        udm1_noise_destroy(n);
+    }
 }
 
 static void test_batch_refuses_non_finite(void)
