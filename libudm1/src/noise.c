@@ -332,26 +332,6 @@ double udm1_noise_1d(const udm1_noise *n, double x)
     return scale * lerp(u, n->g1[n->perm[X0]] * x, n->g1[n->perm[X1]] * (x - 1));
 }
 
-/* whether every coordinate of len points is finite (a loop the compiler vectorizes where the
- * points are packed) */
-static int coordinates_finite(const double *xyz, uint32_t dims, size_t len, size_t stride)
-{
-    uint64_t bad = 0;
-    if (stride == dims) {
-        const uint64_t EXPONENT = 0x7FF0000000000000ull;
-        for (size_t k = 0; k < len * dims; ++k) {
-            uint64_t bits;
-            memcpy(&bits, xyz + k, sizeof bits);
-            bad |= (bits & EXPONENT) + (1ull << 52); /* carries into bit 63 when the exponent is all ones */
-        }
-        return (bad >> 63) == 0;
-    } else {
-        for (size_t i = 0; i < len; ++i)
-            for (uint32_t c = 0; c < dims; ++c) bad |= !isfinite(xyz[i * stride + c]);
-    }
-    return bad == 0;
-}
-
 udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *xyz, size_t count, size_t stride,
                               double *out)
 {
@@ -359,31 +339,16 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
     if (!n || !xyz || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: a pointer argument is NULL", fn);
     if (dims < 1 || dims > 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: dims %u is not 1, 2 or 3", fn, dims);
     if (stride < dims) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < dims %u", fn, stride, dims);
-    /* in chunks that stay in the cache between the check and the evaluation (one pass over memory) */
-    enum { CHUNK = 1024 };
-    for (size_t start = 0; start < count; start += CHUNK) {
-        size_t len = count - start < CHUNK ? count - start : CHUNK;
-        const double *chunk = xyz + start * stride;
-#if defined(__GNUC__)
-        if (count - start > CHUNK) { /* the next chunk on its way to the cache while this one is evaluated */
-            size_t next = count - start - CHUNK < CHUNK ? count - start - CHUNK : CHUNK;
-            const char *from = (const char *)(chunk + CHUNK * stride);
-            for (size_t b = 0; b < ((next - 1) * stride + dims) * sizeof(double); b += 64) __builtin_prefetch(from + b, 0, 2);
-        }
-#endif
-        if (!coordinates_finite(chunk, dims, len, stride))
-            for (size_t i = 0; i < len; ++i)
-                for (uint32_t c = 0; c < dims; ++c)
-                    if (!isfinite(chunk[i * stride + c]))
-                        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn,
-                                         start + i, c);
-        size_t i = udm1_noise_points_fast(n, dims, chunk, len, stride, out + start);
-        for (; i < len; ++i) {
-            const double *q = chunk + i * stride;
-            out[start + i] = dims == 3   ? udm1_noise_3d(n, q[0], q[1], q[2])
-                             : dims == 2 ? udm1_noise_2d(n, q[0], q[1])
-                                         : udm1_noise_1d(n, q[0]);
-        }
+    /* one pass over memory: the vector kernels stop before a group with a non-finite coordinate, and
+     * the scalar loop checks every point it evaluates */
+    size_t i = udm1_noise_points_fast(n, dims, xyz, count, stride, out);
+    for (; i < count; ++i) {
+        const double *q = xyz + i * stride;
+        for (uint32_t c = 0; c < dims; ++c)
+            if (!isfinite(q[c]))
+                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, c);
+        out[i] = dims == 3 ? udm1_noise_3d(n, q[0], q[1], q[2]) : dims == 2 ? udm1_noise_2d(n, q[0], q[1])
+                                                                            : udm1_noise_1d(n, q[0]);
     }
     return UDM1_OK;
 }

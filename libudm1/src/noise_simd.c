@@ -10,6 +10,7 @@
  * noise. Chosen at run time when the processor has AVX2. */
 #include "internal.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -74,6 +75,12 @@ AVX2 static inline __m256d axis(__m256d x, __m128i *i0, __m128i *i1)
     return _mm256_sub_pd(x, f);
 }
 
+AVX2 static inline int finite(__m256d x) /* all lanes finite */
+{
+    __m256d ax = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+    return _mm256_movemask_pd(_mm256_cmp_pd(ax, _mm256_set1_pd(INFINITY), _CMP_LT_OQ)) == 0xF;
+}
+
 AVX2 static inline int in_range(__m256d x) /* all lanes finite and |x| < 2^31 */
 {
     __m256d ax = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
@@ -81,6 +88,7 @@ AVX2 static inline int in_range(__m256d x) /* all lanes finite and |x| < 2^31 */
 }
 
 #define BLOCK 16 /* groups of four points per block (noise_simd_kernels.h) */
+#define PREFETCH 128 /* points ahead to ask the cache for (a hint: never faults, past the end included) */
 
 #define KERNEL_ATTR AVX2
 #define NOISE3 noise3_avx2

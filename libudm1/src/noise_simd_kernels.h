@@ -1,7 +1,9 @@
 /* noise_simd_kernels.h - the blocked batch kernels of noise_simd.c, included
  * once per instruction set with KERNEL_ATTR (the target attribute), NOISE3,
  * NOISE2 (the functions' names), GRAD3 and GRAD2 (that set's gradients)
- * defined. Not a public header. */
+ * defined. Not a public header. Each kernel returns how many leading points
+ * it computed: all of them in groups of four, or up to the first group with a
+ * non-finite coordinate, which the caller then finds and reports. */
 
 /* Points go in blocks of BLOCK groups of four, in passes: the cells and their column hashes
  * (hash4) of every group, then the corner hashes (pair), then the gradients and lerps. Each
@@ -11,7 +13,8 @@
 KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t count, size_t stride, double *out)
 {
     size_t i = 0;
-    while (i + 4 <= count) {
+    int stop = 0;
+    while (i + 4 <= count && !stop) {
         size_t groups = (count - i) / 4 < BLOCK ? (count - i) / 4 : BLOCK;
         __m256d fx[BLOCK], fy[BLOCK], fz[BLOCK];
         __m128i z0[BLOCK];
@@ -21,10 +24,16 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
         unsigned scalar = 0; /* groups with a coordinate at or past 2^31: the scalar code */
         for (size_t g = 0; g < groups; ++g) {
             const double *p = xyz + (i + 4 * g) * stride;
+            __builtin_prefetch(p + PREFETCH * stride, 0, 0);
             __m256d x = _mm256_set_pd(p[3 * stride], p[2 * stride], p[stride], p[0]);
             __m256d y = _mm256_set_pd(p[3 * stride + 1], p[2 * stride + 1], p[stride + 1], p[1]);
             __m256d z = _mm256_set_pd(p[3 * stride + 2], p[2 * stride + 2], p[stride + 2], p[2]);
             if (!(in_range(x) && in_range(y) && in_range(z))) {
+                if (!(finite(x) && finite(y) && finite(z))) { /* stop before it: the caller reports it */
+                    groups = g;
+                    stop = 1;
+                    break;
+                }
                 scalar |= 1u << g;
                 x = y = z = _mm256_setzero_pd();
             }
@@ -78,7 +87,8 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
 KERNEL_ATTR static size_t NOISE2(const udm1_noise *n, const double *xyz, size_t count, size_t stride, double *out)
 {
     size_t i = 0;
-    while (i + 4 <= count) {
+    int stop = 0;
+    while (i + 4 <= count && !stop) {
         size_t groups = (count - i) / 4 < BLOCK ? (count - i) / 4 : BLOCK;
         __m256d fx[BLOCK], fy[BLOCK];
         int32_t ci[BLOCK * 4];
@@ -86,9 +96,15 @@ KERNEL_ATTR static size_t NOISE2(const udm1_noise *n, const double *xyz, size_t 
         unsigned scalar = 0;
         for (size_t g = 0; g < groups; ++g) {
             const double *p = xyz + (i + 4 * g) * stride;
+            __builtin_prefetch(p + PREFETCH * stride, 0, 0);
             __m256d x = _mm256_set_pd(p[3 * stride], p[2 * stride], p[stride], p[0]);
             __m256d y = _mm256_set_pd(p[3 * stride + 1], p[2 * stride + 1], p[stride + 1], p[1]);
             if (!(in_range(x) && in_range(y))) {
+                if (!(finite(x) && finite(y))) {
+                    groups = g;
+                    stop = 1;
+                    break;
+                }
                 scalar |= 1u << g;
                 x = y = _mm256_setzero_pd();
             }
