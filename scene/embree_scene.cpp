@@ -74,6 +74,9 @@ bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit)
     rh.ray.time = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    if (log_)
+        log_->push_back({{rh.ray.org_x, rh.ray.org_y, rh.ray.org_z}, {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z},
+                         rh.ray.tnear, rh.ray.tfar, false});
     rtcIntersect1(scene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit->t = rh.ray.tfar;
@@ -104,6 +107,7 @@ bool EmbreeScene::occluded(Vec3 o, Vec3 d, double tnear, double tfar) const
     r.mask = 0xFFFFFFFF;
     r.flags = 0;
     r.time = 0;
+    if (log_) log_->push_back({{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar, true});
     rtcOccluded1(scene_, &ctx, &r);
     return r.tfar < 0;  // Embree sets tfar to -inf on a hit
 }

@@ -22,6 +22,12 @@ struct Hit {
     double u = 0, v = 0;           // barycentrics
 };
 
+// One query as Embree received it (for the replay benchmark, tools/bench_pt.cpp).
+struct RayQuery {
+    float org[3], dir[3], tnear, tfar;
+    bool shadow;  // occluded() rather than intersect()
+};
+
 class EmbreeScene {
 public:
     // robust: Embree's robust traversal (RTC_SCENE_FLAG_ROBUST). Without it rays through shared edges
@@ -39,6 +45,9 @@ public:
     // the visible side of both faces (offsetting along n alone leaves it on the other face's plane).
     Vec3 spawn_origin(const Hit &h, Vec3 incoming, Vec3 n) const { return h.p + (n - incoming) * ray_offset(h.p, h.t); }
     RTCScene handle() const { return scene_; }
+    // Benchmarks only: append every later query to *log (nullptr: stop). Not thread-safe: record with
+    // one thread. The renderers never set it (one predictable branch per query).
+    void record_queries(std::vector<RayQuery> *log) { log_ = log; }
     double scale() const { return scale_; }  // the scene's extent
 
 private:
@@ -47,6 +56,7 @@ private:
     RTCScene scene_ = nullptr;
     std::vector<unsigned> shape_of_geom_;
     double scale_ = 1;
+    std::vector<RayQuery> *log_ = nullptr;
 };
 
 }  // namespace udm1scene
