@@ -96,6 +96,9 @@ bench)
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_noise.py
     udm1_log "udm1-ao against a bare Embree loop over the same rays, and each sampler's cost (tools/bench_ao.cpp)"
     ./build/tools/udm1_bench_ao
+    udm1_log "udm1-pt against a bare Embree replay of its own rays: Embree's share of its time (tools/bench_pt_embree.cpp)"
+    ./build/tools/udm1_bench_pt_embree --spp 64
+    ./build/tools/udm1_bench_pt_embree --spp 64 --sampler sobol-owen
     udm1_log "udm1-pt against Mitsuba 3: throughput, equal spp, equal error (tools/bench_pt.py, about 15 minutes)"
     "$PY" tools/bench_pt.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
     udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (tools/bench_pt.py --estimators)"
