@@ -149,6 +149,11 @@ int main(int argc, char **argv)
             udm1pt::render(scene, rt, materials, o, &st);
             rt.record_queries(nullptr);
         }
+        if (log.size() != st.rays) {  // every query the render counted was recorded, and nothing else
+            std::fprintf(stderr, "udm1_bench_pt_embree: recorded %zu queries, the render counted %llu\n", log.size(),
+                         (unsigned long long)st.rays);
+            return 1;
+        }
         std::vector<RayQuery> rays, shadows;
         for (const RayQuery &q : log) (q.shadow ? shadows : rays).push_back(q);
         std::printf("udm1_bench_pt_embree: %s, %dx%d, %u spp, sampler %s, %u threads, best of %d alternating rounds\n",

@@ -483,3 +483,29 @@ def test_screen_randomization_needs_a_weyl_sequence(tmp_path):
         assert not (tmp_path / "x.exr").exists()
     r = run("--randomize", "blue", "-o", str(tmp_path / "x.exr"))
     assert r.returncode != 0 and "screen" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+
+
+BUILD = os.environ.get("UDM1_BUILD_DIR", "")
+
+
+@pytest.mark.skipif(not BUILD, reason="UDM1_BUILD_DIR (for udm1_bench_pt_embree) is not set: run through CTest")
+def test_embree_share_benchmark_replays_the_render(tmp_path):
+    """udm1_bench_pt_embree records every query of a render (it refuses to report if the count differs from
+    the render's own ray count, or if the single and stream replays disagree on the hits) and prints
+    Embree's share of the render time."""
+    bench = pathlib.Path(BUILD) / "tools" / "udm1_bench_pt_embree"
+    r = subprocess.run([str(bench), "--size", "16x16", "--spp", "2", "--reps", "1"], capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 0, r.stderr
+    m = re.search(r"queries recorded: (\d+) \((\d+) intersect, (\d+) occluded\)", r.stdout)
+    assert m and int(m.group(1)) == int(m.group(2)) + int(m.group(3)) > 16 * 16 * 2, r.stdout
+    # the same render through the tool counts the same rays
+    rays = int(RENDER_LINE.match(ok("--size", "16x16", "--spp", "2", "--sampler", "wr", "-o",
+                                    str(tmp_path / "a.exr")).stdout).group(10))
+    assert rays == int(m.group(1))
+    share = re.search(r"Embree's share of udm1-pt's render time: ([0-9.]+) % \(single queries\), ([0-9.]+) %", r.stdout)
+    assert share and 0 < float(share.group(1)) < 100 and 0 < float(share.group(2)) < 100, r.stdout
+    for args, words in ((["--sampler", "nope", "--size", "16x16"], "unknown sampler 'nope'"),
+                        (["--size", "2x2"], "usage: udm1_bench_pt_embree"), (["--spp"], "usage")):
+        bad = subprocess.run([str(bench), *args], capture_output=True, text=True, timeout=60)
+        assert bad.returncode != 0 and words in bad.stderr and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
