@@ -88,7 +88,7 @@ AVX2 static inline int in_range(__m256d x) /* all lanes finite and |x| < 2^31 */
 }
 
 #define BLOCK 16 /* groups of four points per block (noise_simd_kernels.h) */
-#define PREFETCH 128 /* points ahead to ask the cache for (a hint: never faults, past the end included) */
+#define PREFETCH 128 /* points ahead to ask the cache for (a hint: never faults; an address, not a pointer, past the end) */
 
 #define KERNEL_ATTR AVX2
 #define NOISE3 noise3_avx2

@@ -24,7 +24,7 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
         unsigned scalar = 0; /* groups with a coordinate at or past 2^31: the scalar code */
         for (size_t g = 0; g < groups; ++g) {
             const double *p = xyz + (i + 4 * g) * stride;
-            __builtin_prefetch(p + PREFETCH * stride, 0, 0);
+            __builtin_prefetch((const void *)((uintptr_t)p + PREFETCH * stride * sizeof(double)), 0, 0);
             __m256d x = _mm256_set_pd(p[3 * stride], p[2 * stride], p[stride], p[0]);
             __m256d y = _mm256_set_pd(p[3 * stride + 1], p[2 * stride + 1], p[stride + 1], p[1]);
             __m256d z = _mm256_set_pd(p[3 * stride + 2], p[2 * stride + 2], p[stride + 2], p[2]);
@@ -96,7 +96,7 @@ KERNEL_ATTR static size_t NOISE2(const udm1_noise *n, const double *xyz, size_t 
         unsigned scalar = 0;
         for (size_t g = 0; g < groups; ++g) {
             const double *p = xyz + (i + 4 * g) * stride;
-            __builtin_prefetch(p + PREFETCH * stride, 0, 0);
+            __builtin_prefetch((const void *)((uintptr_t)p + PREFETCH * stride * sizeof(double)), 0, 0);
             __m256d x = _mm256_set_pd(p[3 * stride], p[2 * stride], p[stride], p[0]);
             __m256d y = _mm256_set_pd(p[3 * stride + 1], p[2 * stride + 1], p[stride + 1], p[1]);
             if (!(in_range(x) && in_range(y))) {
