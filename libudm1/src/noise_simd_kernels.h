@@ -20,8 +20,8 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
         __m128i z0[BLOCK];
         int32_t ci[BLOCK * 4], qi[BLOCK * 16];
         uint32_t c4[BLOCK * 4];
-        __m128i q[BLOCK][4];
-        unsigned scalar = 0; /* groups with a coordinate at or past 2^31: the scalar code */
+        int32_t q[BLOCK * 16]; /* per group: the pair words of columns A, B, A1, B1, four lanes each */
+        unsigned scalar = 0;   /* groups with a coordinate at or past 2^31: the scalar code */
         for (size_t g = 0; g < groups; ++g) {
             const double *p = xyz + (i + 4 * g) * stride;
             __builtin_prefetch((const void *)((uintptr_t)p + PREFETCH * stride * sizeof(double)), 0, 0);
@@ -53,8 +53,7 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
             _mm_storeu_si128((__m128i *)(qi + 16 * g + 8), _mm_add_epi32(_mm_and_si128(_mm_srli_epi32(c, 8), m), Z0));
             _mm_storeu_si128((__m128i *)(qi + 16 * g + 12), _mm_add_epi32(_mm_srli_epi32(c, 24), Z0));
         }
-        int32_t *qv = (int32_t *)q;
-        for (size_t k = 0; k < 16 * groups; ++k) qv[k] = n->pair[qi[k]];
+        for (size_t k = 0; k < 16 * groups; ++k) q[k] = n->pair[qi[k]];
         for (size_t g = 0; g < groups; ++g, i += 4) {
             if (scalar >> g & 1u) {
                 for (size_t k = 0; k < 4; ++k) {
@@ -67,7 +66,9 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
             __m256d u = fade(x), v = fade(y), w = fade(z);
             __m256d one = _mm256_set1_pd(1.0), x1 = _mm256_sub_pd(x, one), y1 = _mm256_sub_pd(y, one),
                     z1 = _mm256_sub_pd(z, one);
-            __m128i qA = q[g][0], qB = q[g][1], qA1 = q[g][2], qB1 = q[g][3];
+            const __m128i *qg = (const __m128i *)(q + 16 * g);
+            __m128i qA = _mm_loadu_si128(qg), qB = _mm_loadu_si128(qg + 1), qA1 = _mm_loadu_si128(qg + 2),
+                    qB1 = _mm_loadu_si128(qg + 3);
             __m256d g000 = GRAD3(qA, x, y, z);
             __m256d g100 = GRAD3(qB, x1, y, z);
             __m256d g010 = GRAD3(qA1, x, y1, z);
