@@ -64,6 +64,57 @@ static void test_reference(void)
     udm1_noise_destroy(n);
 }
 
+/* An independent transcription of Perlin's ImprovedNoise.java (and, with table gradients and the
+ * cubic fade, of the classic noise), on the tables udm1_noise_tables hands out. */
+static double transcribed_noise3(const uint8_t perm[256], double grad[256][3], int classic, double x, double y,
+                                 double z)
+{
+    int p[512];
+    for (int i = 0; i < 512; ++i) p[i] = perm[i & 255];
+    double fx = floor(x), fy = floor(y), fz = floor(z);
+    int X = (int)((long long)fx & 255), Y = (int)((long long)fy & 255), Z = (int)((long long)fz & 255);
+    x -= fx, y -= fy, z -= fz;
+    double t[3] = {x, y, z}, f[3];
+    for (int k = 0; k < 3; ++k)
+        f[k] = classic ? t[k] * t[k] * (3 - 2 * t[k]) : t[k] * t[k] * t[k] * (t[k] * (t[k] * 6 - 15) + 10);
+    int A = p[X] + Y, AA = p[A] + Z, AB = p[A + 1] + Z, B = p[X + 1] + Y, BA = p[B] + Z, BB = p[B + 1] + Z;
+#define G(h, a, b, c)                                                                                                 \
+    (classic ? grad[h][0] * (a) + grad[h][1] * (b) + grad[h][2] * (c)                                                \
+             : ((((h) & 15) < 8 ? (a) : (b)) * (((h) & 1) ? -1.0 : 1.0) +                                           \
+                (((h) & 15) < 4 ? (b) : (((h) & 15) == 12 || ((h) & 15) == 14) ? (a) : (c)) * (((h) & 2) ? -1.0 : 1.0)))
+#define L(t, a, b) ((a) + (t) * ((b) - (a)))
+    double r = L(f[2], L(f[1], L(f[0], G(p[AA], x, y, z), G(p[BA], x - 1, y, z)),
+                         L(f[0], G(p[AB], x, y - 1, z), G(p[BB], x - 1, y - 1, z))),
+                 L(f[1], L(f[0], G(p[AA + 1], x, y, z - 1), G(p[BA + 1], x - 1, y, z - 1)),
+                         L(f[0], G(p[AB + 1], x, y - 1, z - 1), G(p[BB + 1], x - 1, y - 1, z - 1))));
+#undef G
+#undef L
+    return r;
+}
+
+static void test_equals_transcription(void)
+{
+    /* udm1_noise_3d (which reads the permutation through combined tables) equals the transcription bit
+     * for bit: Perlin's, a sequence's and drand48's tables, improved and classic, near and far */
+    static const char *tables[] = {NULL, "wr", "drand48"};
+    static double grad[256][3];
+    for (int t = 0; t < 3; ++t)
+        for (uint32_t kind = 0; kind <= 1; ++kind) {
+            udm1_noise *n = make(tables[t], 5, kind, 0, 0, 0);
+            uint8_t perm[256];
+            CHECK_STATUS(udm1_noise_tables(n, perm, &grad[0][0]), UDM1_OK);
+            int bad = 0;
+            for (int i = 0; i < 20000; ++i) {
+                double s = i % 10 == 0 ? 1e9 : 600.0;
+                double x = (uniform() - 0.5) * s, y = (uniform() - 0.5) * s, z = (uniform() - 0.5) * s;
+                double a = udm1_noise_3d(n, x, y, z), b = transcribed_noise3(perm, grad, kind == UDM1_NOISE_CLASSIC, x, y, z);
+                bad += memcmp(&a, &b, sizeof a) != 0;
+            }
+            CHECKF(bad == 0, "table %d kind %u: %d of 20000 points differ from the transcription", t, kind, bad);
+            udm1_noise_destroy(n);
+        }
+}
+
 static void moments(udm1_noise *n, int dims, double *mean, double *var, double *maxabs)
 {
     enum { N = 200000 };
@@ -443,6 +494,7 @@ static void test_bad_input(void)
 int main(void)
 {
     test_reference();
+    test_equals_transcription();
     test_range_and_moments();
     test_determinism_and_seeds();
     test_tileable();
