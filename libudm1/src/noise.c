@@ -326,10 +326,17 @@ double udm1_noise_2d(const udm1_noise *n, double x, double y)
     cell(y, n->period[1], &Y0, &Y1, &y);
     int classic = n->kind == UDM1_NOISE_CLASSIC;
     double u = classic ? fade3(x) : fade5(x), v = classic ? fade3(y) : fade5(y);
-    const uint8_t *p = n->perm;
+    int h00, h10, h01, h11; /* the corner hashes perm[perm[x] + y]; without a period in one load (hash4) */
+    if (!(n->period[0] | n->period[1])) {
+        uint32_t c = n->hash4[X0 * 256 + Y0];
+        h00 = (int)(c & 255u), h01 = (int)(c >> 8 & 255u), h10 = (int)(c >> 16 & 255u), h11 = (int)(c >> 24);
+    } else {
+        const uint8_t *p = n->perm;
+        h00 = p[p[X0] + Y0], h10 = p[p[X1] + Y0], h01 = p[p[X0] + Y1], h11 = p[p[X1] + Y1];
+    }
     double scale = classic ? 1.0 : 0.507; /* noise1234's range scale */
-    return scale * lerp(v, lerp(u, dot2(n, p[p[X0] + Y0], x, y), dot2(n, p[p[X1] + Y0], x - 1, y)),
-                        lerp(u, dot2(n, p[p[X0] + Y1], x, y - 1), dot2(n, p[p[X1] + Y1], x - 1, y - 1)));
+    return scale * lerp(v, lerp(u, dot2(n, h00, x, y), dot2(n, h10, x - 1, y)),
+                        lerp(u, dot2(n, h01, x, y - 1), dot2(n, h11, x - 1, y - 1)));
 }
 
 double udm1_noise_1d(const udm1_noise *n, double x)

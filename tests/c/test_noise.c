@@ -92,10 +92,33 @@ static double transcribed_noise3(const uint8_t perm[256], double grad[256][3], i
     return r;
 }
 
+/* The same for 2D: Gustavson's noise1234 (+-u +-2v, u = x for h & 7 < 4, else y; scaled by 0.507),
+ * or table gradients and the cubic fade for the classic noise. */
+static double transcribed_noise2(const uint8_t perm[256], double grad[256][3], int classic, double x, double y)
+{
+    int p[512];
+    for (int i = 0; i < 512; ++i) p[i] = perm[i & 255];
+    double fx = floor(x), fy = floor(y);
+    int X = (int)((long long)fx & 255), Y = (int)((long long)fy & 255);
+    x -= fx, y -= fy;
+    double fu = classic ? x * x * (3 - 2 * x) : x * x * x * (x * (x * 6 - 15) + 10);
+    double fv = classic ? y * y * (3 - 2 * y) : y * y * y * (y * (y * 6 - 15) + 10);
+#define G(h, a, b)                                                                                                    \
+    (classic ? grad[h][0] * (a) + grad[h][1] * (b)                                                                   \
+             : ((((h) & 7) < 4 ? (a) : (b)) * (((h) & 1) ? -1.0 : 1.0) +                                            \
+                (((h) & 7) < 4 ? (b) : (a)) * (((h) & 2) ? -2.0 : 2.0)))
+#define L(t, a, b) ((a) + (t) * ((b) - (a)))
+    double r = L(fv, L(fu, G(p[p[X] + Y], x, y), G(p[p[X + 1] + Y], x - 1, y)),
+                 L(fu, G(p[p[X] + Y + 1], x, y - 1), G(p[p[X + 1] + Y + 1], x - 1, y - 1)));
+#undef G
+#undef L
+    return (classic ? 1.0 : 0.507) * r;
+}
+
 static void test_equals_transcription(void)
 {
-    /* udm1_noise_3d (which reads the permutation through combined tables) equals the transcription bit
-     * for bit: Perlin's, a sequence's and drand48's tables, improved and classic, near and far */
+    /* udm1_noise_3d and _2d (which read the permutation through combined tables) equal the
+     * transcriptions bit for bit: Perlin's, a sequence's and drand48's tables, improved and classic, near and far */
     static const char *tables[] = {NULL, "wr", "drand48"};
     static double grad[256][3];
     for (int t = 0; t < 3; ++t)
@@ -109,8 +132,11 @@ static void test_equals_transcription(void)
                 double x = (uniform() - 0.5) * s, y = (uniform() - 0.5) * s, z = (uniform() - 0.5) * s;
                 double a = udm1_noise_3d(n, x, y, z), b = transcribed_noise3(perm, grad, kind == UDM1_NOISE_CLASSIC, x, y, z);
                 bad += memcmp(&a, &b, sizeof a) != 0;
+                a = udm1_noise_2d(n, x, y), b = transcribed_noise2(perm, grad, kind == UDM1_NOISE_CLASSIC, x, y);
+                bad += memcmp(&a, &b, sizeof a) != 0;
             }
-            CHECKF(bad == 0, "table %d kind %u: %d of 20000 points differ from the transcription", t, kind, bad);
+            CHECKF(bad == 0, "table %d kind %u: %d of 2 x 20000 values (3D, 2D) differ from the transcription", t, kind,
+                   bad);
             udm1_noise_destroy(n);
         }
 }
