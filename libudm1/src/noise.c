@@ -285,26 +285,15 @@ double udm1_noise_3d(const udm1_noise *n, double x, double y, double z)
         v = fade5(y);
         w = fade5(z);
     }
-    /* the eight corner hashes perm[perm[perm[x] + y] + z]: without a period through the combined
-     * tables (5 loads instead of 14; corner + 1 is then corner + 1 mod 256 on every axis) */
-    int hAA, hBA, hAB, hBB, hAA1, hBA1, hAB1, hBB1;
-    if (!(n->period[0] | n->period[1] | n->period[2])) {
-        uint32_t c = n->hash4[X0 * 256 + Y0];
-        int32_t a = n->pair[(c & 255u) + (uint32_t)Z0], a1 = n->pair[(c >> 8 & 255u) + (uint32_t)Z0];
-        int32_t b = n->pair[(c >> 16 & 255u) + (uint32_t)Z0], b1 = n->pair[(c >> 24) + (uint32_t)Z0];
-        hAA = a & 255, hAA1 = a >> 8, hAB = a1 & 255, hAB1 = a1 >> 8;
-        hBA = b & 255, hBA1 = b >> 8, hBB = b1 & 255, hBB1 = b1 >> 8;
-    } else {
-        const uint8_t *p = n->perm;
-        int A = p[X0] + Y0, B = p[X1] + Y0, A1 = p[X0] + Y1, B1 = p[X1] + Y1;
-        hAA = p[p[A] + Z0], hAB = p[p[A1] + Z0], hBA = p[p[B] + Z0], hBB = p[p[B1] + Z0];
-        hAA1 = p[p[A] + Z1], hAB1 = p[p[A1] + Z1], hBA1 = p[p[B] + Z1], hBB1 = p[p[B1] + Z1];
-    }
+    const uint8_t *p = n->perm;
+    int A = p[X0] + Y0, B = p[X1] + Y0, A1 = p[X0] + Y1, B1 = p[X1] + Y1;
+    int AA = p[A] + Z0, AB = p[A1] + Z0, BA = p[B] + Z0, BB = p[B1] + Z0;
+    int AA1 = p[A] + Z1, AB1 = p[A1] + Z1, BA1 = p[B] + Z1, BB1 = p[B1] + Z1;
     return lerp(w,
-                lerp(v, lerp(u, dot3(n, hAA, x, y, z), dot3(n, hBA, x - 1, y, z)),
-                     lerp(u, dot3(n, hAB, x, y - 1, z), dot3(n, hBB, x - 1, y - 1, z))),
-                lerp(v, lerp(u, dot3(n, hAA1, x, y, z - 1), dot3(n, hBA1, x - 1, y, z - 1)),
-                     lerp(u, dot3(n, hAB1, x, y - 1, z - 1), dot3(n, hBB1, x - 1, y - 1, z - 1))));
+                lerp(v, lerp(u, dot3(n, p[AA], x, y, z), dot3(n, p[BA], x - 1, y, z)),
+                     lerp(u, dot3(n, p[AB], x, y - 1, z), dot3(n, p[BB], x - 1, y - 1, z))),
+                lerp(v, lerp(u, dot3(n, p[AA1], x, y, z - 1), dot3(n, p[BA1], x - 1, y, z - 1)),
+                     lerp(u, dot3(n, p[AB1], x, y - 1, z - 1), dot3(n, p[BB1], x - 1, y - 1, z - 1))));
 }
 
 static inline double dot2(const udm1_noise *n, int h, double x, double y)
@@ -326,17 +315,10 @@ double udm1_noise_2d(const udm1_noise *n, double x, double y)
     cell(y, n->period[1], &Y0, &Y1, &y);
     int classic = n->kind == UDM1_NOISE_CLASSIC;
     double u = classic ? fade3(x) : fade5(x), v = classic ? fade3(y) : fade5(y);
-    int h00, h10, h01, h11; /* the corner hashes perm[perm[x] + y]; without a period in one load (hash4) */
-    if (!(n->period[0] | n->period[1])) {
-        uint32_t c = n->hash4[X0 * 256 + Y0];
-        h00 = (int)(c & 255u), h01 = (int)(c >> 8 & 255u), h10 = (int)(c >> 16 & 255u), h11 = (int)(c >> 24);
-    } else {
-        const uint8_t *p = n->perm;
-        h00 = p[p[X0] + Y0], h10 = p[p[X1] + Y0], h01 = p[p[X0] + Y1], h11 = p[p[X1] + Y1];
-    }
+    const uint8_t *p = n->perm;
     double scale = classic ? 1.0 : 0.507; /* noise1234's range scale */
-    return scale * lerp(v, lerp(u, dot2(n, h00, x, y), dot2(n, h10, x - 1, y)),
-                        lerp(u, dot2(n, h01, x, y - 1), dot2(n, h11, x - 1, y - 1)));
+    return scale * lerp(v, lerp(u, dot2(n, p[p[X0] + Y0], x, y), dot2(n, p[p[X1] + Y0], x - 1, y)),
+                        lerp(u, dot2(n, p[p[X0] + Y1], x, y - 1), dot2(n, p[p[X1] + Y1], x - 1, y - 1)));
 }
 
 double udm1_noise_1d(const udm1_noise *n, double x)
