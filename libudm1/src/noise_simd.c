@@ -3,7 +3,7 @@
  * the same doubles (floor, fade, Perlin's +-u +-v gradients as blends and sign
  * flips, the lerps), so its results equal udm1_noise_3d / udm1_noise_2d bit
  * for bit; tests/c/test_noise.c checks it. The permutation is read through
- * the combined tables hash4 and pair (internal.h): the same hashes in 2 loads
+ * the combined tables hash4 and pair (internal.h): the same hashes in 5 loads
  * per 3D point instead of 14, 1 per 2D point instead of 6, as scalar loads
  * (AVX2 gathers measured slower here). Groups of four with a coordinate
  * at or past 2^31 go to the scalar code, and so do periodic and classic
