@@ -22,7 +22,7 @@ struct Hit {
     double u = 0, v = 0;           // barycentrics
 };
 
-// One query as Embree received it (for the replay benchmark, tools/bench_pt.cpp).
+// One query as Embree received it (for the replay benchmark, tools/bench_pt_embree.cpp).
 struct RayQuery {
     float org[3], dir[3], tnear, tfar;
     bool shadow;  // occluded() rather than intersect()

@@ -40,7 +40,7 @@ namespace {
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 // The queries through the calls udm1-pt makes, one at a time; returns the number of hits (checked
-// against the render's own outcome count so the replay is the same work).
+// against the stream replay's: both did the same work).
 uint64_t replay_single(RTCScene scene, const std::vector<RayQuery> &q)
 {
     std::atomic<uint64_t> hits{0};

@@ -237,7 +237,7 @@ static inline double fast_floor(double x)
 static inline void cell(double x, uint32_t period, int *i0, int *i1, double *t)
 {
     double f = fast_floor(x);
-    *t = x - f; /* exact */
+    *t = (x - f) + 0.0; /* exact; + 0.0 turns the -0.0 of x = -0.0 into +0.0, as Perlin's x - floor(x) */
     if (UDM1_UNLIKELY(period)) {
         double m = fmod(f, (double)period); /* exact */
         if (m < 0) m += period;

@@ -1,4 +1,4 @@
-/* noise_simd.c - the improved noise on 4 points at a time with AVX2, for the
+/* noise_simd.c - the improved noise on 4 points at a time with AVX2 or AVX-512VL, for the
  * batch calls. It performs the scalar code's operations in the same order on
  * the same doubles (floor, fade, Perlin's +-u +-v gradients as blends and sign
  * flips, the lerps), so its results equal udm1_noise_3d / udm1_noise_2d bit
@@ -7,7 +7,8 @@
  * per 3D point instead of 14, 1 per 2D point instead of 6, as scalar loads
  * (AVX2 gathers measured slower here). Groups of four with a coordinate
  * at or past 2^31 go to the scalar code, and so do periodic and classic
- * noise. Chosen at run time when the processor has AVX2. */
+ * noise. Chosen at run time: AVX-512VL where the processor has it, else AVX2
+ * (UDM1_NOISE_ISA=avx2 or scalar caps the choice). */
 #include "internal.h"
 
 #include <math.h>
@@ -75,7 +76,7 @@ AVX2 static inline __m256d axis(__m256d x, __m128i *i0, __m128i *i1)
     return _mm256_sub_pd(x, f);
 }
 
-AVX2 static inline int finite(__m256d x) /* all lanes finite */
+AVX2 static inline int all_finite(__m256d x) /* all lanes finite */
 {
     __m256d ax = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
     return _mm256_movemask_pd(_mm256_cmp_pd(ax, _mm256_set1_pd(INFINITY), _CMP_LT_OQ)) == 0xF;

@@ -29,7 +29,7 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
             __m256d y = _mm256_set_pd(p[3 * stride + 1], p[2 * stride + 1], p[stride + 1], p[1]);
             __m256d z = _mm256_set_pd(p[3 * stride + 2], p[2 * stride + 2], p[stride + 2], p[2]);
             if (!(in_range(x) && in_range(y) && in_range(z))) {
-                if (!(finite(x) && finite(y) && finite(z))) { /* stop before it: the caller reports it */
+                if (!(all_finite(x) && all_finite(y) && all_finite(z))) { /* stop before it: the caller reports it */
                     groups = g;
                     stop = 1;
                     break;
@@ -101,7 +101,7 @@ KERNEL_ATTR static size_t NOISE2(const udm1_noise *n, const double *xyz, size_t 
             __m256d x = _mm256_set_pd(p[3 * stride], p[2 * stride], p[stride], p[0]);
             __m256d y = _mm256_set_pd(p[3 * stride + 1], p[2 * stride + 1], p[stride + 1], p[1]);
             if (!(in_range(x) && in_range(y))) {
-                if (!(finite(x) && finite(y))) {
+                if (!(all_finite(x) && all_finite(y))) {
                     groups = g;
                     stop = 1;
                     break;

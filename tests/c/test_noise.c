@@ -117,8 +117,8 @@ static double transcribed_noise2(const uint8_t perm[256], double grad[256][3], i
 
 static void test_equals_transcription(void)
 {
-    /* udm1_noise_3d and _2d (which read the permutation through combined tables) equal the
-     * transcriptions bit for bit: Perlin's, a sequence's and drand48's tables, improved and classic, near and far */
+    /* udm1_noise_3d and _2d equal the transcriptions bit for bit (signed zeros included): Perlin's,
+     * a sequence's and drand48's tables, improved and classic, near and far (1e12) */
     static const char *tables[] = {NULL, "wr", "drand48"};
     static double grad[256][3];
     for (int t = 0; t < 3; ++t)
@@ -128,8 +128,10 @@ static void test_equals_transcription(void)
             CHECK_STATUS(udm1_noise_tables(n, perm, &grad[0][0]), UDM1_OK);
             int bad = 0;
             for (int i = 0; i < 20000; ++i) {
-                double s = i % 10 == 0 ? 1e9 : 600.0;
+                double s = i % 10 == 0 ? 1e12 : 600.0;
                 double x = (uniform() - 0.5) * s, y = (uniform() - 0.5) * s, z = (uniform() - 0.5) * s;
+                if (i % 7 == 3) x = -0.0;
+                if (i % 11 == 4) y = -0.0, z = i % 2 ? 255.0 : -0.0;
                 double a = udm1_noise_3d(n, x, y, z), b = transcribed_noise3(perm, grad, kind == UDM1_NOISE_CLASSIC, x, y, z);
                 bad += memcmp(&a, &b, sizeof a) != 0;
                 a = udm1_noise_2d(n, x, y), b = transcribed_noise2(perm, grad, kind == UDM1_NOISE_CLASSIC, x, y);
@@ -412,31 +414,41 @@ static void test_color_maps(void)
 
 static void test_batch_equals_per_call(void)
 {
-    /* the batch call (vectorized where the processor allows) equals the scalar one bit for bit,
-     * also around groups with far coordinates that go to the scalar code */
+    /* the batch call (vectorized where the processor allows) equals the scalar one bit for bit, with
+     * every kernel: also around groups with far coordinates that go to the scalar code, at -0.0 (a
+     * zero's sign), for counts that leave a block part full or a tail, packed (stride = dims) and
+     * strided */
     enum { N = 4099 };
     static double xyz[3 * N], a[N], b[N];
     for (int i = 0; i < 3 * N; ++i) {
         double r = uniform();
-        xyz[i] = i % 97 == 5 ? (r - 0.5) * 1e12 : i % 89 == 3 ? 2147483647.5 : (r - 0.5) * 2000.0;
+        xyz[i] = i % 97 == 5 ? (r - 0.5) * 1e12 : i % 89 == 3 ? 2147483647.5 : i % 83 == 1 ? -0.0 : (r - 0.5) * 2000.0;
     }
+    for (int i = 0; i < 12; ++i) xyz[3 * (N - 13 + i) + i % 3] = i < 6 ? -0.0 : 0.0; /* in the last block */
     static const char *tables[] = {NULL, "wr", "drand48"};
-    static const char *isa[] = {"scalar", "avx2", "avx512"}; /* every kernel this processor has */
-    for (int c = 0; c < 3 * 3 * 2; ++c) { /* instruction set, table, kind */
+    static const char *isa[] = {"scalar", "avx2", "avx512"}; /* caps: the last one is every kernel there is */
+    static const size_t counts[] = {N, 70, 37, 5};           /* 64 full blocks and a tail; part-full blocks */
+    for (int c = 0; c < 3 * 3 * 2; ++c) {                    /* instruction set, table, kind */
         int s = c / 6, t = c / 2 % 3;
         uint32_t kind = (uint32_t)(c % 2);
         udm1_noise *n = make(tables[t], 9, kind, 0, 0, 0);
         setenv("UDM1_NOISE_ISA", isa[s], 1);
-        for (uint32_t dims = 1; dims <= 3; ++dims) {
-            CHECK_STATUS(udm1_noise_points(n, dims, xyz, N, 3, a), UDM1_OK);
-            for (int i = 0; i < N; ++i) {
-                const double *q = xyz + 3 * i;
-                b[i] = dims == 3 ? udm1_noise_3d(n, q[0], q[1], q[2])
-                                 : dims == 2 ? udm1_noise_2d(n, q[0], q[1]) : udm1_noise_1d(n, q[0]);
-            }
-            CHECKF(memcmp(a, b, sizeof a) == 0, "%s: table %d kind %u dims %u: batch differs from per call", isa[s], t,
-                   kind, dims);
-        }
+        for (uint32_t dims = 1; dims <= 3; ++dims)
+            for (size_t stride = dims; stride <= 3; stride += 3 - dims > 0 ? 3 - dims : 1)
+                for (size_t k = 0; k < sizeof counts / sizeof counts[0]; ++k) {
+                    size_t m = counts[k];
+                    const double *from = xyz + (N - m) * 3; /* the last m points of the strided array */
+                    CHECK_STATUS(udm1_noise_points(n, dims, from, m, stride, a), UDM1_OK);
+                    for (size_t i = 0; i < m; ++i) {
+                        const double *q = from + stride * i;
+                        b[i] = dims == 3   ? udm1_noise_3d(n, q[0], q[1], q[2])
+                               : dims == 2 ? udm1_noise_2d(n, q[0], q[1])
+                                           : udm1_noise_1d(n, q[0]);
+                    }
+                    CHECKF(memcmp(a, b, m * sizeof a[0]) == 0,
+                           "%s: table %d kind %u dims %u stride %zu count %zu: batch differs from per call", isa[s], t,
+                           kind, dims, stride, m);
+                }
         unsetenv("UDM1_NOISE_ISA");
         udm1_noise_destroy(n);
     }
@@ -444,28 +456,42 @@ static void test_batch_equals_per_call(void)
 
 static void test_batch_refuses_non_finite(void)
 {
-    /* a NaN or infinity anywhere (the batch is checked in chunks) is refused and named, packed
-     * (stride = dims) and strided, in every coordinate */
-    enum { N = 5000 };
+    /* a NaN or infinity anywhere is refused and the first one named, with every kernel, packed
+     * (stride = dims) and strided, in every coordinate: in the first group, across a block's edge,
+     * in the tail (N is not a multiple of 4), after a far coordinate in the same block (a group the
+     * scalar code takes) and before a second bad point */
+    enum { N = 5003 };
     static double xyz[4 * N], out[N];
     for (int i = 0; i < 4 * N; ++i) xyz[i] = (uniform() - 0.5) * 200.0;
     udm1_noise *n = make("wr", 1, 0, 0, 0, 0);
-    static const size_t at[] = {0, 1023, 1024, 3001, N - 1};
+    static const size_t at[] = {0, 63, 64, 1023, 1024, 3001, N - 2};
     static const double bad[] = {NAN, INFINITY, -INFINITY};
-    for (uint32_t dims = 1; dims <= 3; ++dims)
-        for (size_t stride = dims; stride <= 4; stride += 4 - dims > 0 ? 4 - dims : 1)
-            for (size_t k = 0; k < sizeof at / sizeof at[0]; ++k)
-                for (uint32_t c = 0; c < dims; ++c) {
-                    double *v = &xyz[at[k] * stride + c], keep = *v;
-                    *v = bad[(k + c) % 3];
-                    CHECK_STATUS(udm1_noise_points(n, dims, xyz, N, stride, out), UDM1_ERROR_INVALID_ARGUMENT);
-                    char want[64];
-                    snprintf(want, sizeof want, "point %zu coordinate %u is not finite", at[k], c);
-                    CHECKF(strstr(udm1_last_error(), want) != NULL, "dims %u stride %zu: '%s' lacks '%s'", dims,
-                           stride, udm1_last_error(), want);
-                    *v = keep;
-                }
-    CHECK_STATUS(udm1_noise_points(n, 3, xyz, N, 3, out), UDM1_OK);
+    static const char *isa[] = {"scalar", "avx2", "avx512"};
+    for (int s = 0; s < 3; ++s) {
+        setenv("UDM1_NOISE_ISA", isa[s], 1);
+        for (uint32_t dims = 1; dims <= 3; ++dims)
+            for (size_t stride = dims; stride <= 4; stride += 4 - dims > 0 ? 4 - dims : 1)
+                for (size_t k = 0; k < sizeof at / sizeof at[0]; ++k)
+                    for (uint32_t c = 0; c < dims; ++c) {
+                        double *v = &xyz[at[k] * stride + c], keep = *v;
+                        double *far = at[k] >= 3 ? &xyz[(at[k] - 3) * stride] : NULL, keep_far = far ? *far : 0;
+                        double *second = at[k] + 1 < N ? &xyz[(at[k] + 1) * stride] : NULL,
+                               keep_second = second ? *second : 0;
+                        *v = bad[(k + c) % 3];
+                        if (far) *far = 3e9;
+                        if (second) *second = NAN;
+                        CHECK_STATUS(udm1_noise_points(n, dims, xyz, N, stride, out), UDM1_ERROR_INVALID_ARGUMENT);
+                        char want[64];
+                        snprintf(want, sizeof want, "point %zu coordinate %u is not finite", at[k], c);
+                        CHECKF(strstr(udm1_last_error(), want) != NULL, "%s dims %u stride %zu: '%s' lacks '%s'", isa[s],
+                               dims, stride, udm1_last_error(), want);
+                        *v = keep;
+                        if (far) *far = keep_far;
+                        if (second) *second = keep_second;
+                    }
+        CHECK_STATUS(udm1_noise_points(n, 3, xyz, N, 3, out), UDM1_OK);
+    }
+    unsetenv("UDM1_NOISE_ISA");
     udm1_noise_destroy(n);
 }
 
