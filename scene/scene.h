@@ -22,7 +22,6 @@ struct SceneError : std::runtime_error {
 // cast to an integer type, which is undefined for values out of its range).
 std::string number_text(double v);
 
-
 // One parameter of a pbrt directive: "type name" [values].
 struct Param {
     std::string type, name;

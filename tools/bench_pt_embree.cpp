@@ -39,6 +39,12 @@ namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
+// A recorded query as the Embree ray it was (id: its place in a stream).
+RTCRay ray_of(const RayQuery &a, unsigned id = 0)
+{
+    return RTCRay{a.org[0], a.org[1], a.org[2], a.tnear, a.dir[0], a.dir[1], a.dir[2], 0, a.tfar, 0xFFFFFFFF, id, 0};
+}
+
 // The queries through the calls udm1-pt makes, one at a time; returns the number of hits (checked
 // against the stream replay's: both did the same work).
 uint64_t replay_single(RTCScene scene, const std::vector<RayQuery> &q)
@@ -51,12 +57,12 @@ uint64_t replay_single(RTCScene scene, const std::vector<RayQuery> &q)
             const RayQuery &a = q[i];
             rtcInitIntersectContext(&ctx);
             if (a.shadow) {
-                RTCRay ray{a.org[0], a.org[1], a.org[2], a.tnear, a.dir[0], a.dir[1], a.dir[2], 0, a.tfar, 0xFFFFFFFF, 0, 0};
+                RTCRay ray = ray_of(a);
                 rtcOccluded1(scene, &ctx, &ray);
                 local += ray.tfar < 0;
             } else {
                 RTCRayHit rh;
-                rh.ray = RTCRay{a.org[0], a.org[1], a.org[2], a.tnear, a.dir[0], a.dir[1], a.dir[2], 0, a.tfar, 0xFFFFFFFF, 0, 0};
+                rh.ray = ray_of(a);
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
                 rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
                 rtcIntersect1(scene, &ctx, &rh);
@@ -82,9 +88,7 @@ uint64_t replay_streams(RTCScene scene, const std::vector<RayQuery> &rays, const
             for (size_t b = r.begin(); b < r.end(); b += M) {
                 size_t n = std::min(M, r.end() - b);
                 for (size_t k = 0; k < n; ++k) {
-                    const RayQuery &a = q[b + k];
-                    RTCRay ray{a.org[0], a.org[1], a.org[2], a.tnear, a.dir[0], a.dir[1], a.dir[2], 0, a.tfar,
-                               0xFFFFFFFF, (unsigned)k, 0};
+                    RTCRay ray = ray_of(q[b + k], (unsigned)k);
                     if (shadow) {
                         sh[k] = ray;
                     } else {

@@ -79,7 +79,6 @@ struct udm1_noise {
     uint32_t period[3];
     uint8_t perm[512];        /* the permutation, twice */
     double grad[256][3];      /* the table's unit gradients */
-    int32_t perm32[512];      /* the same as 32-bit integers, for vector gathers */
     int32_t pair[512];        /* perm[k] | perm[k + 1] << 8: a corner's hashes at z and z + 1 in one load */
     uint32_t hash4[256 * 256]; /* by x * 256 + y: the bytes perm[perm[x'] + y'] for (x', y') = (x, y),
                                 * (x, y+1), (x+1, y), (x+1, y+1), wrapped to 0..255: a cell's four

@@ -167,17 +167,15 @@ udm1_status udm1_noise_create(const udm1_noise_desc *desc, udm1_noise **out)
         return st;
     }
     memcpy(n->perm + 256, n->perm, 256);
-    for (int i = 0; i < 512; ++i) {
-        n->perm32[i] = n->perm[i];
-        n->pair[i] = n->perm[i] | (i < 511 ? n->perm[i + 1] << 8 : 0);
-    }
-    for (int x = 0; x < 256; ++x)
+    const uint8_t *p = n->perm;
+    for (int i = 0; i < 512; ++i) n->pair[i] = p[i] | (i < 511 ? p[i + 1] << 8 : 0);
+    for (int x = 0; x < 256; ++x) {
+        const uint8_t *a = p + p[x], *b = p + p[(x + 1) & 255]; /* the columns of x and x + 1 */
         for (int y = 0; y < 256; ++y) {
-            int x1 = (x + 1) & 255, y1 = (y + 1) & 255;
-            const uint8_t *p = n->perm;
-            n->hash4[x * 256 + y] = (uint32_t)p[p[x] + y] | (uint32_t)p[p[x] + y1] << 8 |
-                                    (uint32_t)p[p[x1] + y] << 16 | (uint32_t)p[p[x1] + y1] << 24;
+            int y1 = (y + 1) & 255;
+            n->hash4[x * 256 + y] = (uint32_t)a[y] | (uint32_t)a[y1] << 8 | (uint32_t)b[y] << 16 | (uint32_t)b[y1] << 24;
         }
+    }
     for (int h = 0; h < 256; ++h) {
         n->pick3[h] = perlin_pick(h);
         int h7 = h & 7;
