@@ -1,6 +1,7 @@
 // embree_scene.h - a Scene on Embree 3: one device, one committed scene of
-// triangle meshes and spheres (as Embree sphere points), and the queries the
-// renderers need. Const methods are safe from any number of threads.
+// triangle meshes and spheres (as Embree sphere points), each triangle's geometric
+// normal (computed once), and the queries the renderers need. Const methods are
+// safe from any number of threads.
 #pragma once
 
 #include "scene.h"
@@ -55,6 +56,8 @@ private:
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     std::vector<unsigned> shape_of_geom_;
+    std::vector<size_t> first_normal_;  // per shape: its first triangle's entry in normals_
+    std::vector<Vec3> normals_;         // triangle_normal() of every triangle, in shape order
     double scale_ = 1;
     std::vector<RayQuery> *log_ = nullptr;
 };
