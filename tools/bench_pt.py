@@ -6,7 +6,9 @@ given error.
    (PyPI `mitsuba`, variant scalar_rgb, its `path` integrator) on the same Cornell box at the same spp.
 2. Equal spp: RMSE (root of the MSE averaged over --seeds renders; time averaged too) against one
    common reference (udm1-pt, sobol-owen at --ref-spp, cached) for every udm1 sampler and every
-   Mitsuba sampler at each spp. The scenes are matched by `udm1-pt export` (see
+   Mitsuba sampler at each spp (its orthogonal sampler renders the square of a prime at or above the
+   spp asked, 25/121/289/1369 for 16/64/256/1024: the table shows the count it took, and its
+   time and error are those of that count). The scenes are matched by `udm1-pt export` (see
    tools/mitsuba_scene.py); the two renderers' high-spp images agree pixel by pixel within their
    noise. Errors are those of `udm1-pt compare` (linear RGB clamped to [0, 1], as the PSNR).
 3. Equal error: for each target RMSE (the errors Mitsuba's independent sampler reaches at the spps),
@@ -43,7 +45,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "scenes"
 OURS = ["pcg32", "halton", "sobol", "sobol-owen", "pmj02", "cmj", "wr", "wmmr", "hwmmr", "rd"]
-THEIRS = ["independent", "stratified", "multijitter", "ldsampler"]
+THEIRS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]  # every sampler Mitsuba 3 has
 LINE = re.compile(r"seconds (\S+) paths (\d+) rays (\d+) paths_per_second (\S+) rays_per_second (\S+)")
 
 
@@ -197,16 +199,16 @@ def main(argv=None) -> int:
     for s in theirs:
         for spp in spps:
             log(f"Mitsuba {s}: spp {spp}")
-            secs, mse = [], []
+            secs, mse, counts = [], [], []
             for seed in range(1, args.seeds + 1):
-                img, t = mitsuba_scene.render(scene_dir, spp, s, seed)
+                img, t = mitsuba_scene.render(scene_dir, spp, s, seed, counts)
                 exr = out / f"mitsuba-{s}-{spp}-{seed}.exr"
                 mi.util.write_bitmap(str(exr), img.astype("float32"), write_async=False)
                 secs.append(t)
                 mse.append(rmse_of(tool, exr, ref) ** 2)
                 exr.unlink()
-            rows.append({"renderer": "mitsuba", "sampler": s, "spp": spp, "seconds": float(np.mean(secs)),
-                         "rmse": float(np.sqrt(np.mean(mse)))})
+            rows.append({"renderer": "mitsuba", "sampler": s, "spp": spp, "rendered_spp": counts[0],
+                         "seconds": float(np.mean(secs)), "rmse": float(np.sqrt(np.mean(mse)))})
     results["runs"] = rows
 
     # 3. equal error
@@ -246,7 +248,8 @@ def main(argv=None) -> int:
     print("|---|---|" + "---|" * len(spps))
     for renderer, names in (("mitsuba", theirs), ("udm1-pt", ours)):
         for s in names:
-            cells = [next((f"{r['rmse']:.5f} ({r['seconds']:.2f})" for r in rows
+            cells = [next((f"{r['rmse']:.5f} ({r['seconds']:.2f})"
+                           + (f" [{r['rendered_spp']} spp]" if r.get("rendered_spp", n) != n else "") for r in rows
                            if r["renderer"] == renderer and r["sampler"] == s and r["spp"] == n), "") for n in spps]
             print(f"| {renderer} | {s} | " + " | ".join(cells) + " |")
     print("\n## Equal error: seconds to reach the RMSE Mitsuba's independent sampler reaches at each spp\n")

@@ -68,15 +68,20 @@ def load(dir: str | Path, spp: int = 16, sampler: str = "independent", seed: int
     return mi.load_dict(scene)
 
 
-def render(dir, spp: int, sampler: str = "independent", seed: int = 0):
-    """Render; return (linear RGB image as a numpy array, seconds of mi.render)."""
+def render(dir, spp: int, sampler: str = "independent", seed: int = 0, counts: list | None = None):
+    """Render; return (linear RGB image as a numpy array, seconds of mi.render). Some samplers take
+    another sample count than asked (orthogonal: the square of a prime at or above it); the count
+    rendered is appended to `counts` when given."""
     import mitsuba as mi
     import numpy as np
 
     scene = load(dir, spp, sampler, seed)
+    n = scene.sensors()[0].sampler().sample_count()
     t0 = time.perf_counter()
-    img = mi.render(scene, spp=spp, seed=seed)
+    img = mi.render(scene, spp=n, seed=seed)
     seconds = time.perf_counter() - t0
+    if counts is not None:
+        counts.append(n)
     return np.array(img, dtype=np.float64)[..., :3], seconds
 
 
