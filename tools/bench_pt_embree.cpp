@@ -8,7 +8,9 @@
 //     udm1-pt makes, over TBB chunks, with nothing else (no sampling, shading, normals, lights);
 //   - the same queries as streams (rtcIntersect1M / rtcOccluded1M of 256 consecutive queries of one
 //     kind), what a wavefront path tracer could hand Embree at best;
-//   - udm1-pt's render (udm1pt::render, the same options) of those same rays.
+//   - udm1-pt's render (udm1pt::render, the same options) of those same rays;
+//   - both replays again on the same scene built without robust traversal (Embree's fastest, which
+//     udm1 does not use: rays through shared edges can leak), the least Embree could cost.
 // Embree's share of the render time = replay time / render time: the rest is udm1-pt's own work, so
 // 1 / share bounds any speed-up that leaves Embree's queries as they are.
 //
@@ -143,7 +145,7 @@ int main(int argc, char **argv)
     }
     try {
         Scene scene = load_scene(scene_name);
-        EmbreeScene rt(scene);
+        EmbreeScene rt(scene), fast(scene, false);
         udm1pt::Materials materials(scene);
         udm1pt::Stats st;
         std::vector<RayQuery> log;
@@ -165,8 +167,8 @@ int main(int argc, char **argv)
                     reps);
         std::printf("queries recorded: %zu (%zu intersect, %zu occluded), %.3f per path\n\n", log.size(), rays.size(),
                     shadows.size(), (double)log.size() / (double)st.paths);
-        double best_single = 1e300, best_stream = 1e300, best_render = 1e300;
-        uint64_t hits_single = 0, hits_stream = 0;
+        double best_single = 1e300, best_stream = 1e300, best_render = 1e300, best_fast = 1e300, best_fast_stream = 1e300;
+        uint64_t hits_single = 0, hits_stream = 0, hits_fast = 0, hits_fast_stream = 0;
         for (int r = 0; r < reps + 1; ++r) {  // round 0 warms up
             double t0 = now();
             hits_single = replay_single(rt.handle(), log);
@@ -175,12 +177,18 @@ int main(int argc, char **argv)
             double t2 = now();
             udm1pt::render(scene, rt, materials, o, &st);
             double t3 = now();
+            hits_fast = replay_single(fast.handle(), log);
+            double t4 = now();
+            hits_fast_stream = replay_streams(fast.handle(), rays, shadows);
+            double t5 = now();
             if (r == 0) continue;
+            best_fast = std::min(best_fast, t4 - t3);
+            best_fast_stream = std::min(best_fast_stream, t5 - t4);
             best_single = std::min(best_single, t1 - t0);
             best_stream = std::min(best_stream, t2 - t1);
             best_render = std::min(best_render, t3 - t2);
         }
-        if (hits_single != hits_stream) {
+        if (hits_single != hits_stream || hits_fast != hits_fast_stream) {
             std::fprintf(stderr, "udm1_bench_pt_embree: the replays disagree (%llu against %llu hits)\n",
                          (unsigned long long)hits_single, (unsigned long long)hits_stream);
             return 1;
@@ -193,9 +201,16 @@ int main(int argc, char **argv)
                     best_stream, n / best_stream, best_single / best_stream);
         std::printf("%-58s %9.4f %12.4g %8.2f\n", "udm1-pt render (udm1pt::render, the same rays)", best_render,
                     n / best_render, best_single / best_render);
-        std::printf("\nEmbree's share of udm1-pt's render time: %.1f %% (single queries), %.1f %% (as streams)\n",
-                    100 * best_single / best_render, 100 * best_stream / best_render);
-        std::printf("hits: %llu of %zu queries\n", (unsigned long long)hits_single, log.size());
+        std::printf("%-58s %9.4f %12.4g %8.2f\n", "bare replay, not robust, rtcIntersect1/rtcOccluded1", best_fast,
+                    n / best_fast, best_single / best_fast);
+        std::printf("%-58s %9.4f %12.4g %8.2f\n", "bare replay, not robust, streams of 256", best_fast_stream,
+                    n / best_fast_stream, best_single / best_fast_stream);
+        std::printf("\nEmbree's share of udm1-pt's render time: %.1f %% (single queries), %.1f %% (as streams); "
+                    "without robust traversal %.1f %% (single), %.1f %% (streams)\n",
+                    100 * best_single / best_render, 100 * best_stream / best_render, 100 * best_fast / best_render,
+                    100 * best_fast_stream / best_render);
+        std::printf("hits: %llu of %zu queries (robust), %llu (not robust)\n", (unsigned long long)hits_single,
+                    log.size(), (unsigned long long)hits_fast);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "udm1_bench_pt_embree: %s\n", e.what());
         return 1;

@@ -503,8 +503,11 @@ def test_embree_share_benchmark_replays_the_render(tmp_path):
     rays = int(RENDER_LINE.match(ok("--size", "16x16", "--spp", "2", "--sampler", "wr", "-o",
                                     str(tmp_path / "a.exr")).stdout).group(10))
     assert rays == int(m.group(1))
-    share = re.search(r"Embree's share of udm1-pt's render time: ([0-9.]+) % \(single queries\), ([0-9.]+) %", r.stdout)
-    assert share and 0 < float(share.group(1)) < 100 and 0 < float(share.group(2)) < 100, r.stdout
+    share = re.search(r"Embree's share of udm1-pt's render time: ([0-9.]+) % \(single queries\), ([0-9.]+) % \(as "
+                      r"streams\); without robust traversal ([0-9.]+) % \(single\), ([0-9.]+) %", r.stdout)
+    assert share and all(0 < float(share.group(k)) < 100 for k in range(1, 5)), r.stdout
+    hits = re.search(r"hits: (\d+) of (\d+) queries \(robust\), (\d+) \(not robust\)", r.stdout)
+    assert hits and 0 < int(hits.group(1)) <= int(hits.group(2)) and 0 < int(hits.group(3)) <= int(hits.group(2)), r.stdout
     for args, words in ((["--sampler", "nope", "--size", "16x16"], "unknown sampler 'nope'"),
                         (["--size", "2x2"], "usage: udm1_bench_pt_embree"), (["--spp"], "usage")):
         bad = subprocess.run([str(bench), *args], capture_output=True, text=True, timeout=60)
