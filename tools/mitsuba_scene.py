@@ -93,9 +93,10 @@ def main(argv=None) -> int:
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("-o", dest="output")
     args = ap.parse_args(argv)
-    img, seconds = render(args.dir, args.spp, args.sampler, args.seed)
+    counts: list = []
+    img, seconds = render(args.dir, args.spp, args.sampler, args.seed, counts)
     mean = img.reshape(-1, 3).mean(axis=0)
-    print(f"mitsuba {args.sampler} spp {args.spp} seconds {seconds:.4f} mean {mean[0]:.6g} {mean[1]:.6g} {mean[2]:.6g}")
+    print(f"mitsuba {args.sampler} spp {counts[0]} seconds {seconds:.4f} mean {mean[0]:.6g} {mean[1]:.6g} {mean[2]:.6g}")
     if args.output:
         import mitsuba as mi
 
