@@ -146,6 +146,24 @@ struct Tracer {
 
 }  // namespace
 
+Sequence make_sequence(const Options &opt, uint32_t path_dims)
+{
+    udm1_preset_info info;
+    if (udm1_preset_find(opt.sampler.c_str(), &info) != UDM1_OK)
+        throw std::runtime_error("unknown sampler '" + opt.sampler + "' (udm1-seq list shows them)");
+    udm1_seq_desc desc;
+    udm1_seq_desc_init(&desc);
+    desc.preset = opt.sampler.c_str();
+    desc.dimensions = std::max(2u, std::min(path_dims, info.max_dimensions));
+    desc.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? opt.spp : 0;
+    desc.seed = opt.seed;
+    desc.randomize = opt.randomize;
+    if (opt.randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = opt.spp;  // the whole render's spp: ranges merge
+    udm1_seq *seq = nullptr;
+    if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
+    return Sequence(seq, udm1_seq_destroy);
+}
+
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)
 {
     Materials materials(scene);
@@ -164,25 +182,13 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
     Lights lights(scene, opt.near_light);
 
-    udm1_preset_info info;
-    if (udm1_preset_find(opt.sampler.c_str(), &info) != UDM1_OK)
-        throw std::runtime_error("unknown sampler '" + opt.sampler + "' (udm1-seq list shows them)");
     uint32_t path_dims = (scene.camera.lens_radius > 0 ? 4 : 2) + DIMS_PER_VERTEX * (uint32_t)max_depth;
-    udm1_seq_desc desc;
-    udm1_seq_desc_init(&desc);
-    desc.preset = opt.sampler.c_str();
-    desc.dimensions = std::max(2u, std::min(path_dims, info.max_dimensions));
-    desc.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? opt.spp : 0;
-    desc.seed = opt.seed;
-    desc.randomize = opt.randomize;
-    if (opt.randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = opt.spp;  // the whole render's spp: ranges merge
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
     udm1app::check_pixel_bounds(bounds, view.width, view.height);  // before anything is allocated
-    udm1_seq *seq = nullptr;
-    if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
-    std::unique_ptr<udm1_seq, void (*)(udm1_seq *)> seq_owner(seq, udm1_seq_destroy);  // freed on every path
+    Sequence seq_owner = make_sequence(opt, path_dims);  // freed on every path
+    udm1_seq *seq = seq_owner.get();
     Accumulator acc;
     acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1], {"R", "G", "B"},
               SAMPLE_SCALE);
@@ -222,7 +228,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats->paths = (uint64_t)acc.width * acc.height * count;
     stats->rays = rays;
-    stats->dimensions = desc.dimensions;
+    stats->dimensions = udm1_seq_dimensions(seq);
     stats->path_dimensions = path_dims;
     return acc;
 }

@@ -30,6 +30,7 @@
 
 #include <udm1/udm1.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,11 @@ struct Stats {
     uint32_t dimensions = 0;       // the sampler's own dimensions (the rest padded)
     uint32_t path_dimensions = 0;  // what a path of maximum depth uses
 };
+
+// The sampler of a render: opt's preset, seed and randomization, min(path_dims, the preset's maximum)
+// dimensions, K = spp for point sets. Throws std::runtime_error (unknown sampler, bad parameters).
+using Sequence = std::unique_ptr<udm1_seq, void (*)(udm1_seq *)>;
+Sequence make_sequence(const Options &opt, uint32_t path_dims);
 
 // Throws std::runtime_error with a one-line message (unknown sampler, bad range, material).
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats);

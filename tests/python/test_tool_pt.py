@@ -488,6 +488,36 @@ def test_screen_randomization_needs_a_weyl_sequence(tmp_path):
 BUILD = os.environ.get("UDM1_BUILD_DIR", "")
 
 
+@pytest.mark.skipif(not BUILD, reason="UDM1_BUILD_DIR (for udm1_bench_pt_wavefront) is not set: run through CTest")
+def test_wavefront_prototype_computes_udm1_pts_estimator(tmp_path):
+    """udm1_bench_pt_wavefront (the speed target's feasibility measurement) traces the same estimator on
+    the same sampler points as udm1-pt: its image differs from udm1-pt's by float rounding only (far below
+    the noise, which its RMSE against a reference shows), with the same mean and about the same rays."""
+    bench = pathlib.Path(BUILD) / "tools" / "udm1_bench_pt_wavefront"
+    ref = tmp_path / "ref.exr"
+    ok("reference", "-o", str(ref), "--spp", "256", "--size", "16x16")
+    for sampler in ("wr", "pmj02", "pcg32"):
+        r = subprocess.run([str(bench), "--size", "16x16", "--spp", "8", "--reps", "1", "--sampler", sampler,
+                            "--reference", str(ref)], capture_output=True, text=True, timeout=300)
+        assert r.returncode == 0, r.stderr
+        rows = re.findall(r"^(udm1-pt render \(anchor\)|wavefront prototype.*?)\s+([0-9.]+)\s+(\d+)\s+([0-9.]+)\s+"
+                          r"([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)$", r.stdout, re.M)
+        assert len(rows) == 2, r.stdout
+        (_, _, rays_pt, _, *rest_pt), (_, _, rays_wf, _, *rest_wf) = rows
+        assert abs(int(rays_wf) - int(rays_pt)) <= 0.01 * int(rays_pt), r.stdout
+        mean_pt, mean_wf = np.array(rest_pt[:3], float), np.array(rest_wf[:3], float)
+        assert np.all(np.abs(mean_wf - mean_pt) <= 1e-4 * mean_pt), r.stdout
+        err_pt, err_wf = float(rest_pt[3]), float(rest_wf[3])
+        diff = float(re.search(r"the two images differ by RMSE (\S+);", r.stdout).group(1))
+        assert err_pt > 0.005 and diff < 1e-3 * err_pt and abs(err_wf - err_pt) < 1e-3 * err_pt, r.stdout
+    for args, words in ((["--sampler", "nope", "--size", "16x16"], "unknown sampler 'nope'"),
+                        (["--reference", str(tmp_path / "absent.exr"), "--size", "16x16"], "absent.exr"),
+                        (["--reference", str(ref), "--size", "32x32"], "not a 32x32 RGB image"),
+                        (["--size", "2x2"], "usage: udm1_bench_pt_wavefront"), (["--reps"], "usage")):
+        bad = subprocess.run([str(bench), *args], capture_output=True, text=True, timeout=60)
+        assert bad.returncode != 0 and words in bad.stderr and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
+
+
 @pytest.mark.skipif(not BUILD, reason="UDM1_BUILD_DIR (for udm1_bench_pt_embree) is not set: run through CTest")
 def test_embree_share_benchmark_replays_the_render(tmp_path):
     """udm1_bench_pt_embree records every query of a render (it refuses to report if the count differs from
