@@ -15,7 +15,9 @@
 // cursor, one call per path), the shading loop over all live paths (vectorized: light sample, MIS,
 // BSDF sample, roulette), one stream of shadow queries (rtcOccluded1M), compaction.
 //
-// Usage: udm1_bench_pt_wavefront [--size WxH] [--spp N] [--sampler S] [--reps R] [--reference EXR]
+// Usage: udm1_bench_pt_wavefront [--size WxH] [--spp N] [--sampler S] [--randomize R] [--reps R]
+//                                [--reference EXR]
+// (--randomize none shows what the per-pixel randomization's hashing costs both renderers)
 #include "builtin.h"
 #include "embree_scene.h"
 #include "integrator.h"
@@ -440,6 +442,7 @@ int main(int argc, char **argv)
     int W = 128, H = 128, reps = 3;
     uint32_t spp = 64;
     std::string sampler = "sobol", reference;
+    uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
     for (int i = 1; i < argc; ++i) {
         std::string a = argv[i];
         bool ok = i + 1 < argc;
@@ -448,10 +451,15 @@ int main(int argc, char **argv)
         else if (ok && a == "--sampler") sampler = argv[++i];
         else if (ok && a == "--reps") reps = std::atoi(argv[++i]), ok = reps >= 1 && reps <= 100;
         else if (ok && a == "--reference") reference = argv[++i];
+        else if (ok && a == "--randomize") {
+            std::string v = argv[++i];
+            ok = v == "none" || v == "default";
+            randomize = v == "none" ? UDM1_RANDOMIZE_NONE : UDM1_RANDOMIZE_DEFAULT;
+        }
         else ok = false;
         if (!ok) {
             std::fprintf(stderr, "usage: udm1_bench_pt_wavefront [--size WxH (8..4096)] [--spp 1..4096] [--sampler S] "
-                                 "[--reps 1..100] [--reference EXR]\n");
+                                 "[--randomize none|default] [--reps 1..100] [--reference EXR]\n");
             return 2;
         }
     }
@@ -463,7 +471,7 @@ int main(int argc, char **argv)
         for (unsigned k = 0; k < scene.shapes.size(); ++k)  // Embree numbered the shapes' geometries in order
             if (!rtcGetGeometry(rt.handle(), k)) throw std::runtime_error("Embree's geometry ids are not the shapes'");
         udm1pt::Options o;
-        o.sampler = sampler, o.spp = spp, o.width = W, o.height = H;
+        o.sampler = sampler, o.spp = spp, o.width = W, o.height = H, o.randomize = randomize;
         int max_depth = scene.max_depth;
         udm1pt::Sequence seq = udm1pt::make_sequence(o, 2 + 6 * (uint32_t)max_depth);  // udm1-pt's own
         std::vector<float> ref;
@@ -490,8 +498,8 @@ int main(int argc, char **argv)
             for (size_t p = c; p < im.size(); p += 3) s += im[p];
             return s / (double)(im.size() / 3);
         };
-        std::printf("udm1_bench_pt_wavefront: builtin:cornell, %dx%d, %u spp, sampler %s, best of %d alternating rounds\n",
-                    W, H, spp, sampler.c_str(), reps);
+        std::printf("udm1_bench_pt_wavefront: builtin:cornell, %dx%d, %u spp, sampler %s, randomization %s, best of %d "
+                    "alternating rounds\n", W, H, spp, sampler.c_str(), randomize == UDM1_RANDOMIZE_NONE ? "none" : "default", reps);
         std::printf("%-44s %9s %10s %10s %28s %10s\n", "renderer", "seconds", "rays", "ratio", "mean RGB", "RMSE");
         auto row = [&](const char *name, double secs, uint64_t nrays, const std::vector<double> &im) {
             std::string e = ref.empty() ? "n/a" : std::to_string(rmse(im, ref));

@@ -496,9 +496,10 @@ def test_wavefront_prototype_computes_udm1_pts_estimator(tmp_path):
     bench = pathlib.Path(BUILD) / "tools" / "udm1_bench_pt_wavefront"
     ref = tmp_path / "ref.exr"
     ok("reference", "-o", str(ref), "--spp", "256", "--size", "16x16")
-    for sampler in ("wr", "pmj02", "pcg32"):
+    for sampler, randomize in (("wr", "default"), ("pmj02", "default"), ("pcg32", "default"), ("sobol", "none")):
         r = subprocess.run([str(bench), "--size", "16x16", "--spp", "8", "--reps", "1", "--sampler", sampler,
-                            "--reference", str(ref)], capture_output=True, text=True, timeout=300)
+                            "--randomize", randomize, "--reference", str(ref)], capture_output=True, text=True,
+                           timeout=300)
         assert r.returncode == 0, r.stderr
         rows = re.findall(r"^(udm1-pt render \(anchor\)|wavefront prototype.*?)\s+([0-9.]+)\s+(\d+)\s+([0-9.]+)\s+"
                           r"([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)$", r.stdout, re.M)
@@ -513,7 +514,8 @@ def test_wavefront_prototype_computes_udm1_pts_estimator(tmp_path):
     for args, words in ((["--sampler", "nope", "--size", "16x16"], "unknown sampler 'nope'"),
                         (["--reference", str(tmp_path / "absent.exr"), "--size", "16x16"], "absent.exr"),
                         (["--reference", str(ref), "--size", "32x32"], "not a 32x32 RGB image"),
-                        (["--size", "2x2"], "usage: udm1_bench_pt_wavefront"), (["--reps"], "usage")):
+                        (["--size", "2x2"], "usage: udm1_bench_pt_wavefront"), (["--reps"], "usage"),
+                        (["--randomize", "owen"], "usage")):
         bad = subprocess.run([str(bench), *args], capture_output=True, text=True, timeout=60)
         assert bad.returncode != 0 and words in bad.stderr and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
 
