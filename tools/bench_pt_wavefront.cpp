@@ -18,17 +18,18 @@
 // Usage: udm1_bench_pt_wavefront [--size WxH] [--spp N] [--sampler S] [--randomize R] [--reps R]
 //                                [--reference EXR]
 // (--randomize none shows what the per-pixel randomization's hashing costs both renderers)
+#include "../tools/common/image_read.h"
 #include "builtin.h"
 #include "embree_scene.h"
 #include "integrator.h"
 #include "material.h"
 #include "scene.h"
 
-#include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -57,10 +58,7 @@ struct Flat {
     std::vector<float> er, eg, eb;            // emitted radiance (0: not a light)
     std::vector<uint8_t> twosided;
     std::vector<float> area, prob;            // light triangles: area, choice probability
-    // the lights in udm1-pt's order (Lights): vertices, power CDF
-    std::vector<Vec3> p0, p1, p2;
-    std::vector<size_t> tri;                  // light -> triangle entry
-    std::vector<double> cdf;
+    std::vector<double> cdf;                  // the lights' power CDF, in udm1-pt's order (Lights)
     // per light, for the vectorized loop: vertices, normal, choice probability, area, radiance, two-sided
     std::vector<float> lx0, ly0, lz0, lx1, ly1, lz1, lx2, ly2, lz2, lnx, lny, lnz, lprob, larea, ler, leg, leb;
     std::vector<int> ltwo;
@@ -69,6 +67,8 @@ struct Flat {
 Flat flatten(const Scene &scene, const udm1pt::Materials &materials)
 {
     Flat f;
+    std::vector<Vec3> p0, p1, p2;  // per light: its vertices and triangle entry
+    std::vector<size_t> tri;
     if (scene.camera.lens_radius > 0) throw std::runtime_error("the prototype has no thin lens");
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape &s = scene.shapes[k];
@@ -103,20 +103,20 @@ Flat flatten(const Scene &scene, const udm1pt::Materials &materials)
             f.area.push_back((float)a);
             f.prob.push_back(0);
             if (s.light >= 0) {
-                f.p0.push_back(P(i[0])), f.p1.push_back(P(i[1])), f.p2.push_back(P(i[2]));
-                f.tri.push_back(f.nx.size() - 1);
+                p0.push_back(P(i[0])), p1.push_back(P(i[1])), p2.push_back(P(i[2]));
+                tri.push_back(f.nx.size() - 1);
                 double power = (0.2126 * L.x + 0.7152 * L.y + 0.0722 * L.z) * a * M_PI * (two ? 2 : 1);
                 f.cdf.push_back((f.cdf.empty() ? 0 : f.cdf.back()) + std::max(0.0, power));
             }
         }
     }
     if (f.cdf.empty() || !(f.cdf.back() > 0)) throw std::runtime_error("the prototype needs an area light");
-    for (size_t l = 0; l < f.tri.size(); ++l) {
-        size_t t = f.tri[l];
+    for (size_t l = 0; l < tri.size(); ++l) {
+        size_t t = tri[l];
         f.prob[t] = (float)((f.cdf[l] - (l ? f.cdf[l - 1] : 0)) / f.cdf.back());
-        f.lx0.push_back((float)f.p0[l].x), f.ly0.push_back((float)f.p0[l].y), f.lz0.push_back((float)f.p0[l].z);
-        f.lx1.push_back((float)f.p1[l].x), f.ly1.push_back((float)f.p1[l].y), f.lz1.push_back((float)f.p1[l].z);
-        f.lx2.push_back((float)f.p2[l].x), f.ly2.push_back((float)f.p2[l].y), f.lz2.push_back((float)f.p2[l].z);
+        f.lx0.push_back((float)p0[l].x), f.ly0.push_back((float)p0[l].y), f.lz0.push_back((float)p0[l].z);
+        f.lx1.push_back((float)p1[l].x), f.ly1.push_back((float)p1[l].y), f.lz1.push_back((float)p1[l].z);
+        f.lx2.push_back((float)p2[l].x), f.ly2.push_back((float)p2[l].y), f.lz2.push_back((float)p2[l].z);
         f.lnx.push_back(f.nx[t]), f.lny.push_back(f.ny[t]), f.lnz.push_back(f.nz[t]);
         f.lprob.push_back(f.prob[t]), f.larea.push_back(f.area[t]);
         f.ler.push_back(f.er[t]), f.leg.push_back(f.eg[t]), f.leb.push_back(f.eb[t]), f.ltwo.push_back(f.twosided[t]);
@@ -131,8 +131,19 @@ struct Paths {
     std::vector<udm1_cursor> cursor;
     void resize(size_t n)
     {
-        for (auto *v : {&ox, &oy, &oz, &dx, &dy, &dz, &br, &bg, &bb, &lr, &lg, &lb, &pb, &qx, &qy, &qz}) v->resize(n);
+        for (auto *v : floats()) v->resize(n);
         pixel.resize(n), cursor.resize(n);
+    }
+    void move(size_t to, size_t from)  // compaction: path `from` into slot `to`
+    {
+        for (auto *v : floats()) (*v)[to] = (*v)[from];
+        pixel[to] = pixel[from], cursor[to] = cursor[from];
+    }
+
+private:
+    std::array<std::vector<float> *, 16> floats()
+    {
+        return {&ox, &oy, &oz, &dx, &dy, &dz, &br, &bg, &bb, &lr, &lg, &lb, &pb, &qx, &qy, &qz};
     }
 };
 
@@ -341,12 +352,7 @@ Result render_wavefront(const Scene &scene, const EmbreeScene &rt, const Flat &F
                     continue;
                 }
                 // compact into slot m (m <= j): the path's state and this hit
-                if (m != j) {
-                    P.ox[m] = P.ox[j], P.oy[m] = P.oy[j], P.oz[m] = P.oz[j], P.dx[m] = P.dx[j], P.dy[m] = P.dy[j];
-                    P.dz[m] = P.dz[j], P.br[m] = P.br[j], P.bg[m] = P.bg[j], P.bb[m] = P.bb[j], P.lr[m] = P.lr[j];
-                    P.lg[m] = P.lg[j], P.lb[m] = P.lb[j], P.pb[m] = P.pb[j], P.qx[m] = P.qx[j], P.qy[m] = P.qy[j];
-                    P.qz[m] = P.qz[j], P.pixel[m] = P.pixel[j], P.cursor[m] = P.cursor[j];
-                }
+                if (m != j) P.move(m, j);
                 Wk.px[m] = hx, Wk.py[m] = hy, Wk.pz[m] = hz, Wk.nx[m] = nx, Wk.ny[m] = ny, Wk.nz[m] = nz, Wk.t[m] = t;
                 Wk.ra[m] = F.rr[tri], Wk.ga[m] = F.rg[tri], Wk.ba[m] = F.rb[tri];
                 double u[6];
@@ -387,13 +393,7 @@ Result render_wavefront(const Scene &scene, const EmbreeScene &rt, const Flat &F
                     acc[3 * px] += P.lr[j], acc[3 * px + 1] += P.lg[j], acc[3 * px + 2] += P.lb[j];
                     continue;
                 }
-                if (keep != j) {
-                    P.ox[keep] = P.ox[j], P.oy[keep] = P.oy[j], P.oz[keep] = P.oz[j], P.dx[keep] = P.dx[j];
-                    P.dy[keep] = P.dy[j], P.dz[keep] = P.dz[j], P.br[keep] = P.br[j], P.bg[keep] = P.bg[j];
-                    P.bb[keep] = P.bb[j], P.lr[keep] = P.lr[j], P.lg[keep] = P.lg[j], P.lb[keep] = P.lb[j];
-                    P.pb[keep] = P.pb[j], P.qx[keep] = P.qx[j], P.qy[keep] = P.qy[j], P.qz[keep] = P.qz[j];
-                    P.pixel[keep] = P.pixel[j], P.cursor[keep] = P.cursor[j];
-                }
+                if (keep != j) P.move(keep, j);
                 ++keep;
             }
             n = keep;
@@ -409,30 +409,18 @@ Result render_wavefront(const Scene &scene, const EmbreeScene &rt, const Flat &F
     return res;
 }
 
-// RMSE as `udm1-pt compare` computes it: linear RGB clamped to [0, 1].
-template <class T> double rmse(const std::vector<double> &a, const std::vector<T> &ref)
+// An image as the project's comparison takes it (udm1-pt compare: linear RGB clamped to [0, 1]).
+udm1app::LoadedImage as_image(const std::vector<double> &rgb, int W, int H)
 {
-    double s = 0;
-    for (size_t i = 0; i < a.size(); ++i) {
-        double d = std::clamp(a[i], 0.0, 1.0) - std::clamp((double)ref[i], 0.0, 1.0);
-        s += d * d;
-    }
-    return std::sqrt(s / (double)a.size());
+    udm1app::LoadedImage im;
+    im.width = W, im.height = H, im.channels = 3;
+    im.pixels.assign(rgb.begin(), rgb.end());
+    return im;
 }
 
-std::vector<float> read_rgb(const std::string &path, int W, int H)
+double rmse(const udm1app::LoadedImage &a, const udm1app::LoadedImage &ref)
 {
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw std::runtime_error("--reference '" + path + "': cannot open it");
-    const OIIO::ImageSpec &spec = in->spec();
-    if (spec.width != W || spec.height != H || spec.nchannels < 3)
-        throw std::runtime_error("--reference '" + path + "': not a " + std::to_string(W) + "x" + std::to_string(H) + " RGB image");
-    std::vector<float> all((size_t)W * H * spec.nchannels), rgb((size_t)W * H * 3);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, all.data()))
-        throw std::runtime_error("--reference '" + path + "': cannot read it");
-    for (size_t p = 0; p < (size_t)W * H; ++p)
-        for (int c = 0; c < 3; ++c) rgb[3 * p + c] = all[p * spec.nchannels + c];
-    return rgb;
+    return udm1app::compare(a, ref, true, nullptr).rmse;
 }
 
 }  // namespace
@@ -474,8 +462,13 @@ int main(int argc, char **argv)
         o.sampler = sampler, o.spp = spp, o.width = W, o.height = H, o.randomize = randomize;
         int max_depth = scene.max_depth;
         udm1pt::Sequence seq = udm1pt::make_sequence(o, 2 + 6 * (uint32_t)max_depth);  // udm1-pt's own
-        std::vector<float> ref;
-        if (!reference.empty()) ref = read_rgb(reference, W, H);
+        udm1app::LoadedImage ref;
+        if (!reference.empty()) {
+            ref = udm1app::read_image(reference);
+            if (ref.width != W || ref.height != H || ref.channels < 3)
+                throw std::runtime_error("--reference '" + reference + "': not a " + std::to_string(W) + "x" +
+                                         std::to_string(H) + " RGB image");
+        }
         double best_pt = 1e300, best_wf = 1e300;
         std::vector<double> pt_image((size_t)W * H * 3);
         Result wf;
@@ -502,7 +495,7 @@ int main(int argc, char **argv)
                     "alternating rounds\n", W, H, spp, sampler.c_str(), randomize == UDM1_RANDOMIZE_NONE ? "none" : "default", reps);
         std::printf("%-44s %9s %10s %10s %28s %10s\n", "renderer", "seconds", "rays", "ratio", "mean RGB", "RMSE");
         auto row = [&](const char *name, double secs, uint64_t nrays, const std::vector<double> &im) {
-            std::string e = ref.empty() ? "n/a" : std::to_string(rmse(im, ref));
+            std::string e = ref.pixels.empty() ? "n/a" : std::to_string(rmse(as_image(im, W, H), ref));
             std::printf("%-44s %9.4f %10llu %10.2f %9.5f %9.5f %9.5f %10s\n", name, secs, (unsigned long long)nrays,
                         best_pt / secs, mean(im, 0), mean(im, 1), mean(im, 2), e.c_str());
         };
@@ -510,7 +503,7 @@ int main(int argc, char **argv)
         row("wavefront prototype (streams, float SIMD)", best_wf, wf.rays, wf.image);
         // the same estimator on the same sampler points: the images differ by float rounding only
         std::printf("\nthe two images differ by RMSE %.3g; the prototype takes %.3f of udm1-pt's time\n",
-                    rmse(wf.image, pt_image), best_wf / best_pt);
+                    rmse(as_image(wf.image, W, H), as_image(pt_image, W, H)), best_wf / best_pt);
     } catch (const std::exception &e) {
         std::fprintf(stderr, "udm1_bench_pt_wavefront: %s\n", e.what());
         return 1;
