@@ -96,15 +96,11 @@ bench)
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_noise.py
     udm1_log "udm1-ao against a bare Embree loop over the same rays, and each sampler's cost (tools/bench_ao.cpp)"
     ./build/tools/udm1_bench_ao
-    udm1_log "udm1-pt against a bare Embree replay of its own rays: Embree's share of its time (tools/bench_pt_embree.cpp)"
+    udm1_log "udm1-pt's scalar loop against a bare Embree replay of its own rays: Embree's share of its time (tools/bench_pt_embree.cpp)"
     ./build/tools/udm1_bench_pt_embree --spp 64
     ./build/tools/udm1_bench_pt_embree --spp 64 --sampler sobol-owen
     udm1_log "udm1-pt against Mitsuba 3: throughput, equal spp, equal error (tools/bench_pt.py, about 15 minutes)"
     "$PY" tools/bench_pt.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
-    udm1_log "a wavefront prototype of udm1-pt's estimator on the Cornell box: what the speed target needs (tools/bench_pt_wavefront.cpp)"
-    for s in wr sobol pmj02; do
-        ./build/tools/udm1_bench_pt_wavefront --spp 64 --sampler "$s" --reference "$ROOT/build/bench_pt/ref-cornell-128x128-8192.exr"
-    done
     udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (tools/bench_pt.py --estimators)"
     "$PY" tools/bench_pt.py --estimators --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
     udm1_log "scale-out: udm1.distributed on 1 and 2 local Dask workers against the tools alone (tools/bench_distributed.py)"

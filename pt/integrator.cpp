@@ -1,6 +1,8 @@
 // integrator.cpp - see integrator.h.
 #include "integrator.h"
 
+#include "wavefront.h"
+
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
@@ -195,9 +197,20 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     acc.spp = opt.spp, acc.first = opt.first, acc.count = count;
     const udm1scene::CameraRays camera(view);
     Tracer tracer{scene, rt, lights, materials, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
+    std::string why = opt.loop == Loop::Scalar ? "scalar loop asked for" : wavefront_unsupported(scene, materials, opt);
+    if (opt.loop == Loop::Wavefront && !why.empty()) throw std::runtime_error("no wavefront loop: " + why);
+    std::unique_ptr<Wavefront> wavefront;
+    if (why.empty()) wavefront = std::make_unique<Wavefront>(scene, rt, materials, lights, max_depth, opt.roulette, opt.rr_depth);
     std::atomic<uint64_t> rays{0}, nonfinite{0}, clamped{0};
     auto t0 = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range2d<int>(bounds[1], bounds[3], 8, bounds[0], bounds[2], 8), [&](const tbb::blocked_range2d<int> &r) {
+        if (wavefront) {
+            Wavefront::Counts n;
+            wavefront->render(seq, camera, r.cols().begin(), r.cols().end(), r.rows().begin(), r.rows().end(), opt.first,
+                              count, scene.film_scale, &acc, &n);
+            rays += n.rays, nonfinite += n.nonfinite, clamped += n.clamped;
+            return;
+        }
         uint64_t local_rays = 0, local_nonfinite = 0, local_clamped = 0;
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
@@ -230,6 +243,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     stats->rays = rays;
     stats->dimensions = udm1_seq_dimensions(seq);
     stats->path_dimensions = path_dims;
+    stats->wavefront = wavefront != nullptr;
     return acc;
 }
 

@@ -38,9 +38,12 @@ namespace udm1pt {
 
 // Changes whenever the estimator or the dimension layout above changes (cached references are
 // reused only when it matches).
-constexpr int LAYOUT_VERSION = 3;
+constexpr int LAYOUT_VERSION = 4;
 
 enum class Strategy { Mis, Nee, Bsdf };  // how light is found: both (MIS), light sampling only, BSDF sampling only
+// Which path loop traces: the wavefront loop where the scene and options are in its subset (Auto), or
+// one of the two by force (Wavefront throws for a scene outside the subset). See wavefront.h.
+enum class Loop { Auto, Scalar, Wavefront };
 
 struct Options {
     std::string sampler = "sobol-owen";
@@ -56,6 +59,7 @@ struct Options {
     bool roulette = true;
     int rr_depth = 3;           // roulette from this vertex on (0 = the first hit; pbrt-v4 starts at 1)
     double near_light = Lights::NEAR_DEFAULT;  // see Lights; `tools/bench_pt.py --estimators` measures both
+    Loop loop = Loop::Auto;
 };
 
 // Per-pixel sums of the samples in fixed point (2^-24 units, int64, channels R, G, B), so that sums
@@ -70,6 +74,7 @@ struct Stats {
     uint64_t paths = 0, rays = 0;  // camera paths; all rays (camera, continuation, shadow)
     uint32_t dimensions = 0;       // the sampler's own dimensions (the rest padded)
     uint32_t path_dimensions = 0;  // what a path of maximum depth uses
+    bool wavefront = false;        // which loop traced
 };
 
 // The sampler of a render: opt's preset, seed and randomization, min(path_dims, the preset's maximum)
@@ -77,7 +82,8 @@ struct Stats {
 using Sequence = std::unique_ptr<udm1_seq, void (*)(udm1_seq *)>;
 Sequence make_sequence(const Options &opt, uint32_t path_dims);
 
-// Throws std::runtime_error with a one-line message (unknown sampler, bad range, material).
+// Throws std::runtime_error with a one-line message (unknown sampler, bad range, material, a forced
+// wavefront loop on a scene outside its subset).
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats);
 // The same with the scene's materials (and their textures) made once by the caller.
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,

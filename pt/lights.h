@@ -44,6 +44,24 @@ public:
     // so that a stratified 2D point stays stratified over all the lights together).
     bool sample(Vec3 p, double u1, double u2, LightSample *s) const;
 
+    // The light that sample() picks with u1 (by power), and u1 rescaled to [0, 1) within its interval.
+    size_t choose(double u1, double *rescaled) const;
+    // Whether sample() takes triangle light i at p by area (not by solid angle; false for spheres).
+    bool by_area(size_t i, Vec3 p) const;
+
+    struct Light {
+        bool sphere = false;
+        Vec3 p0, p1, p2, n;  // triangle: vertices, unit normal (emitting side for one-sided lights)
+        Vec3 centroid;  // triangle
+        Vec3 center;    // sphere
+        double radius = 0, area = 0;
+        Vec3 L;
+        bool twosided = false;
+        int shape = -1;
+    };
+    const Light &light(size_t i) const { return lights_[i]; }
+    double probability(size_t i) const { return prob_[i]; }  // of choosing light i
+
     // Radiance leaving hit h towards w (unit, pointing away from the surface); zero if h is not on a light.
     Vec3 emitted(const udm1scene::Hit &h, Vec3 w) const;
 
@@ -55,16 +73,6 @@ public:
     int light_of(const udm1scene::Hit &h) const;
 
 private:
-    struct Light {
-        bool sphere = false;
-        Vec3 p0, p1, p2, n;  // triangle: vertices, unit normal (emitting side for one-sided lights)
-        Vec3 centroid;  // triangle
-        Vec3 center;    // sphere
-        double radius = 0, area = 0;
-        Vec3 L;
-        bool twosided = false;
-        int shape = -1;
-    };
     Vec3 radiance(const Light &l, Vec3 n, Vec3 w) const;
     double pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const;  // solid angle, without the choice
     bool by_solid_angle(const Light &l, Vec3 p, double *omega) const;  // triangle l sampled by solid angle from p?

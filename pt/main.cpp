@@ -61,6 +61,8 @@ const char *USAGE =
     "  --rr-depth N      roulette from vertex N on (default 3; pbrt-v4's rule is 1)\n"
     "  --solid-angle S   near|always|never: triangle lights sampled by solid angle near the light (default),\n"
     "                    wherever possible (as pbrt-v4), or never (always by area)\n"
+    "  --loop L          auto|scalar|wavefront: the path loop (default auto: wavefront where the scene is in its\n"
+    "                    subset - triangles, diffuse, area lights, pinhole, MIS - else scalar)\n"
     "  --threads N       default: all cores\n";
 
 const uint64_t MAX_PIXELS = 1ull << 26;
@@ -114,6 +116,13 @@ Options parse(int argc, char **argv)
             else if (s == "bsdf") o.pt.strategy = udm1pt::Strategy::Bsdf;
             else throw Error("--strategy '" + s + "' is not mis, nee or bsdf");
         } else if (a == "--no-roulette") o.pt.roulette = false;
+        else if (a == "--loop") {
+            std::string s = value(a);
+            if (s == "auto") o.pt.loop = udm1pt::Loop::Auto;
+            else if (s == "scalar") o.pt.loop = udm1pt::Loop::Scalar;
+            else if (s == "wavefront") o.pt.loop = udm1pt::Loop::Wavefront;
+            else throw Error("--loop '" + s + "' is not auto, scalar or wavefront");
+        }
         else if (a == "--rr-depth") o.pt.rr_depth = (int)udm1app::parse_u64(value(a), a, 0, 1000);
         else if (a == "--solid-angle") {
             std::string s = value(a);
@@ -175,10 +184,11 @@ std::string description(const udm1scene::Scene &scene, const udm1pt::Options &p,
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "udm1-pt %s scene %016llx size %dx%d sampler %s spp %u seed %llu randomize %u maxdepth %d strategy %s "
-                  "roulette %d near %g layout %d",
+                  "roulette %d near %g loop %s layout %d",
                   udm1_version_string(), (unsigned long long)scene.digest(), p.width, p.height, p.sampler.c_str(), p.spp,
                   (unsigned long long)p.seed, p.randomize, max_depth, strategy_name(p.strategy), p.roulette ? p.rr_depth : -1,
-                  p.near_light, udm1pt::LAYOUT_VERSION);
+                  p.near_light, p.loop == udm1pt::Loop::Auto ? "auto" : p.loop == udm1pt::Loop::Scalar ? "scalar" : "wavefront",
+                  udm1pt::LAYOUT_VERSION);
     return buf;
 }
 
@@ -350,12 +360,12 @@ int run_render(Options o)
     }
     if (!o.output.empty()) udm1app::write_partial(o.output, part);
     if (!o.png.empty()) write_png(o.png, part);
-    std::printf("sampler %s spp %u samples [%llu, %llu) size %dx%d image %dx%d at %d,%d dimensions %u of %u seconds %.4f "
+    std::printf("sampler %s spp %u samples [%llu, %llu) size %dx%d image %dx%d at %d,%d dimensions %u of %u loop %s seconds %.4f "
                 "paths %llu rays %llu paths_per_second %.4g rays_per_second %.4g mean %s\n",
                 o.pt.sampler.c_str(), o.pt.spp, (unsigned long long)part.first,
                 (unsigned long long)(part.first + part.count), part.width, part.height, part.full_width, part.full_height,
                 part.x0, part.y0, st.dimensions,
-                st.path_dimensions, st.seconds, (unsigned long long)st.paths, (unsigned long long)st.rays,
+                st.path_dimensions, st.wavefront ? "wavefront" : "scalar", st.seconds, (unsigned long long)st.paths, (unsigned long long)st.rays,
                 st.paths / std::max(st.seconds, 1e-9), st.rays / std::max(st.seconds, 1e-9), mean_text(part).c_str());
     struct rusage ru;
     getrusage(RUSAGE_SELF, &ru);

@@ -46,6 +46,7 @@ public:
     // the visible side of both faces (offsetting along n alone leaves it on the other face's plane).
     Vec3 spawn_origin(const Hit &h, Vec3 incoming, Vec3 n) const { return h.p + (n - incoming) * ray_offset(h.p, h.t); }
     RTCScene handle() const { return scene_; }
+    unsigned shape_of_geometry(unsigned geom_id) const { return shape_of_geom_[geom_id]; }  // Scene::shapes index
     // Benchmarks only: append every later query to *log (nullptr: stop). Not thread-safe: record with
     // one thread. The renderers never set it (one predictable branch per query).
     void record_queries(std::vector<RayQuery> *log) { log_ = log; }

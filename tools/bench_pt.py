@@ -1,8 +1,8 @@
 """udm1-pt against Mitsuba 3, side by side in one run: throughput, error at equal spp, and time to a
 given error.
 
-1. Throughput: paths/s and rays/s of udm1-pt on the built-in Cornell box and on the shared pbrt-v4
-   scenes (cornell-box, veach-mis; skipped with a message where ../shared is absent), and Mitsuba 3
+1. Throughput: paths/s and rays/s of udm1-pt on the built-in Cornell box (the wavefront loop, and
+   the scalar loop for comparison) and on the shared pbrt-v4 scenes (cornell-box, veach-mis; skipped with a message where ../shared is absent), and Mitsuba 3
    (PyPI `mitsuba`, variant scalar_rgb, its `path` integrator) on the same Cornell box at the same spp.
 2. Equal spp: RMSE (root of the MSE averaged over --seeds renders; time averaged too) against one
    common reference (udm1-pt, sobol-owen at --ref-spp, cached) for every udm1 sampler and every
@@ -46,7 +46,7 @@ ROOT = Path(__file__).resolve().parents[1]
 SHARED = ROOT.parent / "shared" / "scenes"
 OURS = ["pcg32", "halton", "sobol", "sobol-owen", "pmj02", "cmj", "wr", "wmmr", "hwmmr", "rd"]
 THEIRS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]  # every sampler Mitsuba 3 has
-LINE = re.compile(r"seconds (\S+) paths (\d+) rays (\d+) paths_per_second (\S+) rays_per_second (\S+)")
+LINE = re.compile(r"loop (\S+) seconds (\S+) paths (\d+) rays (\d+) paths_per_second (\S+) rays_per_second (\S+)")
 
 
 def log(msg: str) -> None:
@@ -60,12 +60,12 @@ def tool_run(tool: str, *args: str) -> str:
     return r.stdout
 
 
-def throughput(tool: str, scene: str, size: str, spp: int) -> dict:
+def throughput(tool: str, scene: str, size: str, spp: int, *extra: str) -> dict:
     out = tool_run(tool, "--scene", scene, "--size", size, "--spp", str(spp), "--sampler", "sobol-owen",
-                   "-o", "/tmp/udm1-bench-pt.exr")
+                   "-o", "/tmp/udm1-bench-pt.exr", *extra)
     m = LINE.search(out)
-    return {"seconds": float(m.group(1)), "paths": int(m.group(2)), "rays": int(m.group(3)),
-            "paths_per_second": float(m.group(4)), "rays_per_second": float(m.group(5))}
+    return {"loop": m.group(1), "seconds": float(m.group(2)), "paths": int(m.group(3)), "rays": int(m.group(4)),
+            "paths_per_second": float(m.group(5)), "rays_per_second": float(m.group(6))}
 
 
 def rmse_of(tool: str, image: Path, ref: Path) -> float:
@@ -170,8 +170,12 @@ def main(argv=None) -> int:
     results["throughput"] = []
     for name, scene, size in scenes:
         r = throughput(tool, scene, size, args.throughput_spp)
-        r.update(renderer="udm1-pt sobol-owen", scene=name, size=size, spp=args.throughput_spp)
+        r.update(renderer=f"udm1-pt sobol-owen ({r['loop']} loop)", scene=name, size=size, spp=args.throughput_spp)
         results["throughput"].append(r)
+        if name == "builtin:cornell":  # the same render through the scalar loop (pt/wavefront.h)
+            r = throughput(tool, scene, size, args.throughput_spp, "--loop", "scalar")
+            r.update(renderer="udm1-pt sobol-owen (scalar loop)", scene=name, size=size, spp=args.throughput_spp)
+            results["throughput"].append(r)
     scene_dir = out / "cornell-export"
     tool_run(tool, "export", str(scene_dir), "--size", args.size)
     mitsuba_scene.render(scene_dir, 1, "independent", 0)  # warm up: Mitsuba's first render sets up its JIT and threads
@@ -241,7 +245,8 @@ def main(argv=None) -> int:
         print(f"| {r['renderer']} | {r['scene']} | {r['size']} | {r['paths_per_second']:.3g} | {rays} | {rpp} |")
     base = results["throughput"][-1]["paths_per_second"]
     print(f"\nudm1-pt / Mitsuba paths per second on the same Cornell box: "
-          f"{results['throughput'][0]['paths_per_second'] / base:.2f}\n")
+          f"{results['throughput'][0]['paths_per_second'] / base:.2f} "
+          f"(scalar loop: {results['throughput'][1]['paths_per_second'] / base:.2f})\n")
     print(f"## Equal spp: RMSE against udm1-pt sobol-owen {args.ref_spp} spp, {args.size}, {args.seeds} seeds "
           "(seconds in brackets)\n")
     print("| renderer | sampler | " + " | ".join(f"{n} spp" for n in spps) + " |")

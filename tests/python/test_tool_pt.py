@@ -19,7 +19,7 @@ pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt bina
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 SCENES = ROOT.parent / "shared" / "scenes"
 RENDER_LINE = re.compile(
-    r"sampler (\S+) spp (\d+) samples \[(\d+), (\d+)\) size (\d+)x(\d+) image \d+x\d+ at \d+,\d+ dimensions (\d+) of (\d+) seconds \S+ "
+    r"sampler (\S+) spp (\d+) samples \[(\d+), (\d+)\) size (\d+)x(\d+) image \d+x\d+ at \d+,\d+ dimensions (\d+) of (\d+) loop \S+ seconds \S+ "
     r"paths (\d+) rays (\d+) paths_per_second \S+ rays_per_second \S+ mean (\S+) (\S+) (\S+)\n")
 
 
@@ -488,36 +488,44 @@ def test_screen_randomization_needs_a_weyl_sequence(tmp_path):
 BUILD = os.environ.get("UDM1_BUILD_DIR", "")
 
 
-@pytest.mark.skipif(not BUILD, reason="UDM1_BUILD_DIR (for udm1_bench_pt_wavefront) is not set: run through CTest")
-def test_wavefront_prototype_computes_udm1_pts_estimator(tmp_path):
-    """udm1_bench_pt_wavefront (the speed target's feasibility measurement) traces the same estimator on
-    the same sampler points as udm1-pt: its image differs from udm1-pt's by float rounding only (far below
-    the noise, which its RMSE against a reference shows), with the same mean and about the same rays."""
-    bench = pathlib.Path(BUILD) / "tools" / "udm1_bench_pt_wavefront"
+def test_wavefront_loop_traces_the_scalar_loops_estimator(tmp_path):
+    """On the Cornell box udm1-pt's default loop is the wavefront loop (pt/wavefront.h). --loop scalar traces
+    the same estimator on the same sampler points in double: the two images differ by float rounding only
+    (far below the noise, which their RMSE against a reference shows), with the same mean and about the
+    same rays, for several samplers and without randomization too."""
     ref = tmp_path / "ref.exr"
     ok("reference", "-o", str(ref), "--spp", "256", "--size", "16x16")
     for sampler, randomize in (("wr", "default"), ("pmj02", "default"), ("pcg32", "default"), ("sobol", "none")):
-        r = subprocess.run([str(bench), "--size", "16x16", "--spp", "8", "--reps", "1", "--sampler", sampler,
-                            "--randomize", randomize, "--reference", str(ref)], capture_output=True, text=True,
-                           timeout=300)
-        assert r.returncode == 0, r.stderr
-        rows = re.findall(r"^(udm1-pt render \(anchor\)|wavefront prototype.*?)\s+([0-9.]+)\s+(\d+)\s+([0-9.]+)\s+"
-                          r"([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)\s+([0-9.]+)$", r.stdout, re.M)
-        assert len(rows) == 2, r.stdout
-        (_, _, rays_pt, _, *rest_pt), (_, _, rays_wf, _, *rest_wf) = rows
-        assert abs(int(rays_wf) - int(rays_pt)) <= 0.01 * int(rays_pt), r.stdout
-        mean_pt, mean_wf = np.array(rest_pt[:3], float), np.array(rest_wf[:3], float)
-        assert np.all(np.abs(mean_wf - mean_pt) <= 1e-4 * mean_pt), r.stdout
-        err_pt, err_wf = float(rest_pt[3]), float(rest_wf[3])
-        diff = float(re.search(r"the two images differ by RMSE (\S+);", r.stdout).group(1))
-        assert err_pt > 0.005 and diff < 1e-3 * err_pt and abs(err_wf - err_pt) < 1e-3 * err_pt, r.stdout
-    for args, words in ((["--sampler", "nope", "--size", "16x16"], "unknown sampler 'nope'"),
-                        (["--reference", str(tmp_path / "absent.exr"), "--size", "16x16"], "absent.exr"),
-                        (["--reference", str(ref), "--size", "32x32"], "not a 32x32 RGB image"),
-                        (["--size", "2x2"], "usage: udm1_bench_pt_wavefront"), (["--reps"], "usage"),
-                        (["--randomize", "owen"], "usage")):
-        bad = subprocess.run([str(bench), *args], capture_output=True, text=True, timeout=60)
-        assert bad.returncode != 0 and words in bad.stderr and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
+        common = ["--size", "16x16", "--spp", "8", "--sampler", sampler, "--randomize", randomize]
+        w = ok(*common, "-o", str(tmp_path / "w.exr"))
+        s = ok(*common, "--loop", "scalar", "-o", str(tmp_path / "s.exr"))
+        assert " loop wavefront " in w.stdout and " loop scalar " in s.stdout, (w.stdout, s.stdout)
+        mw, ms = RENDER_LINE.match(w.stdout), RENDER_LINE.match(s.stdout)
+        rays_w, rays_s = int(mw.group(10)), int(ms.group(10))
+        assert abs(rays_w - rays_s) <= 0.01 * rays_s
+        mean_w, mean_s = np.array(mw.group(11, 12, 13), float), np.array(ms.group(11, 12, 13), float)
+        assert np.all(np.abs(mean_w - mean_s) <= 1e-4 * mean_s), (mean_w, mean_s)
+        err = {k: float(re.match(r"mse \S+ rmse (\S+)", ok("compare", str(tmp_path / f"{k}.exr"), str(ref)).stdout).group(1))
+               for k in ("w", "s")}
+        diff = float(re.match(r"mse \S+ rmse (\S+)", ok("compare", str(tmp_path / "w.exr"), str(tmp_path / "s.exr")).stdout)
+                     .group(1))
+        assert err["s"] > 0.005 and diff < 1e-3 * err["s"] and abs(err["w"] - err["s"]) < 1e-3 * err["s"], (err, diff)
+
+
+def test_wavefront_loop_refuses_what_it_does_not_model(tmp_path):
+    """--loop wavefront outside the loop's subset is a one-line error naming why (the shape's file:line for a
+    scene), with no image; --loop auto falls back to the scalar loop there."""
+    out = tmp_path / "x.exr"
+    for args, words in ((["--scene", "builtin:furnace"], "builtin:furnace: a sphere"),
+                        (["--strategy", "nee"], "only MIS"), (["--loop", "bogus"], "--loop 'bogus'")):
+        r = run("--size", "8x8", "--spp", "2", "--loop", "wavefront", *args, "-o", str(out))
+        assert r.returncode != 0 and words in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+        assert not out.exists()
+    assert " loop scalar " in ok("--scene", "builtin:furnace", "--size", "8x8", "--spp", "2", "-o", str(out)).stdout
+    veach = SCENES / "veach-mis" / "veach-mis.pbrt"
+    if veach.exists():
+        r = run("--scene", str(veach), "--size", "8x8", "--spp", "1", "--loop", "wavefront")
+        assert r.returncode != 0 and "veach-mis.pbrt:" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
 
 
 @pytest.mark.skipif(not BUILD, reason="UDM1_BUILD_DIR (for udm1_bench_pt_embree) is not set: run through CTest")
@@ -532,7 +540,7 @@ def test_embree_share_benchmark_replays_the_render(tmp_path):
     m = re.search(r"queries recorded: (\d+) \((\d+) intersect, (\d+) occluded\)", r.stdout)
     assert m and int(m.group(1)) == int(m.group(2)) + int(m.group(3)) > 16 * 16 * 2, r.stdout
     # the same render through the tool counts the same rays
-    rays = int(RENDER_LINE.match(ok("--size", "16x16", "--spp", "2", "--sampler", "wr", "-o",
+    rays = int(RENDER_LINE.match(ok("--size", "16x16", "--spp", "2", "--sampler", "wr", "--loop", "scalar", "-o",
                                     str(tmp_path / "a.exr")).stdout).group(10))
     assert rays == int(m.group(1))
     share = re.search(r"Embree's share of udm1-pt's render time: ([0-9.]+) % \(single queries\), ([0-9.]+) % \(as "

@@ -1,0 +1,402 @@
+// wavefront.cpp - see wavefront.h.
+#include "wavefront.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace udm1pt {
+
+using udm1scene::Hit;
+using udm1scene::Scene;
+using udm1scene::Shape;
+
+std::string wavefront_unsupported(const Scene &scene, const Materials &materials, const Options &opt)
+{
+    (void)materials;
+    if (opt.strategy != Strategy::Mis) return "only MIS (--strategy mis) has a wavefront loop";
+    if (scene.camera.lens_radius > 0) return "the camera has a thin lens";
+    bool light = false;
+    for (const Shape &s : scene.shapes) {
+        if (s.kind != Shape::Triangles) return s.where + ": a sphere";
+        if (!s.N.empty()) return s.where + ": vertex normals";
+        light = light || s.light >= 0;
+        if (s.material < 0) continue;
+        const udm1scene::Material &m = scene.materials[s.material];
+        if (m.type != "diffuse") return s.where + ": a " + m.type + " material";
+        if (m.params.find("displacement")) return s.where + ": a bump map";
+        const udm1scene::Param *refl = m.params.find("reflectance");
+        if (refl && refl->type == "texture") return s.where + ": a textured reflectance";
+    }
+    if (!light) return "no area light";
+    return "";
+}
+
+namespace {
+
+const float PI_F = 3.14159265358979323846f;
+const size_t BATCH = 4096;  // paths traced together (a tile's worth at 64 spp)
+const int DIMS_PER_VERTEX = 6;
+
+// [0, 1) in double to [0, 1) in float (rounding to nearest could give 1)
+inline float unit_float(double u) { return std::min((float)u, 0x1.fffffep-1f); }
+
+// udm1scene::ray_offset in float
+inline float offset_of(float x, float y, float z, float t)
+{
+    return std::max(std::max(std::max(std::fabs(x), std::fabs(y)), std::max(std::fabs(z), std::fabs(t))), 0x1p-24f) *
+           0x1p-18f;
+}
+
+// udm1scene::sincos_2pi in float (quadrant, then series around pi/4)
+inline void sincos_2pi_f(float u, float *s, float *c)
+{
+    float q4 = 4.0f * u;
+    int q = (int)q4;
+    float x = (q4 - (float)q - 0.5f) * 1.57079632679489661923f, x2 = x * x;
+    float sn = x * (1 + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040))));
+    float cs = 1 + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
+    float si = 0.70710678f * (sn + cs), co = 0.70710678f * (cs - sn);
+    bool odd = q & 1, neg_s = q >= 2, neg_c = q == 1 || q == 2;
+    float s0 = odd ? co : si, c0 = odd ? si : co;
+    *s = neg_s ? -s0 : s0;
+    *c = neg_c ? -c0 : c0;
+}
+
+// The live paths of a batch, structure of arrays: ray, throughput, radiance so far, the BSDF
+// sample's density and the vertex it left (for MIS at the light it may hit), pixel, sampler cursor.
+struct Paths {
+    std::vector<float> ox, oy, oz, dx, dy, dz, br, bg, bb, lr, lg, lb, pb, qx, qy, qz;
+    std::vector<int> pixel;
+    std::vector<udm1_cursor> cursor;
+    void resize(size_t n)
+    {
+        for (auto *v : floats()) v->resize(n);
+        pixel.resize(n), cursor.resize(n);
+    }
+    void move(size_t to, size_t from)  // compaction: path `from` into slot `to`
+    {
+        for (auto *v : floats()) (*v)[to] = (*v)[from];
+        pixel[to] = pixel[from], cursor[to] = cursor[from];
+    }
+
+private:
+    std::array<std::vector<float> *, 16> floats()
+    {
+        return {&ox, &oy, &oz, &dx, &dy, &dz, &br, &bg, &bb, &lr, &lg, &lb, &pb, &qx, &qy, &qz};
+    }
+};
+
+// What the shading loop reads of each live path's vertex, and what it writes for the shadow stream.
+struct Vertices {
+    std::vector<float> px, py, pz, nx, ny, nz, t, u[DIMS_PER_VERTEX];  // hit, geometric normal, distance, sampler
+    std::vector<float> ra, ga, ba;                                     // reflectance / pi at the hit
+    std::vector<int> light;                                            // the light chosen for NEE
+    std::vector<float> sx, sy, sz, sdx, sdy, sdz, slen, cr, cg, cb;    // shadow ray and its contribution
+    std::vector<uint8_t> alive;
+    void resize(size_t n)
+    {
+        for (auto *v : {&px, &py, &pz, &nx, &ny, &nz, &t, &u[0], &u[1], &u[2], &u[3], &u[4], &u[5], &ra, &ga, &ba, &sx,
+                        &sy, &sz, &sdx, &sdy, &sdz, &slen, &cr, &cg, &cb})
+            v->resize(n);
+        light.resize(n), alive.resize(n);
+    }
+};
+
+// Next-event estimation done in double by Lights (a light sampled by solid angle): it replaces what
+// the vectorized loop computed for path j.
+struct NearSample {
+    size_t j;
+    float sx, sy, sz, dx, dy, dz, len, cr, cg, cb;
+};
+
+struct Shading {
+    int depth, rr_depth;
+    bool roulette;
+};
+
+// The vectorized part: for live paths [0, n), next-event estimation by area (a shadow ray and its
+// would-be contribution), the BSDF sample (cosine-weighted), throughput, roulette and the next ray.
+// alive[j] = 0 ends path j. Every lane does the same float operations, whatever its neighbours.
+__attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P, Vertices &V,
+                                                             const Wavefront::LightArrays &F, Shading sh)
+{
+    // plain pointers, so that the compiler sees the arrays do not alias (the vectors' own fields would)
+    float *__restrict ox = P.ox.data(), *__restrict oy = P.oy.data(), *__restrict oz = P.oz.data();
+    float *__restrict dxs = P.dx.data(), *__restrict dys = P.dy.data(), *__restrict dzs = P.dz.data();
+    float *__restrict br = P.br.data(), *__restrict bg = P.bg.data(), *__restrict bbs = P.bb.data();
+    float *__restrict pbs = P.pb.data(), *__restrict qxs = P.qx.data(), *__restrict qys = P.qy.data();
+    float *__restrict qzs = P.qz.data();
+    const float *__restrict hpx = V.px.data(), *__restrict hpy = V.py.data(), *__restrict hpz = V.pz.data();
+    const float *__restrict hnx = V.nx.data(), *__restrict hny = V.ny.data(), *__restrict hnz = V.nz.data();
+    const float *__restrict ht = V.t.data(), *__restrict u0 = V.u[0].data(), *__restrict u1 = V.u[1].data();
+    const float *__restrict u3 = V.u[3].data(), *__restrict u4 = V.u[4].data(), *__restrict u5 = V.u[5].data();
+    const float *__restrict ra = V.ra.data(), *__restrict ga = V.ga.data(), *__restrict ba = V.ba.data();
+    const int *__restrict light = V.light.data();
+    float *__restrict sxs = V.sx.data(), *__restrict sys = V.sy.data(), *__restrict szs = V.sz.data();
+    float *__restrict sdx = V.sdx.data(), *__restrict sdy = V.sdy.data(), *__restrict sdz = V.sdz.data();
+    float *__restrict slen = V.slen.data(), *__restrict cr = V.cr.data(), *__restrict cg = V.cg.data();
+    float *__restrict cb = V.cb.data();
+    uint8_t *__restrict alive = V.alive.data();
+    const float *__restrict lx0 = F.x0.data(), *__restrict ly0 = F.y0.data(), *__restrict lz0 = F.z0.data();
+    const float *__restrict lx1 = F.x1.data(), *__restrict ly1 = F.y1.data(), *__restrict lz1 = F.z1.data();
+    const float *__restrict lx2 = F.x2.data(), *__restrict ly2 = F.y2.data(), *__restrict lz2 = F.z2.data();
+    const float *__restrict lnxs = F.nx.data(), *__restrict lnys = F.ny.data(), *__restrict lnzs = F.nz.data();
+    const float *__restrict lprob = F.prob.data(), *__restrict larea = F.area.data();
+    const float *__restrict ler = F.er.data(), *__restrict leg = F.eg.data(), *__restrict leb = F.eb.data();
+    const int *__restrict ltwo = F.twosided.data();
+    const bool may_roulette = sh.roulette && sh.depth >= sh.rr_depth;
+#pragma omp simd
+    for (size_t j = 0; j < n; ++j) {
+        float px = hpx[j], py = hpy[j], pz = hpz[j], nx = hnx[j], ny = hny[j], nz = hnz[j];
+        float wox = -dxs[j], woy = -dys[j], woz = -dzs[j];
+        float cos_o = nx * wox + ny * woy + nz * woz;
+        // next-event estimation: a point on the chosen light triangle, by area (Lights::sample)
+        int l = light[j];
+        float su = std::sqrt(u0[j]), b0 = 1 - su, b1 = u1[j] * su, b2 = 1 - b0 - b1;
+        float qx = lx0[l] * b0 + lx1[l] * b1 + lx2[l] * b2;
+        float qy = ly0[l] * b0 + ly1[l] * b1 + ly2[l] * b2;
+        float qz = lz0[l] * b0 + lz1[l] * b1 + lz2[l] * b2;
+        float ex = qx - px, ey = qy - py, ez = qz - pz, d2 = ex * ex + ey * ey + ez * ez, dist = std::sqrt(d2);
+        float wx = ex / dist, wy = ey / dist, wz = ez / dist;
+        float cl = lnxs[l] * wx + lnys[l] * wy + lnzs[l] * wz;  // the light's normal against the direction to it
+        bool emits = (ltwo[l] != 0) | (cl < 0);
+        float pdf_l = lprob[l] * d2 / (std::fabs(cl) * larea[l]);
+        float cos_i = nx * wx + ny * wy + nz * wz;
+        bool same = cos_i * cos_o > 0;  // (bitwise & and | below: no branches in the loop)
+        float pdf_b = std::fabs(cos_i) * (1 / PI_F);
+        float w = pdf_l * pdf_l / (pdf_l * pdf_l + pdf_b * pdf_b);  // the power heuristic
+        float k = same & emits & (d2 > 0) & (pdf_l > 0) & (pdf_l < 3e38f) ? std::fabs(cos_i) * w / pdf_l : 0;
+        cr[j] = br[j] * ra[j] * ler[l] * k;
+        cg[j] = bg[j] * ga[j] * leg[l] * k;
+        cb[j] = bbs[j] * ba[j] * leb[l] * k;
+        float side = cos_i > 0 ? 1.0f : -1.0f, off = offset_of(px, py, pz, ht[j]);
+        float sx = px + side * nx * off, sy = py + side * ny * off, sz = pz + side * nz * off;
+        float gx = qx - sx, gy = qy - sy, gz = qz - sz;
+        sxs[j] = sx, sys[j] = sy, szs[j] = sz, sdx[j] = wx, sdy[j] = wy, sdz[j] = wz;
+        slen[j] = std::sqrt(gx * gx + gy * gy + gz * gz) - 2 * offset_of(qx, qy, qz, 0);
+        // the BSDF sample: cosine-weighted on the side of wo, in the normal's frame (udm1scene::Frame)
+        float sgn = std::copysign(1.0f, nz), aa = -1 / (sgn + nz), bb = nx * ny * aa;
+        float tx = 1 + sgn * nx * nx * aa, ty = sgn * bb, tz = -sgn * nx;
+        float bx = bb, by = sgn + ny * ny * aa, bz = -ny;
+        float r = std::sqrt(u4[j]), sp, cp;
+        sincos_2pi_f(u5[j], &sp, &cp);
+        float lz = std::sqrt(std::max(0.0f, 1 - u4[j]));
+        lz = cos_o < 0 ? -lz : lz;
+        float lx = r * cp, ly = r * sp;
+        float dx = tx * lx + bx * ly + nx * lz, dy = ty * lx + by * ly + ny * lz, dz = tz * lx + bz * ly + nz * lz;
+        float inv = 1 / std::sqrt(dx * dx + dy * dy + dz * dz);
+        dx *= inv, dy *= inv, dz *= inv;
+        // throughput: f cos / pdf = R for a diffuse surface
+        float beta_r = br[j] * ra[j] * PI_F, beta_g = bg[j] * ga[j] * PI_F, beta_b = bbs[j] * ba[j] * PI_F;
+        float m = std::max(beta_r, std::max(beta_g, beta_b));
+        bool live = (cos_o != 0) & (std::fabs(lz) > 0) & (m > 0) & (m < 3e38f);
+        bool rr = may_roulette & (m < 1);  // roulette where the throughput is below 1
+        float q = 1 - m, s = rr ? 1 / (1 - q) : 1.0f;
+        live = live & !(rr & (u3[j] < q));
+        br[j] = beta_r * s, bg[j] = beta_g * s, bbs[j] = beta_b * s;
+        pbs[j] = std::fabs(lz) * (1 / PI_F);
+        float side2 = nx * dx + ny * dy + nz * dz > 0 ? 1.0f : -1.0f;
+        ox[j] = px + side2 * nx * off, oy[j] = py + side2 * ny * off, oz[j] = pz + side2 * nz * off;
+        dxs[j] = dx, dys[j] = dy, dzs[j] = dz;
+        qxs[j] = px, qys[j] = py, qzs[j] = pz;
+        alive[j] = live;
+    }
+}
+
+}  // namespace
+
+Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
+                     const Lights &lights, int max_depth, bool roulette, int rr_depth)
+    : scene_(scene), rt_(rt), lights_(lights), max_depth_(max_depth), rr_depth_(rr_depth), roulette_(roulette)
+{
+    Triangles &T = tri_;
+    for (size_t k = 0; k < scene.shapes.size(); ++k) {
+        const Shape &s = scene.shapes[k];
+        Vec3 R = Bsdf().diffuse.R;  // the default material
+        if (s.material >= 0) {
+            Hit h;
+            Vec3 ns(0, 0, 1);
+            Bsdf scratch;
+            R = materials.at(s.material, s, h, Vec3(0, 0, 1), &ns, &scratch).diffuse.R;
+        }
+        T.first.push_back(T.nx.size());
+        for (unsigned t = 0; t < s.indices.size() / 3; ++t) {
+            Vec3 n = udm1scene::triangle_normal(s, t);
+            T.nx.push_back((float)n.x), T.ny.push_back((float)n.y), T.nz.push_back((float)n.z);
+            T.rr.push_back((float)(R.x / M_PI)), T.rg.push_back((float)(R.y / M_PI)), T.rb.push_back((float)(R.z / M_PI));
+            Hit h;
+            h.shape = (unsigned)k, h.prim = t;
+            T.light.push_back(lights.light_of(h));
+        }
+    }
+    LightArrays &L = lights_f_;
+    for (size_t i = 0; i < lights.count(); ++i) {
+        const Lights::Light &l = lights.light(i);
+        L.x0.push_back((float)l.p0.x), L.y0.push_back((float)l.p0.y), L.z0.push_back((float)l.p0.z);
+        L.x1.push_back((float)l.p1.x), L.y1.push_back((float)l.p1.y), L.z1.push_back((float)l.p1.z);
+        L.x2.push_back((float)l.p2.x), L.y2.push_back((float)l.p2.y), L.z2.push_back((float)l.p2.z);
+        L.nx.push_back((float)l.n.x), L.ny.push_back((float)l.n.y), L.nz.push_back((float)l.n.z);
+        L.prob.push_back((float)lights.probability(i)), L.area.push_back((float)l.area);
+        L.er.push_back((float)l.L.x), L.eg.push_back((float)l.L.y), L.eb.push_back((float)l.L.z);
+        L.twosided.push_back(l.twosided);
+    }
+}
+
+void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
+                       uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const
+{
+    // one set of buffers per thread, reused from batch to batch
+    thread_local Paths P;
+    thread_local Vertices V;
+    thread_local std::vector<RTCRayHit> rh;
+    thread_local std::vector<RTCRay> shadow;
+    thread_local std::vector<int> shadow_of;
+    thread_local std::vector<NearSample> near;
+    if (P.ox.size() < BATCH) P.resize(BATCH), V.resize(BATCH), rh.resize(BATCH), shadow.resize(BATCH), shadow_of.resize(BATCH);
+    const int W = x1 - x0;
+    const uint64_t total = (uint64_t)W * (uint64_t)(y1 - y0) * count;
+    auto finish = [&](size_t j) {  // path j ends: its radiance into its pixel's fixed-point sums
+        int p = P.pixel[j];
+        int64_t *px = &acc->sum[3 * ((size_t)(y0 + p / W - acc->y0) * acc->width + (x0 + p % W - acc->x0))];
+        const float L[3] = {P.lr[j], P.lg[j], P.lb[j]};
+        for (int c = 0; c < 3; ++c) {
+            double v = (double)L[c] * film_scale;
+            if (!std::isfinite(v)) {
+                ++counts->nonfinite;
+                continue;
+            }
+            if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++counts->clamped;
+            px[c] += (int64_t)std::llround(v * SAMPLE_SCALE);
+        }
+    };
+    const Triangles &T = tri_;
+    RTCIntersectContext ctx;
+    for (uint64_t start = 0; start < total; start += BATCH) {
+        size_t n = (size_t)std::min<uint64_t>(BATCH, total - start);
+        // camera rays: path k of the batch is pixel (start + k) / count, sample first + (start + k) % count
+        for (size_t k = 0; k < n; ++k) {
+            uint64_t g = start + k;
+            int p = (int)(g / count), x = x0 + p % W, y = y0 + p / W;
+            udm1_cursor_start(&P.cursor[k], seq, ((uint64_t)y << 32) | (uint32_t)x, first + g % count, 0);
+            double uv[2];
+            udm1_cursor_fill_f64(&P.cursor[k], 2, uv);
+            Vec3 o, d;
+            camera.ray(x + uv[0], y + uv[1], &o, &d);
+            P.ox[k] = (float)o.x, P.oy[k] = (float)o.y, P.oz[k] = (float)o.z;
+            P.dx[k] = (float)d.x, P.dy[k] = (float)d.y, P.dz[k] = (float)d.z;
+            P.br[k] = P.bg[k] = P.bb[k] = 1, P.lr[k] = P.lg[k] = P.lb[k] = 0;
+            P.pixel[k] = p;
+        }
+        for (int depth = 0; n > 0; ++depth) {
+            for (size_t j = 0; j < n; ++j) {
+                RTCRayHit &q = rh[j];
+                q.ray = RTCRay{P.ox[j], P.oy[j], P.oz[j], 0.0f, P.dx[j], P.dy[j], P.dz[j], 0, INFINITY, 0xFFFFFFFF, (unsigned)j, 0};
+                q.hit.geomID = RTC_INVALID_GEOMETRY_ID, q.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcInitIntersectContext(&ctx);
+            rtcIntersect1M(rt_.handle(), &ctx, rh.data(), (unsigned)n, sizeof(RTCRayHit));
+            counts->rays += n;
+            // the hits: emission (MIS against the BSDF sample that found it), then the paths that go on
+            size_t m = 0;
+            near.clear();
+            for (size_t j = 0; j < n; ++j) {
+                const RTCRayHit &q = rh[j];
+                if (q.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+                    finish(j);
+                    continue;
+                }
+                unsigned shape = rt_.shape_of_geometry(q.hit.geomID);
+                size_t tri = T.first[shape] + q.hit.primID;
+                float t = q.ray.tfar, hx = P.ox[j] + P.dx[j] * t, hy = P.oy[j] + P.dy[j] * t, hz = P.oz[j] + P.dz[j] * t;
+                float nx = T.nx[tri], ny = T.ny[tri], nz = T.nz[tri];
+                if (int li = T.light[tri]; li >= 0) {
+                    const LightArrays &F = lights_f_;
+                    if (F.twosided[li] || nx * P.dx[j] + ny * P.dy[j] + nz * P.dz[j] < 0) {
+                        float w = 1;
+                        if (depth > 0) {  // the density with which light sampling at the last vertex finds this point
+                            Hit h;
+                            h.shape = shape, h.prim = q.hit.primID, h.t = t;
+                            h.p = Vec3(hx, hy, hz), h.ng = Vec3(nx, ny, nz);
+                            float pl = (float)lights_.pdf(Vec3(P.qx[j], P.qy[j], P.qz[j]), h), pb = P.pb[j];
+                            w = pb * pb / (pb * pb + pl * pl);
+                        }
+                        P.lr[j] += P.br[j] * F.er[li] * w, P.lg[j] += P.bg[j] * F.eg[li] * w, P.lb[j] += P.bb[j] * F.eb[li] * w;
+                    }
+                }
+                if (depth == max_depth_) {
+                    finish(j);
+                    continue;
+                }
+                // compact into slot m (m <= j): the path's state and this vertex
+                if (m != j) P.move(m, j);
+                V.px[m] = hx, V.py[m] = hy, V.pz[m] = hz, V.nx[m] = nx, V.ny[m] = ny, V.nz[m] = nz, V.t[m] = t;
+                V.ra[m] = T.rr[tri], V.ga[m] = T.rg[tri], V.ba[m] = T.rb[tri];
+                // this vertex's 6 dimensions (the layout of integrator.h)
+                double u[DIMS_PER_VERTEX];
+                udm1_cursor_fill_f64(&P.cursor[m], DIMS_PER_VERTEX, u);
+                for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(u[d]);
+                double reuse;
+                size_t l = lights_.choose(u[0], &reuse);
+                V.u[0][m] = unit_float(reuse);
+                V.light[m] = (int)l;
+                Vec3 p(hx, hy, hz);
+                if (!lights_.by_area(l, p)) {  // near the light: by solid angle, in double, as the scalar loop
+                    NearSample ns{m, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+                    LightSample ls;
+                    Vec3 n(nx, ny, nz), wo(-P.dx[m], -P.dy[m], -P.dz[m]);
+                    bool ok = lights_.sample(p, u[0], u[1], &ls);
+                    double cos_i = ok ? udm1scene::dot(n, ls.wi) : 0, cos_o = udm1scene::dot(n, wo);
+                    if (ok && cos_i * cos_o > 0) {
+                        double pdf_b = std::fabs(cos_i) / M_PI;
+                        double k = std::fabs(cos_i) * ls.pdf / (ls.pdf * ls.pdf + pdf_b * pdf_b);  // |cos| w / pdf
+                        Vec3 so = p + n * ((cos_i > 0 ? 1 : -1) * udm1scene::ray_offset(p, t)), qp = p + ls.wi * ls.dist;
+                        ns.sx = (float)so.x, ns.sy = (float)so.y, ns.sz = (float)so.z;
+                        ns.dx = (float)ls.wi.x, ns.dy = (float)ls.wi.y, ns.dz = (float)ls.wi.z;
+                        ns.len = (float)(udm1scene::length(qp - so) - 2 * udm1scene::ray_offset(qp));
+                        ns.cr = (float)(P.br[m] * T.rr[tri] * ls.L.x * k);
+                        ns.cg = (float)(P.bg[m] * T.rg[tri] * ls.L.y * k);
+                        ns.cb = (float)(P.bb[m] * T.rb[tri] * ls.L.z * k);
+                    }
+                    near.push_back(ns);
+                }
+                ++m;
+            }
+            n = m;
+            shade(n, P, V, lights_f_, Shading{depth, rr_depth_, roulette_});
+            for (const NearSample &s : near) {
+                V.sx[s.j] = s.sx, V.sy[s.j] = s.sy, V.sz[s.j] = s.sz, V.sdx[s.j] = s.dx, V.sdy[s.j] = s.dy, V.sdz[s.j] = s.dz;
+                V.slen[s.j] = s.len, V.cr[s.j] = s.cr, V.cg[s.j] = s.cg, V.cb[s.j] = s.cb;
+            }
+            // shadow rays of the paths whose light sample contributes
+            size_t ns = 0;
+            for (size_t j = 0; j < n; ++j)
+                if ((V.cr[j] > 0 || V.cg[j] > 0 || V.cb[j] > 0) && V.slen[j] > 0) {
+                    shadow[ns] = RTCRay{V.sx[j], V.sy[j], V.sz[j], 0.0f, V.sdx[j], V.sdy[j], V.sdz[j], 0, V.slen[j],
+                                        0xFFFFFFFF, (unsigned)ns, 0};
+                    shadow_of[ns++] = (int)j;
+                }
+            rtcInitIntersectContext(&ctx);
+            rtcOccluded1M(rt_.handle(), &ctx, shadow.data(), (unsigned)ns, sizeof(RTCRay));
+            counts->rays += ns;
+            for (size_t s = 0; s < ns; ++s)
+                if (shadow[s].tfar >= 0) {
+                    int j = shadow_of[s];
+                    P.lr[j] += V.cr[j], P.lg[j] += V.cg[j], P.lb[j] += V.cb[j];
+                }
+            // the paths that ended at this vertex
+            size_t keep = 0;
+            for (size_t j = 0; j < n; ++j) {
+                if (!V.alive[j]) {
+                    finish(j);
+                    continue;
+                }
+                if (keep != j) P.move(keep, j);
+                ++keep;
+            }
+            n = keep;
+        }
+    }
+}
+
+}  // namespace udm1pt

@@ -1,0 +1,67 @@
+// wavefront.h - udm1-pt's path loop for the scenes of the common subset, many paths at a time: the
+// same estimator, dimension layout and sampler points as the scalar loop (integrator.h), traced in
+// batches of up to 4096 paths with one Embree stream per bounce for the closest hits and one for the
+// shadow rays, and the shading (light sample, MIS, BSDF sample, roulette, next ray) in one loop over
+// the live paths in float that the compiler vectorizes.
+//
+// The subset: triangle meshes without vertex normals, untextured diffuse materials without bump maps,
+// triangle area lights, a pinhole camera, MIS (--strategy mis). Everything else - spheres, coated,
+// metal, glass, mixes, textures, vertex normals, a thin lens, the single-strategy estimators - goes
+// through the scalar loop. Light sampling by solid angle near a light is done in double by Lights, path
+// by path, as in the scalar loop; everything else in float.
+//
+// Each path's result depends only on its own pixel, sample index and the scene: not on which other
+// paths share its batch (Embree's stream and single queries return the same hits, and the vectorized
+// loop does the same float operations in every lane), so images stay bit-identical across thread
+// counts and split sample ranges. They are not bit-identical to the scalar loop's (float against
+// double arithmetic): the two agree in the mean and per pixel within rounding (tests/cpp/test_pt.cpp).
+#pragma once
+
+#include "integrator.h"
+
+#include <string>
+#include <vector>
+
+namespace udm1pt {
+
+// Why the wavefront loop cannot render (scene, opt), in a few words naming the first shape, material
+// or option outside its subset; empty if it can.
+std::string wavefront_unsupported(const udm1scene::Scene &scene, const Materials &materials, const Options &opt);
+
+class Wavefront {
+public:
+    // The scene must be in the subset (wavefront_unsupported() empty).
+    Wavefront(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
+              const Lights &lights, int max_depth, bool roulette, int rr_depth);
+
+    struct Counts {
+        uint64_t rays = 0, nonfinite = 0, clamped = 0;
+    };
+    // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them,
+    // scaled by film_scale, to acc's fixed-point sums (as the scalar loop does). Safe from many
+    // threads at once for disjoint pixels.
+    void render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
+                uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const;
+
+    // Per triangle (its shape's first entry + the triangle's index) and per light: what the loop reads.
+    struct Triangles {
+        std::vector<size_t> first;                   // shape -> its first triangle's entry
+        std::vector<float> nx, ny, nz, rr, rg, rb;  // unit geometric normal; diffuse reflectance / pi
+        std::vector<int> light;                      // the triangle's light (Lights' index), or -1
+    };
+    struct LightArrays {  // triangle lights, structure of arrays, in float
+        std::vector<float> x0, y0, z0, x1, y1, z1, x2, y2, z2, nx, ny, nz, prob, area, er, eg, eb;
+        std::vector<int> twosided;
+    };
+
+private:
+    const udm1scene::Scene &scene_;
+    const udm1scene::EmbreeScene &rt_;
+    const Lights &lights_;
+    int max_depth_, rr_depth_;
+    bool roulette_;
+    Triangles tri_;
+    LightArrays lights_f_;
+};
+
+}  // namespace udm1pt
