@@ -169,24 +169,6 @@ double Lights::pdf(Vec3 p, const udm1scene::Hit &h) const
     return prob_[i] * pdf_light(lights_[i], p, h.p, h.ng);
 }
 
-size_t Lights::choose(double u1, double *rescaled) const
-{
-    double target = u1 * cdf_.back();
-    size_t i = std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin();
-    if (i >= lights_.size()) i = lights_.size() - 1;
-    while (prob_[i] == 0 && i > 0) --i;  // (only with a zero-power light at the very end)
-    double lo = i ? cdf_[i - 1] : 0.0;
-    double u = std::min((target - lo) / (cdf_[i] - lo), 0x1.fffffffffffffp-1);  // reuse: uniform in [0, 1) again
-    *rescaled = u >= 0 ? u : 0;
-    return i;
-}
-
-bool Lights::by_area(size_t i, Vec3 p) const
-{
-    double omega;
-    return !lights_[i].sphere && !by_solid_angle(lights_[i], p, &omega);
-}
-
 bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
 {
     if (lights_.empty()) return false;

@@ -12,6 +12,7 @@
 #include "embree_scene.h"
 #include "scene.h"
 
+#include <algorithm>
 #include <map>
 #include <vector>
 
@@ -45,9 +46,27 @@ public:
     bool sample(Vec3 p, double u1, double u2, LightSample *s) const;
 
     // The light that sample() picks with u1 (by power), and u1 rescaled to [0, 1) within its interval.
-    size_t choose(double u1, double *rescaled) const;
+    size_t choose(double u1, double *rescaled) const
+    {
+        double target = u1 * cdf_.back();
+        size_t i = std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin();
+        if (i >= lights_.size()) i = lights_.size() - 1;
+        while (prob_[i] == 0 && i > 0) --i;  // (only with a zero-power light at the very end)
+        double lo = i ? cdf_[i - 1] : 0.0;
+        double u = std::min((target - lo) / (cdf_[i] - lo), 0x1.fffffffffffffp-1);  // reuse: uniform in [0, 1) again
+        *rescaled = u >= 0 ? u : 0;
+        return i;
+    }
     // Whether sample() takes triangle light i at p by area (not by solid angle; false for spheres).
-    bool by_area(size_t i, Vec3 p) const;
+    bool by_area(size_t i, Vec3 p) const
+    {
+        const Light &l = lights_[i];
+        if (l.sphere) return false;
+        Vec3 d = l.centroid - p;
+        if (l.area < near_ * udm1scene::dot(d, d)) return true;  // far (by_solid_angle's first test)
+        double omega;
+        return !by_solid_angle(l, p, &omega);
+    }
 
     struct Light {
         bool sphere = false;

@@ -110,6 +110,15 @@ struct NearSample {
     float sx, sy, sz, dx, dy, dz, len, cr, cg, cb;
 };
 
+struct Buffers {
+    Paths paths;
+    Vertices vertices;
+    std::vector<RTCRayHit> rh;
+    std::vector<RTCRay> shadow;
+    std::vector<int> shadow_of;
+    std::vector<NearSample> near;
+};
+
 struct Shading {
     int depth, rr_depth;
     bool roulette;
@@ -246,13 +255,16 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
 void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
                        uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const
 {
-    // one set of buffers per thread, reused from batch to batch
-    thread_local Paths P;
-    thread_local Vertices V;
-    thread_local std::vector<RTCRayHit> rh;
-    thread_local std::vector<RTCRay> shadow;
-    thread_local std::vector<int> shadow_of;
-    thread_local std::vector<NearSample> near;
+    // one set of buffers per thread, reused from batch to batch (addressed once here, not through the
+    // thread pointer at every use)
+    thread_local Buffers buffers;
+    Buffers &b = buffers;
+    Paths &P = b.paths;
+    Vertices &V = b.vertices;
+    std::vector<RTCRayHit> &rh = b.rh;
+    std::vector<RTCRay> &shadow = b.shadow;
+    std::vector<int> &shadow_of = b.shadow_of;
+    std::vector<NearSample> &near = b.near;
     if (P.ox.size() < BATCH) P.resize(BATCH), V.resize(BATCH), rh.resize(BATCH), shadow.resize(BATCH), shadow_of.resize(BATCH);
     const int W = x1 - x0;
     const uint64_t total = (uint64_t)W * (uint64_t)(y1 - y0) * count;
