@@ -307,6 +307,7 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                 q.hit.geomID = RTC_INVALID_GEOMETRY_ID, q.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
             }
             rtcInitIntersectContext(&ctx);
+            if (depth == 0) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera rays of neighbouring pixels
             rtcIntersect1M(rt_.handle(), &ctx, rh.data(), (unsigned)n, sizeof(RTCRayHit));
             counts->rays += n;
             // the hits: emission (MIS against the BSDF sample that found it), then the paths that go on
