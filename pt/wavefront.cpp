@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <stdexcept>
 
 namespace udm1pt {
 
@@ -64,20 +65,21 @@ inline void sincos_2pi_f(float u, float *s, float *c)
 }
 
 // The live paths of a batch, structure of arrays: ray, throughput, radiance so far, the BSDF
-// sample's density and the vertex it left (for MIS at the light it may hit), pixel, sampler cursor.
+// sample's density and the vertex it left (for MIS at the light it may hit), pixel, and the sampler
+// point's stream (the pixel) and index (the sample number).
 struct Paths {
     std::vector<float> ox, oy, oz, dx, dy, dz, br, bg, bb, lr, lg, lb, pb, qx, qy, qz;
     std::vector<int> pixel;
-    std::vector<udm1_cursor> cursor;
+    std::vector<uint64_t> stream, index;
     void resize(size_t n)
     {
         for (auto *v : floats()) v->resize(n);
-        pixel.resize(n), cursor.resize(n);
+        pixel.resize(n), stream.resize(n), index.resize(n);
     }
     void move(size_t to, size_t from)  // compaction: path `from` into slot `to`
     {
         for (auto *v : floats()) (*v)[to] = (*v)[from];
-        pixel[to] = pixel[from], cursor[to] = cursor[from];
+        pixel[to] = pixel[from], stream[to] = stream[from], index[to] = index[from];
     }
 
 private:
@@ -110,6 +112,14 @@ struct NearSample {
     float sx, sy, sz, dx, dy, dz, len, cr, cg, cb;
 };
 
+// The sampler's values of n points (render() checked the indices: a failure is a bug, not bad input).
+void fill(const udm1_seq *seq, size_t n, const uint64_t *streams, const uint64_t *indices, uint32_t first_dim,
+          uint32_t dims, double *out)
+{
+    if (udm1_seq_fill_points_f64(seq, n, streams, indices, first_dim, dims, out) != UDM1_OK)
+        throw std::runtime_error(udm1_last_error());
+}
+
 struct Buffers {
     Paths paths;
     Vertices vertices;
@@ -117,6 +127,7 @@ struct Buffers {
     std::vector<RTCRay> shadow;
     std::vector<int> shadow_of;
     std::vector<NearSample> near;
+    std::vector<double> u;  // sampler values, DIMS_PER_VERTEX per path
 };
 
 struct Shading {
@@ -265,7 +276,11 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
     std::vector<RTCRay> &shadow = b.shadow;
     std::vector<int> &shadow_of = b.shadow_of;
     std::vector<NearSample> &near = b.near;
-    if (P.ox.size() < BATCH) P.resize(BATCH), V.resize(BATCH), rh.resize(BATCH), shadow.resize(BATCH), shadow_of.resize(BATCH);
+    std::vector<double> &u = b.u;
+    if (P.ox.size() < BATCH) {
+        P.resize(BATCH), V.resize(BATCH), rh.resize(BATCH), shadow.resize(BATCH), shadow_of.resize(BATCH);
+        u.resize(BATCH * DIMS_PER_VERTEX);
+    }
     const int W = x1 - x0;
     const uint64_t total = (uint64_t)W * (uint64_t)(y1 - y0) * count;
     auto finish = [&](size_t j) {  // path j ends: its radiance into its pixel's fixed-point sums
@@ -290,15 +305,18 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
         for (size_t k = 0; k < n; ++k) {
             uint64_t g = start + k;
             int p = (int)(g / count), x = x0 + p % W, y = y0 + p / W;
-            udm1_cursor_start(&P.cursor[k], seq, ((uint64_t)y << 32) | (uint32_t)x, first + g % count, 0);
-            double uv[2];
-            udm1_cursor_fill_f64(&P.cursor[k], 2, uv);
+            P.stream[k] = ((uint64_t)y << 32) | (uint32_t)x, P.index[k] = first + g % count, P.pixel[k] = p;
+        }
+        // dimensions 0, 1 of every path's point: one call per batch (a pixel's paths are consecutive,
+        // so its randomization is computed once)
+        fill(seq, n, P.stream.data(), P.index.data(), 0, 2, u.data());
+        for (size_t k = 0; k < n; ++k) {
+            int p = P.pixel[k], x = x0 + p % W, y = y0 + p / W;
             Vec3 o, d;
-            camera.ray(x + uv[0], y + uv[1], &o, &d);
+            camera.ray(x + u[2 * k], y + u[2 * k + 1], &o, &d);
             P.ox[k] = (float)o.x, P.oy[k] = (float)o.y, P.oz[k] = (float)o.z;
             P.dx[k] = (float)d.x, P.dy[k] = (float)d.y, P.dz[k] = (float)d.z;
             P.br[k] = P.bg[k] = P.bb[k] = 1, P.lr[k] = P.lg[k] = P.lb[k] = 0;
-            P.pixel[k] = p;
         }
         for (int depth = 0; n > 0; ++depth) {
             for (size_t j = 0; j < n; ++j) {
@@ -345,37 +363,40 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                 if (m != j) P.move(m, j);
                 V.px[m] = hx, V.py[m] = hy, V.pz[m] = hz, V.nx[m] = nx, V.ny[m] = ny, V.nz[m] = nz, V.t[m] = t;
                 V.ra[m] = T.rr[tri], V.ga[m] = T.rg[tri], V.ba[m] = T.rb[tri];
-                // this vertex's 6 dimensions (the layout of integrator.h)
-                double u[DIMS_PER_VERTEX];
-                udm1_cursor_fill_f64(&P.cursor[m], DIMS_PER_VERTEX, u);
-                for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(u[d]);
+                ++m;
+            }
+            n = m;
+            // this vertex's 6 dimensions for every live path (the layout of integrator.h), one call
+            fill(seq, n, P.stream.data(), P.index.data(), 2 + DIMS_PER_VERTEX * (uint32_t)depth, DIMS_PER_VERTEX, u.data());
+            for (m = 0; m < n; ++m) {
+                const double *um = &u[DIMS_PER_VERTEX * m];
+                for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(um[d]);
                 double reuse;
-                size_t l = lights_.choose(u[0], &reuse);
+                size_t l = lights_.choose(um[0], &reuse);
                 V.u[0][m] = unit_float(reuse);
                 V.light[m] = (int)l;
+                float hx = V.px[m], hy = V.py[m], hz = V.pz[m], nx = V.nx[m], ny = V.ny[m], nz = V.nz[m], t = V.t[m];
                 Vec3 p(hx, hy, hz);
                 if (!lights_.by_area(l, p)) {  // near the light: by solid angle, in double, as the scalar loop
                     NearSample ns{m, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
                     LightSample ls;
-                    Vec3 n(nx, ny, nz), wo(-P.dx[m], -P.dy[m], -P.dz[m]);
-                    bool ok = lights_.sample(p, u[0], u[1], &ls);
-                    double cos_i = ok ? udm1scene::dot(n, ls.wi) : 0, cos_o = udm1scene::dot(n, wo);
+                    Vec3 ng(nx, ny, nz), wo(-P.dx[m], -P.dy[m], -P.dz[m]);
+                    bool ok = lights_.sample(p, um[0], um[1], &ls);
+                    double cos_i = ok ? udm1scene::dot(ng, ls.wi) : 0, cos_o = udm1scene::dot(ng, wo);
                     if (ok && cos_i * cos_o > 0) {
                         double pdf_b = std::fabs(cos_i) / M_PI;
                         double k = std::fabs(cos_i) * ls.pdf / (ls.pdf * ls.pdf + pdf_b * pdf_b);  // |cos| w / pdf
-                        Vec3 so = p + n * ((cos_i > 0 ? 1 : -1) * udm1scene::ray_offset(p, t)), qp = p + ls.wi * ls.dist;
+                        Vec3 so = p + ng * ((cos_i > 0 ? 1 : -1) * udm1scene::ray_offset(p, t)), qp = p + ls.wi * ls.dist;
                         ns.sx = (float)so.x, ns.sy = (float)so.y, ns.sz = (float)so.z;
                         ns.dx = (float)ls.wi.x, ns.dy = (float)ls.wi.y, ns.dz = (float)ls.wi.z;
                         ns.len = (float)(udm1scene::length(qp - so) - 2 * udm1scene::ray_offset(qp));
-                        ns.cr = (float)(P.br[m] * T.rr[tri] * ls.L.x * k);
-                        ns.cg = (float)(P.bg[m] * T.rg[tri] * ls.L.y * k);
-                        ns.cb = (float)(P.bb[m] * T.rb[tri] * ls.L.z * k);
+                        ns.cr = (float)(P.br[m] * V.ra[m] * ls.L.x * k);
+                        ns.cg = (float)(P.bg[m] * V.ga[m] * ls.L.y * k);
+                        ns.cb = (float)(P.bb[m] * V.ba[m] * ls.L.z * k);
                     }
                     near.push_back(ns);
                 }
-                ++m;
             }
-            n = m;
             shade(n, P, V, lights_f_, Shading{depth, rr_depth_, roulette_});
             for (const NearSample &s : near) {
                 V.sx[s.j] = s.sx, V.sy[s.j] = s.sy, V.sz[s.j] = s.sz, V.sdx[s.j] = s.dx, V.sdy[s.j] = s.dy, V.sdz[s.j] = s.dz;

@@ -403,3 +403,54 @@ void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out) { cursor_fill
 void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out) { cursor_fill_as(cursor, n, out, 1); }
 
 uint32_t udm1_cursor_padded(const udm1_cursor *cursor) { return cursor ? cursor->padded : 0; }
+
+/* ---- many points at once ---- */
+
+udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64_t *streams,
+                                     const uint64_t *indices, uint32_t first_dimension, uint32_t n_dims, double *out)
+{
+    static const char fn[] = "udm1_seq_fill_points_f64";
+    if (!seq) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: seq is NULL", fn);
+    if (n == 0 || n_dims == 0) return UDM1_OK;
+    if (!streams || !indices || !out)
+        return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, !streams ? "streams" : !indices ? "indices" : "out");
+    if (seq->point_count)
+        for (size_t k = 0; k < n; ++k)
+            if (indices[k] >= seq->point_count)
+                return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: indices[%zu] = %llu of a %llu-point set", fn, k,
+                                 (unsigned long long)indices[k], (unsigned long long)seq->point_count);
+    /* Weyl sequences on the plain path (no value function: modes none, shift, screen): the shifts of
+     * a stream's dimensions, and the padding's per-stream words, computed once per run of equal streams */
+    if (seq->gen && !seq->value) {
+        enum { CHUNK = 64 };
+        uint64_t word[CHUNK];
+        for (uint32_t d0 = 0; d0 < n_dims; d0 += CHUNK) {
+            uint32_t m = n_dims - d0 < CHUNK ? n_dims - d0 : CHUNK;
+            uint64_t skey = 0;
+            for (size_t k = 0; k < n; ++k) {
+                if (k == 0 || streams[k] != streams[k - 1]) {
+                    skey = udm1_seq_stream_key(seq, streams[k]);
+                    for (uint32_t j = 0; j < m; ++j) {
+                        uint32_t dim = first_dimension + d0 + j;
+                        word[j] = dim < seq->dims ? seq->offset[dim] + udm1_weyl_shift(seq, skey, dim)
+                                                  : udm1_shift(skey, udm1_dim_key(seq->seed_key, dim));
+                    }
+                }
+                double *o = out + k * n_dims + d0;
+                for (uint32_t j = 0; j < m; ++j) {
+                    uint32_t dim = first_dimension + d0 + j;
+                    uint64_t v = dim < seq->dims ? udm1_weyl_raw(&seq->gen[dim], word[j], udm1_screen_index(seq, skey, indices[k]))
+                                                 : udm1_pad(word[j], indices[k]);
+                    o[j] = udm1_to_f64(v);
+                }
+            }
+        }
+        return UDM1_OK;
+    }
+    for (size_t k = 0; k < n; ++k) {
+        udm1_cursor c;
+        udm1_cursor_start(&c, seq, streams[k], indices[k], first_dimension);
+        udm1_cursor_fill_f64(&c, n_dims, out + k * n_dims);
+    }
+    return UDM1_OK;
+}

@@ -298,6 +298,60 @@ static void test_never_one(void)
     udm1_seq_destroy(s);
 }
 
+/* udm1_seq_fill_points_f64 equals one cursor per point, bit for bit: every preset and randomization
+ * (screen for the Weyl presets), dimension windows inside, across and past the set's own dimensions
+ * (padding), runs of equal streams and changes of stream; and its errors. */
+static void test_fill_points(void)
+{
+    enum { N = 23, ND = 13 };
+    uint64_t streams[N], indices[N];
+    for (int k = 0; k < N; ++k) {
+        streams[k] = k < 9 ? 5 : k < 10 ? ((uint64_t)7 << 32 | 3) : k < 20 ? 0xFFFFFFFFFFFFull : 5; /* runs */
+        indices[k] = (uint64_t)(k * 37) % 61;
+    }
+    for (size_t p = 0; p < udm1_preset_count(); ++p) {
+        udm1_preset_info info;
+        udm1_preset_get(p, &info);
+        int point_set = (info.flags & UDM1_PRESET_POINT_SET) != 0;
+        uint32_t d = info.max_dimensions < 9 ? info.max_dimensions : 9;
+        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_SCREEN; ++r) {
+            udm1_seq_desc desc;
+            udm1_seq_desc_init(&desc);
+            desc.preset = info.name, desc.dimensions = d, desc.point_count = point_set ? 64 : 0;
+            desc.seed = 11, desc.randomize = r;
+            if (r == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = 16;
+            udm1_seq *s = NULL;
+            if (udm1_seq_create_desc(&desc, &s) != UDM1_OK) continue; /* a randomization the preset lacks */
+            for (uint32_t first = 0; first < 12; first += 5) {
+                double got[N * ND], want[N * ND];
+                memset(got, 0xFF, sizeof got);
+                CHECK_STATUS(udm1_seq_fill_points_f64(s, N, streams, indices, first, ND, got), UDM1_OK);
+                for (int k = 0; k < N; ++k) {
+                    udm1_cursor c;
+                    udm1_cursor_start(&c, s, streams[k], indices[k], first);
+                    for (int j = 0; j < ND; ++j) want[k * ND + j] = udm1_cursor_1d_f64(&c);
+                }
+                CHECKF(memcmp(got, want, sizeof got) == 0, "%s randomize %u first dimension %u", info.name, r, first);
+            }
+            if (point_set) {
+                uint64_t bad[2] = {3, 64};
+                double o[2];
+                CHECK_STATUS(udm1_seq_fill_points_f64(s, 2, streams, bad, 0, 1, o), UDM1_ERROR_INDEX_RANGE);
+                CHECK(strstr(udm1_last_error(), "indices[1] = 64") != NULL);
+            }
+            udm1_seq_destroy(s);
+        }
+    }
+    udm1_seq *s = make("wr", 4, 0, 1, UDM1_RANDOMIZE_DEFAULT);
+    double o[4];
+    CHECK_STATUS(udm1_seq_fill_points_f64(NULL, 1, streams, indices, 0, 1, o), UDM1_ERROR_NULL_ARGUMENT);
+    CHECK_STATUS(udm1_seq_fill_points_f64(s, 1, NULL, indices, 0, 1, o), UDM1_ERROR_NULL_ARGUMENT);
+    CHECK(strstr(udm1_last_error(), "streams") != NULL);
+    CHECK_STATUS(udm1_seq_fill_points_f64(s, 1, streams, indices, 0, 1, NULL), UDM1_ERROR_NULL_ARGUMENT);
+    CHECK_STATUS(udm1_seq_fill_points_f64(s, 0, NULL, NULL, 0, 1, NULL), UDM1_OK); /* nothing to do */
+    udm1_seq_destroy(s);
+}
+
 int main(void)
 {
     test_bulk_equals_samples();
@@ -306,5 +360,6 @@ int main(void)
     test_cursor_fill();
     test_padding_is_uniform();
     test_never_one();
+    test_fill_points();
     CHECK_DONE();
 }

@@ -56,7 +56,7 @@
 #include <stdint.h>
 
 #define UDM1_VERSION_MAJOR 1
-#define UDM1_VERSION_MINOR 4
+#define UDM1_VERSION_MINOR 5
 #define UDM1_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, as returned by udm1_version(). */
 #define UDM1_VERSION (UDM1_VERSION_MAJOR * 10000 + UDM1_VERSION_MINOR * 100 + UDM1_VERSION_PATCH)
@@ -393,6 +393,17 @@ UDM1_API void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out);
 UDM1_API void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out);
 /* Number of draws so far that fell past the sequence's dimension count. */
 UDM1_API uint32_t udm1_cursor_padded(const udm1_cursor *cursor);
+
+/* Many points at once, for renderers that trace many paths together (a wavefront): point k is
+ * (streams[k], indices[k]); its dimensions [first_dimension, first_dimension + n_dims) go to
+ * out[k * n_dims + j] as doubles in [0, 1). Equal, bit for bit, to a cursor started at
+ * (streams[k], indices[k], first_dimension) and filled with n_dims values (padding included).
+ * Consecutive points of one stream share its per-stream randomization: keep them together
+ * (sorted by stream) and a Weyl sequence's shifts are computed once per stream, not per point.
+ * Errors: NULL arguments with n > 0, an index outside a point set (naming k). Since 1.5. */
+UDM1_API udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64_t *streams,
+                                              const uint64_t *indices, uint32_t first_dimension,
+                                              uint32_t n_dims, double *out);
 
 /* ------------------------------------------------------------------------ */
 /* Quality metrics                                                           */
