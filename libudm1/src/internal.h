@@ -68,6 +68,9 @@ struct udm1_seq {
     uint64_t screen_spp;   /* UDM1_MODE_SCREEN: samples per pixel N (screen_shift.h) */
     int tent;              /* "+tent": every value goes through udm1_tent */
     udm1_value_fn inner_value; /* with tent: the sequence's own value function (NULL: the Weyl path) */
+    /* Optional: for presets whose value is udm1_randomize_base2(mode, base2(...), udm1_word(seq, skey, dim)),
+     * the value before randomization (udm1_seq_fill_points_f64 then computes a stream's words once) */
+    udm1_value_fn base2;
     char *owned_name;      /* with tent: "NAME+tent" (name points here) */
 };
 

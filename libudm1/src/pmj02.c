@@ -176,14 +176,20 @@ static uint64_t shuffled(const pmj02 *t, uint64_t K, uint32_t key, uint64_t inde
     return j;
 }
 
-static uint64_t pmj02_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+static uint64_t pmj02_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
+    (void)skey;
     const pmj02 *t = seq->data;
     uint64_t K = seq->point_count;
     uint32_t pair = dim / 2;
     if (pair) index = shuffled(t, K, udm1_key32(seq->seed_key, 0x504D4A53u, pair), index);
     uint64_t v = (uint64_t)t->xy[(pair * K + index) * 2 + (dim & 1)] << 32;
-    return udm1_randomize_base2(seq->mode, v + seq->offset[dim], udm1_word(seq, skey, dim));
+    return v + seq->offset[dim];
+}
+
+static uint64_t pmj02_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    return udm1_randomize_base2(seq->mode, pmj02_base2(seq, skey, index, dim), udm1_word(seq, skey, dim));
 }
 
 udm1_status udm1_init_pmj02(udm1_seq_t *seq)
@@ -215,5 +221,6 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
     while (((uint64_t)1 << t->bits) < K) ++t->bits;
     seq->data = t;
     seq->value = pmj02_value;
+    seq->base2 = pmj02_base2;
     return UDM1_OK;
 }

@@ -419,9 +419,10 @@ udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64
             if (indices[k] >= seq->point_count)
                 return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: indices[%zu] = %llu of a %llu-point set", fn, k,
                                  (unsigned long long)indices[k], (unsigned long long)seq->point_count);
-    /* Weyl sequences on the plain path (no value function: modes none, shift, screen): the shifts of
-     * a stream's dimensions, and the padding's per-stream words, computed once per run of equal streams */
-    if (seq->gen && !seq->value) {
+    /* Weyl sequences on the plain path (no value function: modes none, shift, screen) and the presets with
+     * a base-2 randomization (base2: Sobol, PMJ02): the shifts or random words of a stream's dimensions,
+     * and the padding's per-stream words, computed once per run of equal streams */
+    if ((seq->gen && !seq->value) || (seq->base2 && !seq->tent)) {
         enum { CHUNK = 64 };
         uint64_t word[CHUNK];
         for (uint32_t d0 = 0; d0 < n_dims; d0 += CHUNK) {
@@ -432,15 +433,17 @@ udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64
                     skey = udm1_seq_stream_key(seq, streams[k]);
                     for (uint32_t j = 0; j < m; ++j) {
                         uint32_t dim = first_dimension + d0 + j;
-                        word[j] = dim < seq->dims ? seq->offset[dim] + udm1_weyl_shift(seq, skey, dim)
-                                                  : udm1_shift(skey, udm1_dim_key(seq->seed_key, dim));
+                        word[j] = dim >= seq->dims ? udm1_shift(skey, udm1_dim_key(seq->seed_key, dim))
+                                  : seq->base2     ? udm1_word(seq, skey, dim)
+                                                   : seq->offset[dim] + udm1_weyl_shift(seq, skey, dim);
                     }
                 }
                 double *o = out + k * n_dims + d0;
                 for (uint32_t j = 0; j < m; ++j) {
                     uint32_t dim = first_dimension + d0 + j;
-                    uint64_t v = dim < seq->dims ? udm1_weyl_raw(&seq->gen[dim], word[j], udm1_screen_index(seq, skey, indices[k]))
-                                                 : udm1_pad(word[j], indices[k]);
+                    uint64_t v = dim >= seq->dims ? udm1_pad(word[j], indices[k])
+                                 : seq->base2 ? udm1_randomize_base2(seq->mode, seq->base2(seq, skey, indices[k], dim), word[j])
+                                              : udm1_weyl_raw(&seq->gen[dim], word[j], udm1_screen_index(seq, skey, indices[k]));
                     o[j] = udm1_to_f64(v);
                 }
             }

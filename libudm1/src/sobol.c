@@ -32,10 +32,15 @@ static uint64_t sobol_raw(const sobol *t, uint32_t dim, uint64_t n)
     return x;
 }
 
+static uint64_t sobol_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    (void)skey;
+    return sobol_raw(seq->data, dim, index) + seq->offset[dim];
+}
+
 static uint64_t sobol_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
-    uint64_t v = sobol_raw(seq->data, dim, index) + seq->offset[dim];
-    return udm1_randomize_base2(seq->mode, v, udm1_word(seq, skey, dim));
+    return udm1_randomize_base2(seq->mode, sobol_base2(seq, skey, index, dim), udm1_word(seq, skey, dim));
 }
 
 /* Sequential fill: the Gray code changes one bit per step. */
@@ -84,6 +89,7 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
     }
     seq->data = t;
     seq->value = sobol_value;
+    seq->base2 = sobol_base2;
     seq->fill = sobol_fill;
     return UDM1_OK;
 #else

@@ -342,6 +342,20 @@ static void test_fill_points(void)
             udm1_seq_destroy(s);
         }
     }
+    /* the tent transform over a base-2 preset and over a Weyl sequence */
+    const char *tents[] = {"sobol+tent", "wr+tent", "pmj02+tent"};
+    for (int t = 0; t < 3; ++t) {
+        udm1_seq *s = make(tents[t], 6, t == 2 ? 64 : 0, 3, UDM1_RANDOMIZE_DEFAULT);
+        double got[N * 8], want[N * 8];
+        CHECK_STATUS(udm1_seq_fill_points_f64(s, N, streams, indices, 1, 8, got), UDM1_OK);
+        for (int k = 0; k < N; ++k) {
+            udm1_cursor c;
+            udm1_cursor_start(&c, s, streams[k], indices[k], 1);
+            udm1_cursor_fill_f64(&c, 8, want + k * 8);
+        }
+        CHECKF(memcmp(got, want, sizeof got) == 0, "%s", tents[t]);
+        udm1_seq_destroy(s);
+    }
     udm1_seq *s = make("wr", 4, 0, 1, UDM1_RANDOMIZE_DEFAULT);
     double o[4];
     CHECK_STATUS(udm1_seq_fill_points_f64(NULL, 1, streams, indices, 0, 1, o), UDM1_ERROR_NULL_ARGUMENT);
