@@ -49,7 +49,12 @@ public:
     size_t choose(double u1, double *rescaled) const
     {
         double target = u1 * cdf_.back();
-        size_t i = std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin();
+        size_t i = 0;
+        if (cdf_.size() <= 16) {  // upper_bound without its unpredictable branches: the count of cdf <= target
+            for (double c : cdf_) i += c <= target;
+        } else {
+            i = std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin();
+        }
         if (i >= lights_.size()) i = lights_.size() - 1;
         while (prob_[i] == 0 && i > 0) --i;  // (only with a zero-power light at the very end)
         double lo = i ? cdf_[i - 1] : 0.0;

@@ -298,6 +298,8 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
         }
     };
     const Triangles &T = tri_;
+    Vec3 co, ca, cb, cc;
+    camera.pinhole(&co, &ca, &cb, &cc);
     RTCIntersectContext ctx;
     for (uint64_t start = 0; start < total; start += BATCH) {
         size_t n = (size_t)std::min<uint64_t>(BATCH, total - start);
@@ -310,12 +312,18 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
         // dimensions 0, 1 of every path's point: one call per batch (a pixel's paths are consecutive,
         // so its randomization is computed once)
         fill(seq, n, P.stream.data(), P.index.data(), 0, 2, u.data());
+        const double *uv = u.data();
+        const int *pixel = P.pixel.data();
+        float *dx = P.dx.data(), *dy = P.dy.data(), *dz = P.dz.data();
+#pragma omp simd
+        for (size_t k = 0; k < n; ++k) {  // camera rays: normalize(a + px b + py c)
+            double px = x0 + pixel[k] % W + uv[2 * k], py = y0 + pixel[k] / W + uv[2 * k + 1];
+            double ex = ca.x + px * cb.x + py * cc.x, ey = ca.y + px * cb.y + py * cc.y, ez = ca.z + px * cb.z + py * cc.z;
+            double inv = 1 / std::sqrt(ex * ex + ey * ey + ez * ez);
+            dx[k] = (float)(ex * inv), dy[k] = (float)(ey * inv), dz[k] = (float)(ez * inv);
+        }
         for (size_t k = 0; k < n; ++k) {
-            int p = P.pixel[k], x = x0 + p % W, y = y0 + p / W;
-            Vec3 o, d;
-            camera.ray(x + u[2 * k], y + u[2 * k + 1], &o, &d);
-            P.ox[k] = (float)o.x, P.oy[k] = (float)o.y, P.oz[k] = (float)o.z;
-            P.dx[k] = (float)d.x, P.dy[k] = (float)d.y, P.dz[k] = (float)d.z;
+            P.ox[k] = (float)co.x, P.oy[k] = (float)co.y, P.oz[k] = (float)co.z;
             P.br[k] = P.bg[k] = P.bb[k] = 1, P.lr[k] = P.lg[k] = P.lb[k] = 0;
         }
         for (int depth = 0; n > 0; ++depth) {
@@ -404,12 +412,12 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
             }
             // shadow rays of the paths whose light sample contributes
             size_t ns = 0;
-            for (size_t j = 0; j < n; ++j)
-                if ((V.cr[j] > 0 || V.cg[j] > 0 || V.cb[j] > 0) && V.slen[j] > 0) {
-                    shadow[ns] = RTCRay{V.sx[j], V.sy[j], V.sz[j], 0.0f, V.sdx[j], V.sdy[j], V.sdz[j], 0, V.slen[j],
-                                        0xFFFFFFFF, (unsigned)ns, 0};
-                    shadow_of[ns++] = (int)j;
-                }
+            for (size_t j = 0; j < n; ++j) {  // written always, kept where it counts (no branch to mispredict)
+                shadow[ns] = RTCRay{V.sx[j], V.sy[j], V.sz[j], 0.0f, V.sdx[j], V.sdy[j], V.sdz[j], 0, V.slen[j],
+                                    0xFFFFFFFF, (unsigned)ns, 0};
+                shadow_of[ns] = (int)j;
+                ns += ((V.cr[j] > 0) | (V.cg[j] > 0) | (V.cb[j] > 0)) & (V.slen[j] > 0);
+            }
             rtcInitIntersectContext(&ctx);
             rtcOccluded1M(rt_.handle(), &ctx, shadow.data(), (unsigned)ns, sizeof(RTCRay));
             counts->rays += ns;

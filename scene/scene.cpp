@@ -192,6 +192,17 @@ void CameraRays::ray(double px, double py, Vec3 *origin, Vec3 *dir) const
     *dir = normalize(world_from_camera_.vector(d));
 }
 
+void CameraRays::pinhole(Vec3 *origin, Vec3 *a, Vec3 *b, Vec3 *c) const
+{
+    // camera space (sx tan, sy tan, 1) with sx = sx0 + px (span / w), sy = sy1 - py (span / h): linear in px, py
+    Vec3 mx = world_from_camera_.vector(Vec3(1, 0, 0)), my = world_from_camera_.vector(Vec3(0, 1, 0));
+    Vec3 mz = world_from_camera_.vector(Vec3(0, 0, 1));
+    *origin = origin_;
+    *a = mz + mx * (sx0_ * tan_half_fov_) + my * (sy1_ * tan_half_fov_);
+    *b = mx * (sx_span_ / w_ * tan_half_fov_);
+    *c = my * (-sy_span_ / h_ * tan_half_fov_);
+}
+
 void camera_ray(const Scene &s, double px, double py, Vec3 *origin, Vec3 *dir) { CameraRays(s).ray(px, py, origin, dir); }
 
 Scene load_scene(const std::string &path, Need need)

@@ -129,6 +129,9 @@ public:
     // the same as ray() when the camera's lens radius is 0
     void ray(double px, double py, double lu, double lv, Vec3 *origin, Vec3 *dir) const;
     bool has_lens() const { return lens_radius_ > 0; }
+    // Without a lens, ray(px, py) in closed form: the origin, and the direction normalize(a + px b + py c)
+    // (equal to ray()'s within rounding; for loops over many rays).
+    void pinhole(Vec3 *origin, Vec3 *a, Vec3 *b, Vec3 *c) const;
 
 private:
     Mat4 world_from_camera_;
