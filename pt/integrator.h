@@ -1,6 +1,9 @@
 // integrator.h - unidirectional path tracing with next-event estimation and
 // multiple importance sampling (power heuristic), Russian roulette and a maximum
-// depth, as pbrt-v4's "path" integrator, in RGB.
+// depth, as pbrt-v4's "path" integrator, in RGB. Two loops trace it: the scalar loop
+// here (one path at a time, in double, every material and light) and, for the scenes of
+// its subset, the wavefront loop (wavefront.h: many paths at a time, in float); the same
+// estimator and sampler points in both (Options::loop chooses).
 //
 // Dimension layout: one sampler point per path. For pixel p and sample index i the
 // udm1 cursor starts at (stream p, index i, dimension 0) and hands out, in order:

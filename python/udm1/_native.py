@@ -198,6 +198,7 @@ _proto("udm1_seq_offset", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint32, u64p)
 _proto("udm1_seq_sample_u64", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32, u64p)
 _proto("udm1_seq_sample_f64", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32, f64p)
 _proto("udm1_seq_sample_f32", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32, f32p)
+_proto("udm1_seq_fill_points_f64", _S, _SEQ, ctypes.c_size_t, u64p, u64p, ctypes.c_uint32, ctypes.c_uint32, f64p)
 for _suffix, _ptr in (("u64", ctypes.c_void_p), ("f64", ctypes.c_void_p), ("f32", ctypes.c_void_p)):
     _proto(
         f"udm1_seq_fill_{_suffix}", _S, _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_size_t,

@@ -243,6 +243,25 @@ class Sequence:
                                       out.ctypes.data if n else None, nd))
         return out
 
+    def points_at(self, streams, indices, *, dims=None) -> np.ndarray:
+        """Point indices[k] of stream streams[k] for every k, as an (n, nd) float64 array (dims: a
+        contiguous range of dimensions, default all; past the sequence's own they are padded, as
+        the cursor pads them). What a wavefront renderer asks at each bounce: one call
+        (udm1_seq_fill_points_f64), equal to per-point samples; keep a stream's points together."""
+        s = np.ascontiguousarray(streams, dtype=np.uint64)
+        i = np.ascontiguousarray(indices, dtype=np.uint64)
+        if s.ndim != 1 or s.shape != i.shape:
+            raise ValueError("udm1.Sequence.points_at: streams and indices must be 1-D arrays of one length")
+        r = range(self.d) if dims is None else dims
+        if not isinstance(r, range) or r.step != 1 or len(r) == 0 or r.start < 0:
+            raise ValueError("udm1.Sequence.points_at: dims must be a non-empty contiguous range")
+        out = np.empty((len(s), len(r)))
+        u64 = ctypes.POINTER(ctypes.c_uint64)
+        check(lib.udm1_seq_fill_points_f64(self.handle, len(s), s.ctypes.data_as(u64), i.ctypes.data_as(u64),
+                                           _u32(r.start), _u32(len(r)),
+                                           out.ctypes.data_as(ctypes.POINTER(ctypes.c_double))))
+        return out
+
     def integration_error(self, integrand, d: int, n: int, randomizations: int = 32) -> tuple[float, float]:
         """(rmse, bias) of the mean of a test integrand over points [0, n) of streams
         0..R-1 against its exact integral (udm1_integration_error)."""

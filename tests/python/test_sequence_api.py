@@ -124,3 +124,25 @@ def test_check_reports():
     assert r["dependent"] and r["dependent_exact"] and r["dependent_dims"] == (0, 1)
     r = udm1.check_alphas([udm1.Sqrt(3), udm1.Sqrt(4)], 64)
     assert r["rational"] and r["rational_dim"] == 1
+
+
+@pytest.mark.parametrize("name,kw", [("wr", {}), ("sobol-owen", {}), ("pmj02", {"point_count": 64}), ("halton", {})])
+def test_points_at_equals_samples(name, kw):
+    """points_at (udm1_seq_fill_points_f64): point indices[k] of stream streams[k], equal to per-point samples,
+    with runs of one stream and dimensions past the sequence's own (padding, as the cursor pads)."""
+    s = udm1.Sequence(name, 6, seed=5, **kw)
+    streams = np.array([7, 7, 7, (3 << 32) | 2, 9, 9, 7], dtype=np.uint64)
+    indices = np.array([0, 5, 63, 1, 2, 2, 40], dtype=np.uint64)
+    got = s.points_at(streams, indices, dims=range(2, 9))
+    assert got.shape == (7, 7)
+    for k in range(7):
+        for j in range(4):  # dims 2..5: the sequence's own
+            assert got[k, j] == s.sample(int(indices[k]), 2 + j, stream=int(streams[k]))
+    c = udm1.Sequence(name, 6, seed=5, **kw)
+    assert np.array_equal(got, c.points_at(streams, indices, dims=range(2, 9)))  # padding is a function of its inputs
+    assert np.all((got >= 0) & (got < 1))
+    with pytest.raises(ValueError):
+        s.points_at(streams, indices[:3])
+    if kw:
+        with pytest.raises(udm1.UDM1Error, match="indices\\[0\\] = 64"):
+            s.points_at(np.array([1]), np.array([64]))
