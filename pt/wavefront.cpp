@@ -120,10 +120,24 @@ void fill(const udm1_seq *seq, size_t n, const uint64_t *streams, const uint64_t
         throw std::runtime_error(udm1_last_error());
 }
 
+// What Embree's SOA stream needs beside the rays' origins and directions: constant inputs (tnear, time,
+// mask, id, flags), tfar, and the hit.
+struct Stream {
+    std::vector<float> tnear, time, tfar, ngx, ngy, ngz, u, v;
+    std::vector<unsigned> mask, id, flags, prim, geom, inst;
+    void resize(size_t n)
+    {
+        tnear.assign(n, 0.0f), time.assign(n, 0.0f), tfar.resize(n), ngx.resize(n), ngy.resize(n), ngz.resize(n);
+        u.resize(n), v.resize(n), mask.assign(n, 0xFFFFFFFFu), id.resize(n), flags.assign(n, 0), prim.resize(n);
+        geom.resize(n), inst.resize(n);
+        for (size_t i = 0; i < n; ++i) id[i] = (unsigned)i;
+    }
+};
+
 struct Buffers {
     Paths paths;
     Vertices vertices;
-    std::vector<RTCRayHit> rh;
+    Stream hits;  // the closest-hit stream's other arrays (origins, directions: the paths')
     std::vector<RTCRay> shadow;
     std::vector<int> shadow_of;
     std::vector<NearSample> near;
@@ -272,13 +286,13 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
     Buffers &b = buffers;
     Paths &P = b.paths;
     Vertices &V = b.vertices;
-    std::vector<RTCRayHit> &rh = b.rh;
+    Stream &S = b.hits;
     std::vector<RTCRay> &shadow = b.shadow;
     std::vector<int> &shadow_of = b.shadow_of;
     std::vector<NearSample> &near = b.near;
     std::vector<double> &u = b.u;
     if (P.ox.size() < BATCH) {
-        P.resize(BATCH), V.resize(BATCH), rh.resize(BATCH), shadow.resize(BATCH), shadow_of.resize(BATCH);
+        P.resize(BATCH), V.resize(BATCH), S.resize(BATCH), shadow.resize(BATCH), shadow_of.resize(BATCH);
         u.resize(BATCH * DIMS_PER_VERTEX);
     }
     const int W = x1 - x0;
@@ -327,27 +341,28 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
             P.br[k] = P.bg[k] = P.bb[k] = 1, P.lr[k] = P.lg[k] = P.lb[k] = 0;
         }
         for (int depth = 0; n > 0; ++depth) {
-            for (size_t j = 0; j < n; ++j) {
-                RTCRayHit &q = rh[j];
-                q.ray = RTCRay{P.ox[j], P.oy[j], P.oz[j], 0.0f, P.dx[j], P.dy[j], P.dz[j], 0, INFINITY, 0xFFFFFFFF, (unsigned)j, 0};
-                q.hit.geomID = RTC_INVALID_GEOMETRY_ID, q.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-            }
+            std::fill_n(S.tfar.begin(), n, INFINITY);
+            std::fill_n(S.geom.begin(), n, RTC_INVALID_GEOMETRY_ID);
+            std::fill_n(S.inst.begin(), n, RTC_INVALID_GEOMETRY_ID);
+            RTCRayHitNp q{{P.ox.data(), P.oy.data(), P.oz.data(), S.tnear.data(), P.dx.data(), P.dy.data(), P.dz.data(),
+                           S.time.data(), S.tfar.data(), S.mask.data(), S.id.data(), S.flags.data()},
+                          {S.ngx.data(), S.ngy.data(), S.ngz.data(), S.u.data(), S.v.data(), S.prim.data(), S.geom.data(),
+                           {S.inst.data()}}};
             rtcInitIntersectContext(&ctx);
             if (depth == 0) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera rays of neighbouring pixels
-            rtcIntersect1M(rt_.handle(), &ctx, rh.data(), (unsigned)n, sizeof(RTCRayHit));
+            rtcIntersectNp(rt_.handle(), &ctx, &q, (unsigned)n);
             counts->rays += n;
             // the hits: emission (MIS against the BSDF sample that found it), then the paths that go on
             size_t m = 0;
             near.clear();
             for (size_t j = 0; j < n; ++j) {
-                const RTCRayHit &q = rh[j];
-                if (q.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+                if (S.geom[j] == RTC_INVALID_GEOMETRY_ID) {
                     finish(j);
                     continue;
                 }
-                unsigned shape = rt_.shape_of_geometry(q.hit.geomID);
-                size_t tri = T.first[shape] + q.hit.primID;
-                float t = q.ray.tfar, hx = P.ox[j] + P.dx[j] * t, hy = P.oy[j] + P.dy[j] * t, hz = P.oz[j] + P.dz[j] * t;
+                unsigned shape = rt_.shape_of_geometry(S.geom[j]);
+                size_t tri = T.first[shape] + S.prim[j];
+                float t = S.tfar[j], hx = P.ox[j] + P.dx[j] * t, hy = P.oy[j] + P.dy[j] * t, hz = P.oz[j] + P.dz[j] * t;
                 float nx = T.nx[tri], ny = T.ny[tri], nz = T.nz[tri];
                 if (int li = T.light[tri]; li >= 0) {
                     const LightArrays &F = lights_f_;
@@ -355,7 +370,7 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                         float w = 1;
                         if (depth > 0) {  // the density with which light sampling at the last vertex finds this point
                             Hit h;
-                            h.shape = shape, h.prim = q.hit.primID, h.t = t;
+                            h.shape = shape, h.prim = S.prim[j], h.t = t;
                             h.p = Vec3(hx, hy, hz), h.ng = Vec3(nx, ny, nz);
                             float pl = (float)lights_.pdf(Vec3(P.qx[j], P.qy[j], P.qz[j]), h), pb = P.pb[j];
                             w = pb * pb / (pb * pb + pl * pl);
