@@ -137,9 +137,7 @@ struct Stream {
 struct Buffers {
     Paths paths;
     Vertices vertices;
-    Stream hits;  // the closest-hit stream's other arrays (origins, directions: the paths')
-    std::vector<RTCRay> shadow;
-    std::vector<int> shadow_of;
+    Stream hits;  // the streams' other arrays (origins, directions: the paths' and the vertices')
     std::vector<NearSample> near;
     std::vector<double> u;  // sampler values, DIMS_PER_VERTEX per path
 };
@@ -287,12 +285,10 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
     Paths &P = b.paths;
     Vertices &V = b.vertices;
     Stream &S = b.hits;
-    std::vector<RTCRay> &shadow = b.shadow;
-    std::vector<int> &shadow_of = b.shadow_of;
     std::vector<NearSample> &near = b.near;
     std::vector<double> &u = b.u;
     if (P.ox.size() < BATCH) {
-        P.resize(BATCH), V.resize(BATCH), S.resize(BATCH), shadow.resize(BATCH), shadow_of.resize(BATCH);
+        P.resize(BATCH), V.resize(BATCH), S.resize(BATCH);
         u.resize(BATCH * DIMS_PER_VERTEX);
     }
     const int W = x1 - x0;
@@ -425,22 +421,21 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                 V.sx[s.j] = s.sx, V.sy[s.j] = s.sy, V.sz[s.j] = s.sz, V.sdx[s.j] = s.dx, V.sdy[s.j] = s.dy, V.sdz[s.j] = s.dz;
                 V.slen[s.j] = s.len, V.cr[s.j] = s.cr, V.cg[s.j] = s.cg, V.cb[s.j] = s.cb;
             }
-            // shadow rays of the paths whose light sample contributes
+            // shadow rays of the paths whose light sample contributes; the others inactive (tfar < tnear)
             size_t ns = 0;
-            for (size_t j = 0; j < n; ++j) {  // written always, kept where it counts (no branch to mispredict)
-                shadow[ns] = RTCRay{V.sx[j], V.sy[j], V.sz[j], 0.0f, V.sdx[j], V.sdy[j], V.sdz[j], 0, V.slen[j],
-                                    0xFFFFFFFF, (unsigned)ns, 0};
-                shadow_of[ns] = (int)j;
-                ns += ((V.cr[j] > 0) | (V.cg[j] > 0) | (V.cb[j] > 0)) & (V.slen[j] > 0);
+            float *stfar = S.tfar.data();
+            for (size_t j = 0; j < n; ++j) {
+                bool active = ((V.cr[j] > 0) | (V.cg[j] > 0) | (V.cb[j] > 0)) & (V.slen[j] > 0);
+                stfar[j] = active ? V.slen[j] : -1.0f;
+                ns += active;
             }
+            RTCRayNp sh{V.sx.data(), V.sy.data(), V.sz.data(), S.tnear.data(), V.sdx.data(), V.sdy.data(), V.sdz.data(),
+                        S.time.data(), stfar, S.mask.data(), S.id.data(), S.flags.data()};
             rtcInitIntersectContext(&ctx);
-            rtcOccluded1M(rt_.handle(), &ctx, shadow.data(), (unsigned)ns, sizeof(RTCRay));
+            rtcOccludedNp(rt_.handle(), &ctx, &sh, (unsigned)n);
             counts->rays += ns;
-            for (size_t s = 0; s < ns; ++s)
-                if (shadow[s].tfar >= 0) {
-                    int j = shadow_of[s];
-                    P.lr[j] += V.cr[j], P.lg[j] += V.cg[j], P.lb[j] += V.cb[j];
-                }
+            for (size_t j = 0; j < n; ++j)
+                if (stfar[j] >= 0) P.lr[j] += V.cr[j], P.lg[j] += V.cg[j], P.lb[j] += V.cb[j];
             // the paths that ended at this vertex
             size_t keep = 0;
             for (size_t j = 0; j < n; ++j) {

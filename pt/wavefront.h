@@ -1,7 +1,7 @@
 // wavefront.h - udm1-pt's path loop for the scenes of the common subset, many paths at a time: the
 // same estimator, dimension layout and sampler points as the scalar loop (integrator.h), traced in
-// batches of up to 4096 paths with one Embree stream per bounce for the closest hits and one for the
-// shadow rays, and the shading (light sample, MIS, BSDF sample, roulette, next ray) in one loop over
+// batches of up to 4096 paths with one Embree SOA stream per bounce for the closest hits (over the
+// paths' own origin and direction arrays; camera rays flagged coherent) and one for the shadow rays, and the shading (light sample, MIS, BSDF sample, roulette, next ray) in one loop over
 // the live paths in float that the compiler vectorizes.
 //
 // The subset: triangle meshes without vertex normals, untextured diffuse materials without bump maps,
