@@ -1,8 +1,10 @@
 // wavefront.h - udm1-pt's path loop for the scenes of the common subset, many paths at a time: the
 // same estimator, dimension layout and sampler points as the scalar loop (integrator.h), traced in
 // batches of up to 4096 paths with one Embree SOA stream per bounce for the closest hits (over the
-// paths' own origin and direction arrays; camera rays flagged coherent) and one for the shadow rays, and the shading (light sample, MIS, BSDF sample, roulette, next ray) in one loop over
-// the live paths in float that the compiler vectorizes.
+// paths' own origin and direction arrays; camera rays flagged coherent) and one for the shadow rays,
+// the sampler's values of the whole batch in one call (udm1_seq_fill_points_f64), and the shading
+// (light sample, MIS, BSDF sample, roulette, next ray) in one loop over the live paths in float that
+// the compiler vectorizes.
 //
 // The subset: triangle meshes without vertex normals, untextured diffuse materials without bump maps,
 // triangle area lights, a pinhole camera, MIS (--strategy mis). Everything else - spheres, coated,
