@@ -2,15 +2,18 @@
 given error.
 
 1. Throughput: paths/s and rays/s of udm1-pt on the built-in Cornell box (the wavefront loop, and
-   the scalar loop for comparison) and on the shared pbrt-v4 scenes (cornell-box, veach-mis; skipped with a message where ../shared is absent), and Mitsuba 3
-   (PyPI `mitsuba`, variant scalar_rgb, its `path` integrator) on the same Cornell box at the same spp.
+   the scalar loop for comparison) and on the shared pbrt-v4 scenes (cornell-box, veach-mis; skipped
+   with a message where ../shared is absent), and Mitsuba 3 (PyPI `mitsuba`, variant scalar_rgb, its
+   `path` integrator) on the same Cornell box at the same spp.
 2. Equal spp: RMSE (root of the MSE averaged over --seeds renders; time averaged too) against one
    common reference (udm1-pt, sobol-owen at --ref-spp, cached) for every udm1 sampler and every
-   Mitsuba sampler at each spp (its orthogonal sampler renders the square of a prime at or above the
-   spp asked, 25/121/289/1369 for 16/64/256/1024: the table shows the count it took, and its
-   time and error are those of that count). The scenes are matched by `udm1-pt export` (see
-   tools/mitsuba_scene.py); the two renderers' high-spp images agree pixel by pixel within their
-   noise. Errors are those of `udm1-pt compare` (linear RGB clamped to [0, 1], as the PSNR).
+   Mitsuba sampler at each spp, the renders interleaved (per spp: a udm1-pt sampler, a Mitsuba
+   sampler, and so on), so that the machine's drift during the run falls on both alike. Mitsuba's
+   orthogonal sampler renders the square of a prime at or above the spp asked, 25/121/289/1369 for
+   16/64/256/1024: the table shows the count it took, and its time and error are those of that
+   count. The scenes are matched by `udm1-pt export` (see tools/mitsuba_scene.py); the two
+   renderers' high-spp images agree pixel by pixel within their noise. Errors are those of
+   `udm1-pt compare` (linear RGB clamped to [0, 1], as the PSNR).
 3. Equal error: for each target RMSE (the errors Mitsuba's independent sampler reaches at the spps),
    the time each sampler needs, interpolated log-log between measured points; the ratio of Mitsuba's
    best time to udm1-pt's best time is the speed-up at equal error.
@@ -189,20 +192,24 @@ def main(argv=None) -> int:
     ref = out / f"ref-cornell-{args.size}-{args.ref_spp}.exr"
     log(f"reference: udm1-pt sobol-owen {args.ref_spp} spp at {args.size} -> {ref} (reused when cached)")
     tool_run(tool, "reference", "-o", str(ref), "--spp", str(args.ref_spp), "--size", args.size, "--seed", "7")
+    # interleaved, so that the VM's drift during the run falls on both renderers alike: per spp, one
+    # udm1-pt sampler, then one Mitsuba sampler, and so on
     rows = []
-    for s in ours:
-        log(f"udm1-pt {s}: spp {spps}")
-        csv_out = tool_run(tool, "sweep", "--against", str(ref), "--samplers", s, "--spps", args.spps,
-                           "--size", args.size, "--seeds", str(args.seeds))
-        recs = list(csv.DictReader(csv_out.splitlines()))
-        for spp in spps:
-            mine = [r for r in recs if int(r["spp"]) == spp]
-            rows.append({"renderer": "udm1-pt", "sampler": s, "spp": spp,
-                         "seconds": float(np.mean([float(r["seconds"]) for r in mine])),
-                         "rmse": float(np.sqrt(np.mean([float(r["rmse"]) ** 2 for r in mine])))})
-    for s in theirs:
-        for spp in spps:
-            log(f"Mitsuba {s}: spp {spp}")
+    for spp in spps:
+        order = []
+        for k in range(max(len(ours), len(theirs))):
+            order += [("udm1-pt", ours[k])] if k < len(ours) else []
+            order += [("mitsuba", theirs[k])] if k < len(theirs) else []
+        for renderer, s in order:
+            log(f"{renderer} {s}: spp {spp}")
+            if renderer == "udm1-pt":
+                csv_out = tool_run(tool, "sweep", "--against", str(ref), "--samplers", s, "--spps", str(spp),
+                                   "--size", args.size, "--seeds", str(args.seeds))
+                recs = list(csv.DictReader(csv_out.splitlines()))
+                rows.append({"renderer": "udm1-pt", "sampler": s, "spp": spp,
+                             "seconds": float(np.mean([float(r["seconds"]) for r in recs])),
+                             "rmse": float(np.sqrt(np.mean([float(r["rmse"]) ** 2 for r in recs])))})
+                continue
             secs, mse, counts = [], [], []
             for seed in range(1, args.seeds + 1):
                 img, t = mitsuba_scene.render(scene_dir, spp, s, seed, counts)
