@@ -197,7 +197,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     acc.spp = opt.spp, acc.first = opt.first, acc.count = count;
     const udm1scene::CameraRays camera(view);
     Tracer tracer{scene, rt, lights, materials, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
-    std::string why = opt.loop == Loop::Scalar ? "scalar loop asked for" : wavefront_unsupported(scene, materials, opt);
+    std::string why = opt.loop == Loop::Scalar ? "scalar loop asked for" : wavefront_unsupported(scene, opt);
     if (opt.loop == Loop::Wavefront && !why.empty()) throw std::runtime_error("no wavefront loop: " + why);
     std::unique_ptr<Wavefront> wavefront;
     if (why.empty()) wavefront = std::make_unique<Wavefront>(scene, rt, materials, lights, max_depth, opt.roulette, opt.rr_depth);

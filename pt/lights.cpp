@@ -139,8 +139,7 @@ Vec3 Lights::emitted(const udm1scene::Hit &h, Vec3 w) const
 
 bool Lights::by_solid_angle(const Light &l, Vec3 p, double *omega) const
 {
-    Vec3 d = l.centroid - p;
-    if (l.area < near_ * dot(d, d)) return false;  // far: area sampling is as good, and cheaper
+    if (far(l, p)) return false;
     *omega = solid_angle(p, l.p0, l.p1, l.p2);
     return *omega >= MIN_SPHERICAL_AREA && *omega <= MAX_SPHERICAL_AREA;
 }

@@ -12,9 +12,8 @@ using udm1scene::Hit;
 using udm1scene::Scene;
 using udm1scene::Shape;
 
-std::string wavefront_unsupported(const Scene &scene, const Materials &materials, const Options &opt)
+std::string wavefront_unsupported(const Scene &scene, const Options &opt)
 {
-    (void)materials;
     if (opt.strategy != Strategy::Mis) return "only MIS (--strategy mis) has a wavefront loop";
     if (scene.camera.lens_radius > 0) return "the camera has a thin lens";
     bool light = false;

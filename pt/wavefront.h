@@ -28,7 +28,7 @@ namespace udm1pt {
 
 // Why the wavefront loop cannot render (scene, opt), in a few words naming the first shape, material
 // or option outside its subset; empty if it can.
-std::string wavefront_unsupported(const udm1scene::Scene &scene, const Materials &materials, const Options &opt);
+std::string wavefront_unsupported(const udm1scene::Scene &scene, const Options &opt);
 
 class Wavefront {
 public:
