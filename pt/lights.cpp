@@ -139,7 +139,8 @@ Vec3 Lights::emitted(const udm1scene::Hit &h, Vec3 w) const
 
 bool Lights::by_solid_angle(const Light &l, Vec3 p, double *omega) const
 {
-    if (far(l, p)) return false;
+    // far, or behind a one-sided light (no light reaches p however it is sampled): by area, the cheaper
+    if (far(l, p) || (!l.twosided && dot(l.n, p - l.p0) <= 0)) return false;
     *omega = solid_angle(p, l.p0, l.p1, l.p2);
     return *omega >= MIN_SPHERICAL_AREA && *omega <= MAX_SPHERICAL_AREA;
 }
