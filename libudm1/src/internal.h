@@ -71,6 +71,9 @@ struct udm1_seq {
     /* Optional: for presets whose value is udm1_randomize_base2(mode, base2(...), udm1_word(seq, skey, dim)),
      * the value before randomization (udm1_seq_fill_points_f64 then computes a stream's words once) */
     udm1_value_fn base2;
+    /* Optional, with base2: base2's values of dimensions dim0 .. dim0 + m - 1 (all < dims) of one point
+     * into raw[0 .. m), in one call (Sobol: the index's Gray-code bits found once for all of them) */
+    void (*base2_point)(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim0, uint32_t m, uint64_t *raw);
     char *owned_name;      /* with tent: "NAME+tent" (name points here) */
 };
 

@@ -439,8 +439,20 @@ udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64
                     }
                 }
                 double *o = out + k * n_dims + d0;
+                uint32_t first = first_dimension + d0, inside = first >= seq->dims ? 0 : seq->dims - first;
+                if (inside > m) inside = m;
+                if (seq->base2_point && inside) {  /* the point's raw values at once, then as below */
+                    uint64_t raw[CHUNK];
+                    seq->base2_point(seq, skey, indices[k], first, inside, raw);
+                    if (seq->mode == UDM1_MODE_PERMUTE)  /* (the common case without a switch per value) */
+                        for (uint32_t j = 0; j < inside; ++j) o[j] = udm1_to_f64(raw[j] ^ word[j]);
+                    else
+                        for (uint32_t j = 0; j < inside; ++j) o[j] = udm1_to_f64(udm1_randomize_base2(seq->mode, raw[j], word[j]));
+                    for (uint32_t j = inside; j < m; ++j) o[j] = udm1_to_f64(udm1_pad(word[j], indices[k]));
+                    continue;
+                }
                 for (uint32_t j = 0; j < m; ++j) {
-                    uint32_t dim = first_dimension + d0 + j;
+                    uint32_t dim = first + j;
                     uint64_t v = dim >= seq->dims ? udm1_pad(word[j], indices[k])
                                  : seq->base2 ? udm1_randomize_base2(seq->mode, seq->base2(seq, skey, indices[k], dim), word[j])
                                               : udm1_weyl_raw(&seq->gen[dim], word[j], udm1_screen_index(seq, skey, indices[k]));

@@ -22,13 +22,26 @@ extern const uint32_t udm1_sobol_table_offset[];
 extern const uint32_t udm1_sobol_table_m[];
 #endif
 
-typedef struct sobol { uint64_t v[1][64]; } sobol; /* dims x 64 direction numbers */
+/* dims x 64 direction numbers; for the first TABLE_DIMS dimensions also the XOR of every subset of the
+ * first 8, indexed by the subset's bits (the Gray code's low byte), so that a point of up to 256
+ * samples is one load a dimension: a loop over the set bits mispredicts its exit about once a
+ * dimension, which cost more than the rest of the value */
+enum { TABLE_DIMS = 256 };
+typedef struct sobol {
+    uint32_t table_dims;
+    uint64_t (*low)[256];
+    uint64_t v[][64];
+} sobol;
 
 static uint64_t sobol_raw(const sobol *t, uint32_t dim, uint64_t n)
 {
     uint64_t g = n ^ (n >> 1), x = 0;
     const uint64_t *v = t->v[dim];
-    for (; g; g &= g - 1) x ^= v[__builtin_ctzll(g)]; /* one step per set bit, no data-dependent branch */
+    if (dim < t->table_dims) {
+        x = t->low[dim][g & 255u];
+        g &= ~(uint64_t)255u;
+    }
+    for (; g; g &= g - 1) x ^= v[__builtin_ctzll(g)]; /* one step per (remaining) set bit */
     return x;
 }
 
@@ -36,6 +49,20 @@ static uint64_t sobol_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index
 {
     (void)skey;
     return sobol_raw(seq->data, dim, index) + seq->offset[dim];
+}
+
+/* sobol_raw of dimensions dim0 .. dim0 + m - 1 at once */
+static void sobol_raw_dims(const sobol *t, uint64_t n, uint32_t dim0, uint32_t m, uint64_t *raw)
+{
+    for (uint32_t j = 0; j < m; ++j) raw[j] = sobol_raw(t, dim0 + j, n);
+}
+
+static void sobol_base2_point(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim0, uint32_t m,
+                              uint64_t *raw)
+{
+    (void)skey;
+    sobol_raw_dims(seq->data, index, dim0, m, raw);
+    for (uint32_t j = 0; j < m; ++j) raw[j] += seq->offset[dim0 + j];
 }
 
 static uint64_t sobol_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
@@ -48,9 +75,11 @@ static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, siz
                        uint32_t nd, uint64_t *raw)
 {
     const sobol *t = seq->data;
+    uint64_t x0[64]; /* the first point's raw values, 64 dimensions at a time */
     for (uint32_t j = 0; j < nd; ++j) {
         uint32_t dim = dim0 + j;
-        uint64_t x = sobol_raw(t, dim, first), r = udm1_word(seq, skey, dim), o = seq->offset[dim];
+        if (j % 64 == 0) sobol_raw_dims(t, first, dim, nd - j < 64 ? nd - j : 64, x0);
+        uint64_t x = x0[j % 64], r = udm1_word(seq, skey, dim), o = seq->offset[dim];
         const uint64_t *v = t->v[dim];
         for (size_t i = 0; i < count; ++i) {
             raw[i * nd + j] = udm1_randomize_base2(seq->mode, x + o, r);
@@ -66,8 +95,13 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
     if (seq->dims > udm1_sobol_table_dims)
         return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_create: the Sobol table has %u dimensions, %u asked",
                          udm1_sobol_table_dims, seq->dims);
-    sobol *t = malloc(sizeof(uint64_t) * 64 * seq->dims);
+    uint32_t td = seq->dims < TABLE_DIMS ? seq->dims : TABLE_DIMS;
+    size_t head = sizeof(sobol) + sizeof(uint64_t) * 64 * seq->dims;
+    head = (head + 63) / 64 * 64;
+    sobol *t = malloc(head + sizeof(uint64_t) * 256 * td);
     if (!t) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u dimensions", seq->dims);
+    t->table_dims = td;
+    t->low = (uint64_t(*)[256])((char *)t + head);
     for (uint32_t j = 0; j < seq->dims; ++j) {
         uint64_t *v = t->v[j];
         uint32_t poly = udm1_sobol_table_poly[j];
@@ -87,9 +121,14 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
             }
         }
     }
+    for (uint32_t j = 0; j < td; ++j) { /* the subsets of the first 8 direction numbers */
+        t->low[j][0] = 0;
+        for (uint32_t b = 1; b < 256; ++b) t->low[j][b] = t->low[j][b & (b - 1)] ^ t->v[j][__builtin_ctz(b)];
+    }
     seq->data = t;
     seq->value = sobol_value;
     seq->base2 = sobol_base2;
+    seq->base2_point = sobol_base2_point;
     seq->fill = sobol_fill;
     return UDM1_OK;
 #else
