@@ -261,6 +261,7 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
             T.light.push_back(lights.light_of(h));
         }
     }
+    for (unsigned g = 0; g < rt.geometry_count(); ++g) T.first_of_geometry.push_back(T.first[rt.shape_of_geometry(g)]);
     LightArrays &L = lights_f_;
     for (size_t i = 0; i < lights.count(); ++i) {
         const Lights::Light &l = lights.light(i);
@@ -313,10 +314,16 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
     for (uint64_t start = 0; start < total; start += BATCH) {
         size_t n = (size_t)std::min<uint64_t>(BATCH, total - start);
         // camera rays: path k of the batch is pixel (start + k) / count, sample first + (start + k) % count
-        for (size_t k = 0; k < n; ++k) {
-            uint64_t g = start + k;
+        {
+            uint64_t g = start, s = g % count;
             int p = (int)(g / count), x = x0 + p % W, y = y0 + p / W;
-            P.stream[k] = ((uint64_t)y << 32) | (uint32_t)x, P.index[k] = first + g % count, P.pixel[k] = p;
+            for (size_t k = 0; k < n; ++k) {
+                P.stream[k] = ((uint64_t)y << 32) | (uint32_t)x, P.index[k] = first + s, P.pixel[k] = p;
+                if (++s == count) {  // the next pixel
+                    s = 0, ++p;
+                    if (++x == x1) x = x0, ++y;
+                }
+            }
         }
         // dimensions 0, 1 of every path's point: one call per batch (a pixel's paths are consecutive,
         // so its randomization is computed once)
@@ -355,8 +362,7 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                     finish(j);
                     continue;
                 }
-                unsigned shape = rt_.shape_of_geometry(S.geom[j]);
-                size_t tri = T.first[shape] + S.prim[j];
+                size_t tri = T.first_of_geometry[S.geom[j]] + S.prim[j];
                 float t = S.tfar[j], hx = P.ox[j] + P.dx[j] * t, hy = P.oy[j] + P.dy[j] * t, hz = P.oz[j] + P.dz[j] * t;
                 float nx = T.nx[tri], ny = T.ny[tri], nz = T.nz[tri];
                 if (int li = T.light[tri]; li >= 0) {
@@ -365,7 +371,7 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                         float w = 1;
                         if (depth > 0) {  // the density with which light sampling at the last vertex finds this point
                             Hit h;
-                            h.shape = shape, h.prim = S.prim[j], h.t = t;
+                            h.shape = rt_.shape_of_geometry(S.geom[j]), h.prim = S.prim[j], h.t = t;
                             h.p = Vec3(hx, hy, hz), h.ng = Vec3(nx, ny, nz);
                             float pl = (float)lights_.pdf(Vec3(P.qx[j], P.qy[j], P.qz[j]), h), pb = P.pb[j];
                             w = pb * pb / (pb * pb + pl * pl);
@@ -433,11 +439,10 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
             rtcInitIntersectContext(&ctx);
             rtcOccludedNp(rt_.handle(), &ctx, &sh, (unsigned)n);
             counts->rays += ns;
-            for (size_t j = 0; j < n; ++j)
-                if (stfar[j] >= 0) P.lr[j] += V.cr[j], P.lg[j] += V.cg[j], P.lb[j] += V.cb[j];
-            // the paths that ended at this vertex
+            // the light samples that reached their light, then the paths that ended at this vertex
             size_t keep = 0;
             for (size_t j = 0; j < n; ++j) {
+                if (stfar[j] >= 0) P.lr[j] += V.cr[j], P.lg[j] += V.cg[j], P.lb[j] += V.cb[j];
                 if (!V.alive[j]) {
                     finish(j);
                     continue;

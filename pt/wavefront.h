@@ -48,6 +48,7 @@ public:
     // Per triangle (its shape's first entry + the triangle's index) and per light: what the loop reads.
     struct Triangles {
         std::vector<size_t> first;                   // shape -> its first triangle's entry
+        std::vector<size_t> first_of_geometry;       // Embree geometry ID -> the same, for its shape
         std::vector<float> nx, ny, nz, rr, rg, rb;  // unit geometric normal; diffuse reflectance / pi
         std::vector<int> light;                      // the triangle's light (Lights' index), or -1
     };

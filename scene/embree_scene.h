@@ -47,6 +47,7 @@ public:
     Vec3 spawn_origin(const Hit &h, Vec3 incoming, Vec3 n) const { return h.p + (n - incoming) * ray_offset(h.p, h.t); }
     RTCScene handle() const { return scene_; }
     unsigned shape_of_geometry(unsigned geom_id) const { return shape_of_geom_[geom_id]; }  // Scene::shapes index
+    unsigned geometry_count() const { return (unsigned)shape_of_geom_.size(); }              // IDs 0 .. count - 1
     // Benchmarks only: append every later query to *log (nullptr: stop). Not thread-safe: record with
     // one thread. The renderers never set it (one predictable branch per query).
     void record_queries(std::vector<RayQuery> *log) { log_ = log; }
