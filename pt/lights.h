@@ -83,6 +83,8 @@ public:
     };
     const Light &light(size_t i) const { return lights_[i]; }
     double probability(size_t i) const { return prob_[i]; }  // of choosing light i
+    const std::vector<double> &cdf() const { return cdf_; }  // choose()'s power CDF, one entry per light
+    double near() const { return near_; }                    // the constructor's near
 
     // Radiance leaving hit h towards w (unit, pointing away from the surface); zero if h is not on a light.
     Vec3 emitted(const udm1scene::Hit &h, Vec3 w) const;

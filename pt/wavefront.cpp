@@ -94,13 +94,13 @@ struct Vertices {
     std::vector<float> ra, ga, ba;                                     // reflectance / pi at the hit
     std::vector<int> light;                                            // the light chosen for NEE
     std::vector<float> sx, sy, sz, sdx, sdy, sdz, slen, cr, cg, cb;    // shadow ray and its contribution
-    std::vector<uint8_t> alive;
+    std::vector<uint8_t> alive, maybe_near;  // maybe_near: Lights::by_area decides
     void resize(size_t n)
     {
         for (auto *v : {&px, &py, &pz, &nx, &ny, &nz, &t, &u[0], &u[1], &u[2], &u[3], &u[4], &u[5], &ra, &ga, &ba, &sx,
                         &sy, &sz, &sdx, &sdy, &sdz, &slen, &cr, &cg, &cb})
             v->resize(n);
-        light.resize(n), alive.resize(n);
+        light.resize(n), alive.resize(n), maybe_near.resize(n);
     }
 };
 
@@ -145,6 +145,41 @@ struct Shading {
     int depth, rr_depth;
     bool roulette;
 };
+
+// For live paths [0, n) with their DIMS_PER_VERTEX sampler values u: the light each samples
+// (Lights::choose: the same double operations, so the same light and rescaled u), the values as
+// floats, and whether the light may be near enough for solid-angle sampling (a test with a margin
+// that never misses a near light: Lights::by_area then decides).
+__attribute__((target_clones("avx2", "default"))) void choose_lights(size_t n, const double *__restrict u, Vertices &V,
+                                                                     const Wavefront::LightChoice &C)
+{
+    float *__restrict f0 = V.u[0].data(), *__restrict f1 = V.u[1].data(), *__restrict f2 = V.u[2].data();
+    float *__restrict f3 = V.u[3].data(), *__restrict f4 = V.u[4].data(), *__restrict f5 = V.u[5].data();
+    const float *__restrict hpx = V.px.data(), *__restrict hpy = V.py.data(), *__restrict hpz = V.pz.data();
+    int *__restrict light = V.light.data();
+    uint8_t *__restrict maybe_near = V.maybe_near.data();
+    const double *__restrict cdf = C.cdf.data(), *__restrict lo = C.lo.data(), *__restrict hi = C.hi.data();
+    const int *__restrict pick = C.pick.data();
+    const float *__restrict cx = C.cx.data(), *__restrict cy = C.cy.data(), *__restrict cz = C.cz.data();
+    const float *__restrict area = C.area.data();
+    const int count = (int)C.cdf.size();
+    const double total = C.cdf.back();
+    const float near = C.near;
+#pragma omp simd
+    for (size_t j = 0; j < n; ++j) {
+        const double *um = u + DIMS_PER_VERTEX * j;
+        double target = um[0] * total;
+        int i = 0;
+        for (int c = 0; c < count; ++c) i += cdf[c] <= target;
+        int l = pick[i];
+        double r = std::min((target - lo[l]) / (hi[l] - lo[l]), 0x1.fffffffffffffp-1);
+        f0[j] = unit_float(r >= 0 ? r : 0), f1[j] = unit_float(um[1]), f2[j] = unit_float(um[2]);
+        f3[j] = unit_float(um[3]), f4[j] = unit_float(um[4]), f5[j] = unit_float(um[5]);
+        light[j] = l;
+        float dx = cx[l] - hpx[j], dy = cy[l] - hpy[j], dz = cz[l] - hpz[j];
+        maybe_near[j] = area[l] >= 0.99f * near * (dx * dx + dy * dy + dz * dz);
+    }
+}
 
 // The vectorized part: for live paths [0, n), next-event estimation by area (a shadow ray and its
 // would-be contribution), the BSDF sample (cosine-weighted), throughput, roulette and the next ray.
@@ -262,6 +297,20 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
         }
     }
     for (unsigned g = 0; g < rt.geometry_count(); ++g) T.first_of_geometry.push_back(T.first[rt.shape_of_geometry(g)]);
+    LightChoice &C = choice_;
+    C.cdf = lights.cdf();
+    for (size_t i = 0; i < lights.count(); ++i) {
+        C.lo.push_back(i ? C.cdf[i - 1] : 0.0), C.hi.push_back(C.cdf[i]);
+        const Lights::Light &l = lights.light(i);
+        C.cx.push_back((float)l.centroid.x), C.cy.push_back((float)l.centroid.y), C.cz.push_back((float)l.centroid.z);
+        C.area.push_back((float)l.area);
+    }
+    for (size_t i = 0; i <= lights.count(); ++i) {  // as Lights::choose: clamped, then past lights of no power
+        size_t k = std::min(i, lights.count() - 1);
+        while (lights.probability(k) == 0 && k > 0) --k;
+        C.pick.push_back((int)k);
+    }
+    C.near = (float)lights.near();
     LightArrays &L = lights_f_;
     for (size_t i = 0; i < lights.count(); ++i) {
         const Lights::Light &l = lights.light(i);
@@ -392,13 +441,22 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
             n = m;
             // this vertex's 6 dimensions for every live path (the layout of integrator.h), one call
             fill(seq, n, P.stream.data(), P.index.data(), 2 + DIMS_PER_VERTEX * (uint32_t)depth, DIMS_PER_VERTEX, u.data());
+            if (choice_.cdf.size() <= 16) {
+                choose_lights(n, u.data(), V, choice_);
+            } else {  // many lights: Lights::choose's binary search, path by path
+                for (m = 0; m < n; ++m) {
+                    const double *um = &u[DIMS_PER_VERTEX * m];
+                    for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(um[d]);
+                    double reuse;
+                    V.light[m] = (int)lights_.choose(um[0], &reuse);
+                    V.u[0][m] = unit_float(reuse);
+                    V.maybe_near[m] = 1;
+                }
+            }
             for (m = 0; m < n; ++m) {
+                if (!V.maybe_near[m]) continue;
                 const double *um = &u[DIMS_PER_VERTEX * m];
-                for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(um[d]);
-                double reuse;
-                size_t l = lights_.choose(um[0], &reuse);
-                V.u[0][m] = unit_float(reuse);
-                V.light[m] = (int)l;
+                size_t l = (size_t)V.light[m];
                 float hx = V.px[m], hy = V.py[m], hz = V.pz[m], nx = V.nx[m], ny = V.ny[m], nz = V.nz[m], t = V.t[m];
                 Vec3 p(hx, hy, hz);
                 if (!lights_.by_area(l, p)) {  // near the light: by solid angle, in double, as the scalar loop

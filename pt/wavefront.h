@@ -57,6 +57,13 @@ public:
         std::vector<int> twosided;
     };
 
+    struct LightChoice {  // Lights::choose as tables: CDF, the light of each count of CDF entries <= target
+        std::vector<double> cdf, lo, hi;  // per light: its CDF interval [lo, hi)
+        std::vector<int> pick;            // count (0 .. lights) -> light
+        std::vector<float> cx, cy, cz, area;  // centroid and area, for the near-light test
+        float near = 0;                   // Lights::near()
+    };
+
 private:
     const udm1scene::Scene &scene_;
     const udm1scene::EmbreeScene &rt_;
@@ -65,6 +72,7 @@ private:
     bool roulette_;
     Triangles tri_;
     LightArrays lights_f_;
+    LightChoice choice_;
 };
 
 }  // namespace udm1pt
