@@ -552,3 +552,28 @@ def test_embree_share_benchmark_replays_the_render(tmp_path):
                         (["--size", "2x2"], "usage: udm1_bench_pt_embree"), (["--spp"], "usage")):
         bad = subprocess.run([str(bench), *args], capture_output=True, text=True, timeout=60)
         assert bad.returncode != 0 and words in bad.stderr and len(bad.stderr.strip().splitlines()) == 1, bad.stderr
+
+
+def test_ab_tool_alternates_two_builds(tmp_path):
+    """tools/ab_pt.py (the step A/Bs of BENCHMARKS.md): both binaries render every round, the summary
+    gives each one's minimum and whether the images are identical (the same build twice: identical; a
+    different sampler seed through a wrapper: different). Bad input is one line, exit 2, no file left."""
+    ab = [sys.executable, str(ROOT / "tools" / "ab_pt.py")]
+    r = subprocess.run([*ab, TOOL, TOOL, "--rounds", "2", "--", "--size", "8x8", "--spp", "2"], capture_output=True,
+                       text=True, timeout=300, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.count("[ab_pt] round") == 2, r.stderr
+    assert re.search(r"old: .* min [0-9.]+ s, median [0-9.]+ s\nnew: .* min [0-9.]+ s", r.stdout), r.stdout
+    assert "images: identical" in r.stdout, r.stdout
+    other = tmp_path / "other_seed.sh"
+    other.write_text(f'#!/bin/sh\nexec "{TOOL}" "$@" --seed 9\n')
+    other.chmod(0o755)
+    r = subprocess.run([*ab, TOOL, str(other), "--rounds", "1", "--", "--size", "8x8", "--spp", "2"],
+                       capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert r.returncode == 0 and "images: DIFFERENT" in r.stdout, (r.stdout, r.stderr)
+    for args, words in (([str(tmp_path / "missing"), TOOL, "--"], "not an executable file"),
+                        ([TOOL, TOOL, "--", "-o", "x.exr"], "must not name an output"),
+                        ([TOOL, TOOL, "--rounds", "0"], "--rounds 0"),
+                        ([TOOL, TOOL, "--rounds", "1", "--", "--sampler", "nope"], "unknown sampler 'nope'")):
+        fails_cleanly(lambda *a, cwd=None: subprocess.run([*ab, *a], capture_output=True, text=True, cwd=cwd,
+                                                          timeout=300), args, words, tmp_path, code=2)
