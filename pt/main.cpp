@@ -4,7 +4,8 @@
 //   udm1-pt reference -o REF.exr [options]                  high spp (default sobol-owen, 4096 spp); reused
 //                                                           if REF.exr was made by the same scene and settings
 //   udm1-pt merge A.exr B.exr ... -o OUT.exr [--png P]      add sample ranges of one render, exactly
-//   udm1-pt compare IMAGE REFERENCE [--diff DIFF.png]       MSE, RMSE, PSNR (peak 1 on clamped linear RGB)
+//   udm1-pt compare IMAGE REFERENCE [--diff DIFF.png] [--exact]  MSE, RMSE, PSNR (peak 1 on clamped linear RGB);
+//                                                           --exact: whether the values are identical
 //   udm1-pt sweep --against REF.exr [--samplers ..] [--spps ..] [--seeds K] [--images DIR] [options]
 //   udm1-pt export DIR [--scene S] [--size WxH]             the parsed scene as PLY files + scene.json
 //
@@ -27,6 +28,7 @@
 #include <cmath>
 #include <sys/resource.h>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -42,7 +44,8 @@ const char *USAGE =
     "       udm1-pt reference -o REF.exr [options]   (defaults: --sampler sobol-owen --spp 4096; reuses REF.exr\n"
     "                                                if the same scene and settings made it)\n"
     "       udm1-pt merge A.exr B.exr ... -o OUT.exr [--png OUT.png]   (sample ranges of one render)\n"
-    "       udm1-pt compare IMAGE REFERENCE [--diff DIFF.png]\n"
+    "       udm1-pt compare IMAGE REFERENCE [--diff DIFF.png] [--exact]   (--exact: also whether every value is\n"
+    "                                                   identical, unclamped, bit for bit)\n"
     "       udm1-pt sweep --against REF.exr [--samplers A,B,...] [--spps N,M,...] [--seeds K] [--images DIR]\n"
     "                     [options]: one CSV line per render (sampler,spp,seed,seconds,paths,rays,rmse,psnr,mean)\n"
     "       udm1-pt export DIR [--scene S] [--size WxH] [--maxdepth D]   (PLY files + scene.json, for Mitsuba)\n"
@@ -73,7 +76,7 @@ struct Options {
     std::vector<std::string> positional, samplers;
     std::vector<uint32_t> spps;
     uint32_t threads = 0, seeds = 1;
-    bool size_given = false, sampler_given = false, spp_given = false;
+    bool size_given = false, sampler_given = false, spp_given = false, exact = false;
 };
 
 Options parse(int argc, char **argv)
@@ -135,6 +138,10 @@ Options parse(int argc, char **argv)
         else if (a == "-o") o.output = value(a);
         else if (a == "--png") o.png = value(a);
         else if (a == "--diff") o.diff = value(a);
+        else if (a == "--exact") {
+            if (o.command != "compare") throw Error("--exact is an option of udm1-pt compare");
+            o.exact = true;
+        }
         else if (a == "--against") sweep_only(a), o.against = value(a);
         else if (a == "--images") sweep_only(a), o.images = value(a);
         else if (a == "--samplers") sweep_only(a), o.samplers = udm1app::parse_list(value(a), a);
@@ -220,6 +227,21 @@ int run_compare(const Options &o)
     std::vector<float> diff;
     udm1app::Comparison c = udm1app::compare(a, ref, true, o.diff.empty() ? nullptr : &diff);
     std::printf("mse %.6g rmse %.6g psnr %.4f\n", c.mse, c.rmse, c.psnr);
+    if (o.exact) {  // every value of every channel, unclamped, bit for bit (the metadata may differ)
+        size_t differ = 0;
+        double largest = 0;
+        if (a.channels != ref.channels) {
+            std::printf("different: %d channels and %d\n", a.channels, ref.channels);
+            return 0;
+        }
+        for (size_t i = 0; i < a.pixels.size(); ++i)
+            if (std::memcmp(&a.pixels[i], &ref.pixels[i], sizeof(float)) != 0) {
+                ++differ;
+                largest = std::max(largest, (double)std::fabs(a.pixels[i] - ref.pixels[i]));
+            }
+        if (differ) std::printf("different: %zu of %zu values, largest difference %.6g\n", differ, a.pixels.size(), largest);
+        else std::printf("identical: %zu values bit for bit\n", a.pixels.size());
+    }
     if (!o.diff.empty()) {
         std::vector<float> rgb(diff.size() * 3);
         for (size_t i = 0; i < diff.size(); ++i) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = std::min(1.0f, 10.0f * diff[i]);

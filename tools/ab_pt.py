@@ -1,6 +1,7 @@
 """A/B of two udm1-pt builds: the same render, the two binaries alternating round by round (so that
 the machine's drift falls on both alike), the render time each prints ("seconds"), and whether the
-two images are identical byte for byte. The figures of a change's step in BENCHMARKS.md come from
+two images are identical value for value (NEW's `udm1-pt compare --exact`; their metadata, such as
+the version, may differ). The figures of a change's step in BENCHMARKS.md come from
 this command: the minimum over the rounds is the least disturbed run of each build.
 
     python tools/ab_pt.py OLD NEW [--rounds 6] -- [udm1-pt options, e.g. --size 128x128 --spp 64
@@ -13,7 +14,6 @@ LD_LIBRARY_PATH). Each round renders with OLD, then NEW, into a temporary folder
 from __future__ import annotations
 
 import argparse
-import filecmp
 import os
 import re
 import statistics
@@ -64,14 +64,18 @@ def main() -> None:
                 times[k].append(render(b, pt_args, images[k]))
             print(f"[ab_pt] round {r + 1}/{a.rounds}: old {times['old'][-1]:.4f} s, new {times['new'][-1]:.4f} s",
                   file=sys.stderr, flush=True)
-        same = filecmp.cmp(images["old"], images["new"], shallow=False)
+        cmp = subprocess.run([a.new, "compare", images["new"], images["old"], "--exact"], capture_output=True, text=True)
+        verdict = [line for line in cmp.stdout.splitlines() if line.startswith(("identical", "different"))]
+        if cmp.returncode != 0 or not verdict:
+            lines = cmp.stderr.strip().splitlines()
+            fail(f"{a.new} compare --exact failed: {lines[-1] if lines else 'no verdict'}")
     print(f"udm1-pt {' '.join(pt_args)}: {a.rounds} alternating rounds")
     for k, b in (("old", a.old), ("new", a.new)):
         t = times[k]
         print(f"{k}: {b}: min {min(t):.4f} s, median {statistics.median(t):.4f} s")
     print(f"old / new, minimum: {min(times['old']) / min(times['new']):.3f}; "
           f"median: {statistics.median(times['old']) / statistics.median(times['new']):.3f}")
-    print(f"images: {'identical' if same else 'DIFFERENT'}")
+    print(f"images: {verdict[0]}")
 
 
 if __name__ == "__main__":

@@ -98,6 +98,15 @@ def test_identical_across_runs_threads_and_ranges(tmp_path, randomize):
     assert (tmp_path / "merged2.exr").read_bytes() == outs[0]
     r = ok("compare", str(tmp_path / "merged.exr"), str(tmp_path / "t1.exr"))
     assert r.stdout == "mse 0 rmse 0 psnr inf\n"
+    # --exact: every value unclamped, bit for bit (the clamped MSE above cannot see values above 1)
+    r = ok("compare", str(tmp_path / "merged.exr"), str(tmp_path / "t1.exr"), "--exact")
+    assert re.fullmatch(r"identical: (\d+) values bit for bit", r.stdout.splitlines()[1]), r.stdout
+    assert int(r.stdout.split()[-5]) % (40 * 30 * 3) == 0, r.stdout  # every channel: RGB and the film's sums
+    ok(*common, "--seed", "2", "-o", str(tmp_path / "seed2.exr"))
+    r = ok("compare", str(tmp_path / "seed2.exr"), str(tmp_path / "t1.exr"), "--exact")
+    assert re.fullmatch(r"different: \d+ of \d+ values, largest difference \S+", r.stdout.splitlines()[1]), r.stdout
+    r = ok("compare", str(tmp_path / "merged.exr"), str(tmp_path / "merged.png"), "--exact")
+    assert re.fullmatch(r"different: \d+ channels and 3", r.stdout.splitlines()[1]), r.stdout
 
 
 def test_tiles_and_ranges_merge_to_the_whole_render(tmp_path):
@@ -297,6 +306,7 @@ def test_bad_scenes_name_file_and_line(text, line, words, tmp_path):
         (["merge", "-o", "out.exr"], 2, "merge needs"),
         (["compare", "a.exr"], 2, "compare needs"),
         (["compare", "a.exr", "b.exr"], 1, "'a.exr'"),
+        (["--exact"], 2, "--exact is an option of udm1-pt compare"),
     ],
 )
 def test_bad_arguments(args, code, words, tmp_path):
@@ -564,13 +574,13 @@ def test_ab_tool_alternates_two_builds(tmp_path):
     assert r.returncode == 0, r.stderr
     assert r.stderr.count("[ab_pt] round") == 2, r.stderr
     assert re.search(r"old: .* min [0-9.]+ s, median [0-9.]+ s\nnew: .* min [0-9.]+ s", r.stdout), r.stdout
-    assert "images: identical" in r.stdout, r.stdout
+    assert "images: identical: " in r.stdout, r.stdout
     other = tmp_path / "other_seed.sh"
     other.write_text(f'#!/bin/sh\nexec "{TOOL}" "$@" --seed 9\n')
     other.chmod(0o755)
     r = subprocess.run([*ab, TOOL, str(other), "--rounds", "1", "--", "--size", "8x8", "--spp", "2"],
                        capture_output=True, text=True, timeout=300, cwd=tmp_path)
-    assert r.returncode == 0 and "images: DIFFERENT" in r.stdout, (r.stdout, r.stderr)
+    assert r.returncode == 0 and re.search(r"images: different: \d+ of \d+ values", r.stdout), (r.stdout, r.stderr)
     for args, words in (([str(tmp_path / "missing"), TOOL, "--"], "not an executable file"),
                         ([TOOL, TOOL, "--", "-o", "x.exr"], "must not name an output"),
                         ([TOOL, TOOL, "--rounds", "0"], "--rounds 0"),
