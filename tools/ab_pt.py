@@ -1,10 +1,10 @@
 """A/B of two udm1-pt builds: the same render, the two binaries alternating round by round (so that
 the machine's drift falls on both alike), the render time each prints ("seconds"), and whether the
-two images are identical value for value (NEW's `udm1-pt compare --exact`; their metadata, such as
-the version, may differ). The figures of a change's step in BENCHMARKS.md come from
+two images are identical value for value (`udm1-pt compare --exact` of NEW, or of --compare TOOL
+for builds older than that option; their metadata, such as the version, may differ). The figures of a change's step in BENCHMARKS.md come from
 this command: the minimum over the rounds is the least disturbed run of each build.
 
-    python tools/ab_pt.py OLD NEW [--rounds 6] -- [udm1-pt options, e.g. --size 128x128 --spp 64
+    python tools/ab_pt.py OLD NEW [--rounds 6] [--compare TOOL] -- [udm1-pt options, e.g. --size 128x128 --spp 64
                                                     --threads 1 --sampler wr]
 
 OLD and NEW are udm1-pt executables (for two library builds, a wrapper script that sets
@@ -48,10 +48,12 @@ def main() -> None:
     p.add_argument("old")
     p.add_argument("new")
     p.add_argument("--rounds", type=int, default=6)
+    p.add_argument("--compare", help="the udm1-pt that compares the images (default: NEW)")
     a = p.parse_args(own)
     if not 1 <= a.rounds <= 100:
         fail(f"--rounds {a.rounds}: give 1 to 100")
-    for b in (a.old, a.new):
+    a.compare = a.compare or a.new
+    for b in (a.old, a.new, a.compare):
         if not (os.path.isfile(b) and os.access(b, os.X_OK)):
             fail(f"{b}: not an executable file")
     if "-o" in pt_args or "--png" in pt_args:
@@ -64,11 +66,11 @@ def main() -> None:
                 times[k].append(render(b, pt_args, images[k]))
             print(f"[ab_pt] round {r + 1}/{a.rounds}: old {times['old'][-1]:.4f} s, new {times['new'][-1]:.4f} s",
                   file=sys.stderr, flush=True)
-        cmp = subprocess.run([a.new, "compare", images["new"], images["old"], "--exact"], capture_output=True, text=True)
+        cmp = subprocess.run([a.compare, "compare", images["new"], images["old"], "--exact"], capture_output=True, text=True)
         verdict = [line for line in cmp.stdout.splitlines() if line.startswith(("identical", "different"))]
         if cmp.returncode != 0 or not verdict:
             lines = cmp.stderr.strip().splitlines()
-            fail(f"{a.new} compare --exact failed: {lines[-1] if lines else 'no verdict'}")
+            fail(f"{a.compare} compare --exact failed: {lines[-1] if lines else 'no verdict'}")
     print(f"udm1-pt {' '.join(pt_args)}: {a.rounds} alternating rounds")
     for k, b in (("old", a.old), ("new", a.new)):
         t = times[k]
