@@ -2,15 +2,16 @@
 // same estimator, dimension layout and sampler points as the scalar loop (integrator.h), traced in
 // batches of up to 4096 paths with one Embree SOA stream per bounce for the closest hits (over the
 // paths' own origin and direction arrays; camera rays flagged coherent) and one for the shadow rays,
-// the sampler's values of the whole batch in one call (udm1_seq_fill_points_f64), and the shading
-// (light sample, MIS, BSDF sample, roulette, next ray) in one loop over the live paths in float that
-// the compiler vectorizes.
+// the sampler's values of the whole batch in one call (udm1_seq_fill_points_f64), the light choice
+// (Lights::choose's double operations, as tables) and the shading (light sample, MIS, BSDF sample,
+// roulette, next ray) in loops over the live paths that the compiler vectorizes.
 //
 // The subset: triangle meshes without vertex normals, untextured diffuse materials without bump maps,
 // triangle area lights, a pinhole camera, MIS (--strategy mis). Everything else - spheres, coated,
 // metal, glass, mixes, textures, vertex normals, a thin lens, the single-strategy estimators - goes
 // through the scalar loop. Light sampling by solid angle near a light is done in double by Lights, path
-// by path, as in the scalar loop; everything else in float.
+// by path, as in the scalar loop (a vectorized test with a margin picks the paths Lights decides for);
+// everything else in float.
 //
 // Each path's result depends only on its own pixel, sample index and the scene: not on which other
 // paths share its batch (Embree's stream and single queries return the same hits, and the vectorized
