@@ -160,11 +160,10 @@ __attribute__((target_clones("avx2", "default"))) void choose_lights(size_t n, c
     uint8_t *__restrict maybe_near = V.maybe_near.data();
     const double *__restrict cdf = C.cdf.data(), *__restrict lo = C.lo.data(), *__restrict hi = C.hi.data();
     const int *__restrict pick = C.pick.data();
-    const float *__restrict cx = C.cx.data(), *__restrict cy = C.cy.data(), *__restrict cz = C.cz.data();
-    const float *__restrict area = C.area.data();
+    const double *__restrict cx = C.cx.data(), *__restrict cy = C.cy.data(), *__restrict cz = C.cz.data();
+    const double *__restrict area = C.area.data();
     const int count = (int)C.cdf.size();
-    const double total = C.cdf.back();
-    const float near = C.near;
+    const double total = C.cdf.back(), near = C.near;
 #pragma omp simd
     for (size_t j = 0; j < n; ++j) {
         const double *um = u + DIMS_PER_VERTEX * j;
@@ -176,8 +175,9 @@ __attribute__((target_clones("avx2", "default"))) void choose_lights(size_t n, c
         f0[j] = unit_float(r >= 0 ? r : 0), f1[j] = unit_float(um[1]), f2[j] = unit_float(um[2]);
         f3[j] = unit_float(um[3]), f4[j] = unit_float(um[4]), f5[j] = unit_float(um[5]);
         light[j] = l;
-        float dx = cx[l] - hpx[j], dy = cy[l] - hpy[j], dz = cz[l] - hpz[j];
-        maybe_near[j] = area[l] >= 0.99f * near * (dx * dx + dy * dy + dz * dz);
+        // Lights::far's test in double (as it), with a 1 % margin for its different rounding
+        double dx = cx[l] - hpx[j], dy = cy[l] - hpy[j], dz = cz[l] - hpz[j];
+        maybe_near[j] = area[l] >= 0.99 * near * (dx * dx + dy * dy + dz * dz);
     }
 }
 
@@ -302,15 +302,15 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
     for (size_t i = 0; i < lights.count(); ++i) {
         C.lo.push_back(i ? C.cdf[i - 1] : 0.0), C.hi.push_back(C.cdf[i]);
         const Lights::Light &l = lights.light(i);
-        C.cx.push_back((float)l.centroid.x), C.cy.push_back((float)l.centroid.y), C.cz.push_back((float)l.centroid.z);
-        C.area.push_back((float)l.area);
+        C.cx.push_back(l.centroid.x), C.cy.push_back(l.centroid.y), C.cz.push_back(l.centroid.z);
+        C.area.push_back(l.area);
     }
     for (size_t i = 0; i <= lights.count(); ++i) {  // as Lights::choose: clamped, then past lights of no power
         size_t k = std::min(i, lights.count() - 1);
         while (lights.probability(k) == 0 && k > 0) --k;
         C.pick.push_back((int)k);
     }
-    C.near = (float)lights.near();
+    C.near = lights.near();
     LightArrays &L = lights_f_;
     for (size_t i = 0; i < lights.count(); ++i) {
         const Lights::Light &l = lights.light(i);

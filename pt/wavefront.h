@@ -61,8 +61,8 @@ public:
     struct LightChoice {  // Lights::choose as tables: CDF, the light of each count of CDF entries <= target
         std::vector<double> cdf, lo, hi;  // per light: its CDF interval [lo, hi)
         std::vector<int> pick;            // count (0 .. lights) -> light
-        std::vector<float> cx, cy, cz, area;  // centroid and area, for the near-light test
-        float near = 0;                   // Lights::near()
+        std::vector<double> cx, cy, cz, area;  // centroid and area, for the near-light test
+        double near = 0;                       // Lights::near()
     };
 
 private:
