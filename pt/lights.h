@@ -65,10 +65,8 @@ public:
     // Whether sample() takes triangle light i at p by area (not by solid angle; false for spheres).
     bool by_area(size_t i, Vec3 p) const
     {
-        const Light &l = lights_[i];
-        if (l.sphere) return false;
         double omega;
-        return far(l, p) || !by_solid_angle(l, p, &omega);
+        return !lights_[i].sphere && !by_solid_angle(lights_[i], p, &omega);  // (false when far, first)
     }
 
     struct Light {

@@ -277,6 +277,7 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
     : scene_(scene), rt_(rt), lights_(lights), max_depth_(max_depth), rr_depth_(rr_depth), roulette_(roulette)
 {
     Triangles &T = tri_;
+    std::vector<size_t> first_of_shape;  // each shape's first triangle's entry
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape &s = scene.shapes[k];
         Vec3 R = Bsdf().diffuse.R;  // the default material
@@ -286,7 +287,7 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
             Bsdf scratch;
             R = materials.at(s.material, s, h, Vec3(0, 0, 1), &ns, &scratch).diffuse.R;
         }
-        T.first.push_back(T.nx.size());
+        first_of_shape.push_back(T.nx.size());
         for (unsigned t = 0; t < s.indices.size() / 3; ++t) {
             Vec3 n = udm1scene::triangle_normal(s, t);
             T.nx.push_back((float)n.x), T.ny.push_back((float)n.y), T.nz.push_back((float)n.z);
@@ -296,7 +297,7 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
             T.light.push_back(lights.light_of(h));
         }
     }
-    for (unsigned g = 0; g < rt.geometry_count(); ++g) T.first_of_geometry.push_back(T.first[rt.shape_of_geometry(g)]);
+    for (unsigned g = 0; g < rt.geometry_count(); ++g) T.first.push_back(first_of_shape[rt.shape_of_geometry(g)]);
     LightChoice &C = choice_;
     C.cdf = lights.cdf();
     for (size_t i = 0; i < lights.count(); ++i) {
@@ -411,7 +412,7 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                     finish(j);
                     continue;
                 }
-                size_t tri = T.first_of_geometry[S.geom[j]] + S.prim[j];
+                size_t tri = T.first[S.geom[j]] + S.prim[j];
                 float t = S.tfar[j], hx = P.ox[j] + P.dx[j] * t, hy = P.oy[j] + P.dy[j] * t, hz = P.oz[j] + P.dz[j] * t;
                 float nx = T.nx[tri], ny = T.ny[tri], nz = T.nz[tri];
                 if (int li = T.light[tri]; li >= 0) {

@@ -46,10 +46,9 @@ public:
     void render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
                 uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const;
 
-    // Per triangle (its shape's first entry + the triangle's index) and per light: what the loop reads.
+    // Per triangle (its geometry's first entry + the triangle's index) and per light: what the loop reads.
     struct Triangles {
-        std::vector<size_t> first;                   // shape -> its first triangle's entry
-        std::vector<size_t> first_of_geometry;       // Embree geometry ID -> the same, for its shape
+        std::vector<size_t> first;                   // Embree geometry ID -> its shape's first triangle's entry
         std::vector<float> nx, ny, nz, rr, rg, rb;  // unit geometric normal; diffuse reflectance / pi
         std::vector<int> light;                      // the triangle's light (Lights' index), or -1
     };

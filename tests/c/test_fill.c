@@ -24,6 +24,20 @@ static udm1_seq *make(const char *preset, uint32_t dims, uint64_t k, uint64_t se
     return s;
 }
 
+/* Preset `info` with up to 9 dimensions (64 points for a point set), seed 11 and `randomize` (screen:
+ * 16 samples per pixel), or NULL if the preset lacks that randomization. */
+static udm1_seq *variant(const udm1_preset_info *info, uint32_t randomize)
+{
+    udm1_seq_desc desc;
+    udm1_seq_desc_init(&desc);
+    desc.preset = info->name, desc.dimensions = info->max_dimensions < 9 ? info->max_dimensions : 9;
+    desc.point_count = (info->flags & UDM1_PRESET_POINT_SET) ? 64 : 0;
+    desc.seed = 11, desc.randomize = randomize;
+    if (randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = 16;
+    udm1_seq *s = NULL;
+    return udm1_seq_create_desc(&desc, &s) == UDM1_OK ? s : NULL;
+}
+
 /* fill [first, first+count) x [d0, d0+nd) three ways and compare with samples */
 static void compare_range(const udm1_seq *s, uint64_t stream, uint64_t first, size_t count, uint32_t d0, uint32_t nd,
                           size_t stride)
@@ -191,15 +205,9 @@ static void test_cursor_fill(void)
     for (size_t p = 0; p < udm1_preset_count(); ++p) {
         udm1_preset_info info;
         udm1_preset_get(p, &info);
-        int point_set = (info.flags & UDM1_PRESET_POINT_SET) != 0;
-        uint32_t d = info.max_dimensions < 9 ? info.max_dimensions : 9;
         for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_OWEN; ++r) {
-            udm1_seq_desc desc;
-            udm1_seq_desc_init(&desc);
-            desc.preset = info.name, desc.dimensions = d, desc.point_count = point_set ? 64 : 0;
-            desc.seed = 11, desc.randomize = r;
-            udm1_seq *s = NULL;
-            if (udm1_seq_create_desc(&desc, &s) != UDM1_OK) continue; /* a randomization the preset lacks */
+            udm1_seq *s = variant(&info, r);
+            if (!s) continue; /* a randomization the preset lacks */
             for (uint64_t idx = 0; idx < 64; idx += 7) {
                 udm1_cursor a, b, f;
                 udm1_cursor_start(&a, s, 99, idx, 1);
@@ -312,16 +320,9 @@ static void test_fill_points(void)
     for (size_t p = 0; p < udm1_preset_count(); ++p) {
         udm1_preset_info info;
         udm1_preset_get(p, &info);
-        int point_set = (info.flags & UDM1_PRESET_POINT_SET) != 0;
-        uint32_t d = info.max_dimensions < 9 ? info.max_dimensions : 9;
         for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_SCREEN; ++r) {
-            udm1_seq_desc desc;
-            udm1_seq_desc_init(&desc);
-            desc.preset = info.name, desc.dimensions = d, desc.point_count = point_set ? 64 : 0;
-            desc.seed = 11, desc.randomize = r;
-            if (r == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = 16;
-            udm1_seq *s = NULL;
-            if (udm1_seq_create_desc(&desc, &s) != UDM1_OK) continue; /* a randomization the preset lacks */
+            udm1_seq *s = variant(&info, r);
+            if (!s) continue; /* a randomization the preset lacks */
             for (uint32_t first = 0; first < 12; first += 5) {
                 double got[N * ND], want[N * ND];
                 memset(got, 0xFF, sizeof got);
@@ -333,7 +334,7 @@ static void test_fill_points(void)
                 }
                 CHECKF(memcmp(got, want, sizeof got) == 0, "%s randomize %u first dimension %u", info.name, r, first);
             }
-            if (point_set) {
+            if (info.flags & UDM1_PRESET_POINT_SET) {
                 uint64_t bad[2] = {3, 64};
                 double o[2];
                 CHECK_STATUS(udm1_seq_fill_points_f64(s, 2, streams, bad, 0, 1, o), UDM1_ERROR_INDEX_RANGE);
