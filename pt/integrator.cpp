@@ -102,18 +102,16 @@ struct Tracer {
                     Vec3 wi_l = frame.to_local(ls.wi);
                     Vec3 f = bsdf.f(wo_l, wi_l) * std::fabs(wi_l.z);
                     if (nonzero(f)) {
-                        Vec3 so = spawn(h, ls.wi);
-                        Vec3 q = h.p + ls.wi * ls.dist;
-                        double len = udm1scene::length(q - so) - 2 * udm1scene::ray_offset(q);
+                        udm1scene::Segment sg = udm1scene::shadow_segment(h.p, h.ng, h.t, ls.q, ls.n);
                         ++*rays;
                         bool visible;
                         if (ls.sphere) {
                             // a ray that grazes a sphere meets Embree's float sphere up to ~1e-4 of the radius
                             // before the exact point: a hit on the light's own sphere is the light itself
                             Hit sh;
-                            visible = len > 0 && (!rt.intersect(so, ls.wi, 0.0, len, &sh) || (int)sh.shape == ls.shape);
+                            visible = sg.len > 0 && (!rt.intersect(sg.o, sg.d, 0.0, sg.len, &sh) || (int)sh.shape == ls.shape);
                         } else {
-                            visible = len > 0 && !rt.occluded(so, ls.wi, 0.0, len);
+                            visible = sg.len > 0 && !rt.occluded(sg.o, sg.d, 0.0, sg.len);
                         }
                         if (visible) {
                             double w = strategy == Strategy::Mis ? power_heuristic(ls.pdf, bsdf.pdf(wo_l, wi_l)) : 1;

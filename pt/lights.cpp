@@ -202,6 +202,7 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
             s->dist = length(d);
             s->wi = d * (1 / s->dist);
             s->L = radiance(l, nq, -s->wi);
+            s->q = q, s->n = nq;
             s->pdf = prob_[i] / (2 * PI * one_minus_cos_max);
             return s->pdf > 0 && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
         }
@@ -225,6 +226,7 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
     if (d2 <= 0) return false;
     s->dist = std::sqrt(d2);
     s->wi = d * (1 / s->dist);
+    s->q = q, s->n = nq;
     s->L = radiance(l, nq, -s->wi);
     // the density pdf_light() gives, without deciding the sampling method again
     double c = std::fabs(dot(nq, d)) / s->dist;

@@ -25,6 +25,7 @@ struct LightSample {
     Vec3 L;           // emitted radiance arriving along -wi
     double pdf = 0;   // solid-angle density, including the choice of the light
     double dist = 0;  // distance to the sampled point
+    Vec3 q, n;        // the sampled point and the light's unit normal there (shadow rays end short of it)
     int shape = -1;   // the light's shape (Scene::shapes index)
     bool sphere = false;
 };

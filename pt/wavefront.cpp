@@ -236,11 +236,16 @@ __attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P,
         cr[j] = br[j] * ra[j] * ler[l] * k;
         cg[j] = bg[j] * ga[j] * leg[l] * k;
         cb[j] = bbs[j] * ba[j] * leb[l] * k;
+        // the shadow ray: from p offset to the light's side to q offset to p's side of the light
+        // (udm1scene::shadow_segment)
         float side = cos_i > 0 ? 1.0f : -1.0f, off = offset_of(px, py, pz, ht[j]);
         float sx = px + side * nx * off, sy = py + side * ny * off, sz = pz + side * nz * off;
-        float gx = qx - sx, gy = qy - sy, gz = qz - sz;
-        sxs[j] = sx, sys[j] = sy, szs[j] = sz, sdx[j] = wx, sdy[j] = wy, sdz[j] = wz;
-        slen[j] = std::sqrt(gx * gx + gy * gy + gz * gz) - 2 * offset_of(qx, qy, qz, 0);
+        float lside = lnxs[l] * (sx - qx) + lnys[l] * (sy - qy) + lnzs[l] * (sz - qz) > 0 ? 1.0f : -1.0f;
+        float qoff = lside * offset_of(qx, qy, qz, 0);
+        float gx = qx + lnxs[l] * qoff - sx, gy = qy + lnys[l] * qoff - sy, gz = qz + lnzs[l] * qoff - sz;
+        float glen = std::sqrt(gx * gx + gy * gy + gz * gz), ginv = glen > 0 ? 1 / glen : 0;
+        sxs[j] = sx, sys[j] = sy, szs[j] = sz, sdx[j] = gx * ginv, sdy[j] = gy * ginv, sdz[j] = gz * ginv;
+        slen[j] = glen;
         // the BSDF sample: cosine-weighted on the side of wo, in the normal's frame (udm1scene::Frame)
         float sgn = std::copysign(1.0f, nz), aa = -1 / (sgn + nz), bb = nx * ny * aa;
         float tx = 1 + sgn * nx * nx * aa, ty = sgn * bb, tz = -sgn * nx;
@@ -469,10 +474,10 @@ void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera,
                     if (ok && cos_i * cos_o > 0) {
                         double pdf_b = std::fabs(cos_i) / M_PI;
                         double k = std::fabs(cos_i) * ls.pdf / (ls.pdf * ls.pdf + pdf_b * pdf_b);  // |cos| w / pdf
-                        Vec3 so = p + ng * ((cos_i > 0 ? 1 : -1) * udm1scene::ray_offset(p, t)), qp = p + ls.wi * ls.dist;
-                        ns.sx = (float)so.x, ns.sy = (float)so.y, ns.sz = (float)so.z;
-                        ns.dx = (float)ls.wi.x, ns.dy = (float)ls.wi.y, ns.dz = (float)ls.wi.z;
-                        ns.len = (float)(udm1scene::length(qp - so) - 2 * udm1scene::ray_offset(qp));
+                        udm1scene::Segment sg = udm1scene::shadow_segment(p, ng, t, ls.q, ls.n);
+                        ns.sx = (float)sg.o.x, ns.sy = (float)sg.o.y, ns.sz = (float)sg.o.z;
+                        ns.dx = (float)sg.d.x, ns.dy = (float)sg.d.y, ns.dz = (float)sg.d.z;
+                        ns.len = (float)sg.len;
                         ns.cr = (float)(P.br[m] * V.ra[m] * ls.L.x * k);
                         ns.cg = (float)(P.bg[m] * V.ga[m] * ls.L.y * k);
                         ns.cb = (float)(P.bb[m] * V.ba[m] * ls.L.z * k);

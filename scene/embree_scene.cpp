@@ -13,6 +13,21 @@ double ray_offset(Vec3 p, double t)
     return m * 0x1p-18;
 }
 
+Segment shadow_segment(Vec3 p, Vec3 n, double t, Vec3 q, Vec3 nq)
+{
+    Vec3 o = p + (dot(n, q - p) > 0 ? n : -n) * ray_offset(p, t);
+    Vec3 e = q + (dot(nq, o - q) > 0 ? nq : -nq) * ray_offset(q);
+    Vec3 d = e - o;
+    double len = length(d);
+    if (!(len > 0)) return {o, Vec3(0, 0, 1), 0.0};
+    return {o, d * (1 / len), len};
+}
+
+Segment segment_to_infinity(Vec3 p, Vec3 n, double t, Vec3 w)
+{
+    return {p + (dot(n, w) > 0 ? n : -n) * ray_offset(p, t), w, std::numeric_limits<double>::infinity()};
+}
+
 EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
 {
     device_ = rtcNewDevice(nullptr);

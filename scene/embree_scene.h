@@ -16,6 +16,19 @@ namespace udm1scene {
 // starts its rays a few ulps off the surface, not one unit off it.
 double ray_offset(Vec3 p, double t = 0);
 
+// A shadow ray: the open segment between a surface point p (unit geometric normal n, found by a ray of
+// length t) and a point q on a light (unit normal nq; a zero vector for a point with no surface). It
+// leaves p offset to the side of its surface that q is on and ends at q offset to the side of the
+// light's surface that the origin is on, so that it stops short of both surfaces at any angle, at any
+// length and anywhere in space (pbrt-v4's SpawnRayTo). A ray towards the sky or a distant light:
+// segment_to_infinity.
+struct Segment {
+    Vec3 o, d;   // origin and unit direction
+    double len;  // tfar (0 when the two offset points coincide: nothing to test)
+};
+Segment shadow_segment(Vec3 p, Vec3 n, double t, Vec3 q, Vec3 nq);
+Segment segment_to_infinity(Vec3 p, Vec3 n, double t, Vec3 w);
+
 struct Hit {
     double t = 0;
     unsigned shape = 0, prim = 0;  // index into Scene::shapes, triangle index

@@ -464,6 +464,113 @@ static void test_light_sampling()
     }
 }
 
+// The irradiance at p (unit normal n) from a polygon of uniform radiance L seen from its emitting side
+// (Lambert's formula: the sum over the edges of the angle they subtend times the cosine of their plane's
+// normal with n). The polygon must lie wholly above p's tangent plane.
+static double polygon_irradiance(Vec3 p, Vec3 n, const std::vector<Vec3> &v, double L)
+{
+    double e = 0;
+    for (size_t i = 0; i < v.size(); ++i) {
+        Vec3 a = normalize(v[i] - p), b = normalize(v[(i + 1) % v.size()] - p);
+        e += std::acos(std::clamp(dot(a, b), -1.0, 1.0)) * dot(n, normalize(cross(a, b)));
+    }
+    return L * std::fabs(e) / 2;
+}
+
+// A 20 x 20 light facing down 40 units above a diffuse floor (reflectance 0.5), moved by `offset` along
+// x and tilted by `tilt` degrees towards the strip x in [15, 215] that a camera `height` above the floor
+// sees (16 x 1 pixels, so that pixel k sees light arriving at 20 to 79 degrees from the normal), maxdepth 1.
+static std::string light_over_plane(double offset, double height, double tilt, std::vector<Vec3> *light)
+{
+    const double t = tilt * M_PI / 180, c = std::cos(t), sn = std::sin(t);
+    light->clear();
+    char buf[2048];
+    std::string P;
+    for (auto [x, z] : {std::pair{-10.0, -10.0}, {10.0, -10.0}, {10.0, 10.0}, {-10.0, 10.0}}) {
+        Vec3 v(offset + x * c, 40 + x * sn, z);  // turned about the z axis through the light's centre
+        v = Vec3((float)v.x, (float)v.y, (float)v.z);  // the vertices as the renderer stores them
+        light->push_back(v);
+        std::snprintf(buf, sizeof buf, " %.17g %.17g %.17g", v.x, v.y, v.z);
+        P += buf;
+    }
+    double fov = 2 * std::atan(100 / (16 * height)) * 180 / M_PI;  // the strip's 200 units over 16 pixels
+    std::snprintf(buf, sizeof buf,
+                  "LookAt %.17g %.17g 0  %.17g 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ %.17g ]\n"
+                  "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 1 ]\n"
+                  "Integrator \"path\" \"integer maxdepth\" [ 1 ]\nWorldBegin\n"
+                  "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\n"
+                  "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [%s ]\nAttributeEnd\n"
+                  "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+                  "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [ %.17g 0 -1000 %.17g 0 -1000 "
+                  "%.17g 0 1000 %.17g 0 1000 ]\n",
+                  offset + 115, height, offset + 115, fov, P.c_str(), offset - 1000, offset + 1000, offset + 1000,
+                  offset - 1000);
+    return buf;
+}
+
+// Direct light on the floor under the light in closed form (irradiance x reflectance / pi, averaged over
+// each pixel's footprint) against every strategy and both loops, at grazing angles, near and far
+// cameras and from the origin to 1e6 away from it: light must not be lost where the shadow ray meets
+// the light's own surface at a shallow angle.
+static void test_light_over_plane()
+{
+    char path[] = "/tmp/udm1_test_plane_XXXXXX.pbrt";
+    int fd = mkstemps(path, 5);
+    CHECK(fd >= 0);
+    close(fd);
+    int failures = 0;
+    for (double offset : {0.0, 1e3, 1e5, 1e6})
+        for (double height : {60.0, 3000.0})
+            for (double tilt : {0.0, 50.0}) {
+                std::vector<Vec3> light;
+                FILE *f = std::fopen(path, "w");
+                std::fputs(light_over_plane(offset, height, tilt, &light).c_str(), f);
+                std::fclose(f);
+                Scene s = load_scene(path);
+                EmbreeScene rt(s);
+                // the exact pixel values: the closed form averaged over an 8 x 8 grid in each pixel
+                CameraRays cam(s);
+                double exact[16];
+                for (int k = 0; k < 16; ++k) {
+                    double sum = 0;
+                    for (int i = 0; i < 8; ++i)
+                        for (int j = 0; j < 8; ++j) {
+                            Vec3 o, d;
+                            cam.ray(k + (i + 0.5) / 8, (j + 0.5) / 8, &o, &d);
+                            Vec3 p = o + d * (-o.y / d.y);
+                            sum += 0.5 / M_PI * polygon_irradiance(p, Vec3(0, 1, 0), light, 1.0);
+                        }
+                    exact[k] = sum / 64;
+                }
+                struct Case {
+                    Strategy strategy;
+                    Loop loop;
+                    const char *name;
+                } cases[] = {{Strategy::Mis, Loop::Wavefront, "MIS, wavefront"},
+                             {Strategy::Mis, Loop::Scalar, "MIS, scalar"},
+                             {Strategy::Nee, Loop::Scalar, "NEE"},
+                             {Strategy::Bsdf, Loop::Scalar, "BSDF"}};
+                for (const Case &c : cases) {
+                    Options o;
+                    o.spp = 1024, o.strategy = c.strategy, o.loop = c.loop;
+                    std::vector<float> m = run(s, rt, o).mean();
+                    for (int k = 0; k < 16; ++k) {
+                        double got = m[3 * k + 1], want = exact[k];
+                        // light sampling converges fast here; BSDF sampling finds the light with probability
+                        // p = want / 0.5 and scores 0.5: 5 standard errors of that binomial estimate
+                        double p = want / 0.5, tol = c.strategy == Strategy::Bsdf
+                                                         ? 5 * 0.5 * std::sqrt(p * (1 - p) / o.spp) + 1e-3 * want
+                                                         : 0.01 * want;
+                        if (!(std::fabs(got - want) <= tol) && failures++ < 12)
+                            CHECKF(false, "offset %g, camera height %g, tilt %g, %s, pixel %d: %.6g, closed form %.6g", offset,
+                                   height, tilt, c.name, k, got, want);
+                    }
+                }
+            }
+    CHECKF(failures == 0, "%d pixels off the closed form", failures);
+    std::remove(path);
+}
+
 static void test_deterministic(Loop loop);
 
 static void test_deterministic()
@@ -648,6 +755,7 @@ int main()
     test_strategies_agree();
     test_bsdf_consistency();
     test_light_sampling();
+    test_light_over_plane();
     test_blackbody();
     test_metal_and_glass();
     test_glass_and_metal_in_the_furnace();
