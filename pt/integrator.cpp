@@ -55,7 +55,7 @@ struct Tracer {
     const udm1scene::EmbreeScene &rt;
     const Lights &lights;
     const Materials &materials;
-    Bsdf default_bsdf;
+    Bsdf default_bsdf;  // of a shape without a material
     int max_depth;
     Strategy strategy;
     bool roulette;
@@ -194,7 +194,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
               SAMPLE_SCALE);
     acc.spp = opt.spp, acc.first = opt.first, acc.count = count;
     const udm1scene::CameraRays camera(view);
-    Tracer tracer{scene, rt, lights, materials, Bsdf(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
+    Tracer tracer{scene, rt, lights, materials, default_material(), max_depth, opt.strategy, opt.roulette, opt.rr_depth};
     std::string why = opt.loop == Loop::Scalar ? "scalar loop asked for" : wavefront_unsupported(scene, opt);
     if (opt.loop == Loop::Wavefront && !why.empty()) throw std::runtime_error("no wavefront loop: " + why);
     std::unique_ptr<Wavefront> wavefront;

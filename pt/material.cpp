@@ -131,6 +131,14 @@ double hash_unit(Vec3 p, Vec3 w)
 
 }  // namespace
 
+Bsdf default_material()
+{
+    Bsdf b;
+    b.kind = Bsdf::Diffuse;
+    b.diffuse.R = Vec3(0.5, 0.5, 0.5);
+    return b;
+}
+
 Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
 {
     for (const udm1scene::Material &m : scene.materials) {

@@ -47,6 +47,10 @@ private:
     std::vector<MaterialModel> models_;
 };
 
+// pbrt-v4's default material, that of a shape with no Material or NamedMaterial before it (area
+// lights' shapes often have none: their back reflects): diffuse, reflectance 0.5.
+Bsdf default_material();
+
 // The texture coordinates of a hit: the mesh's per-vertex uv interpolated, else pbrt-v4's defaults
 // ((0,0), (1,0), (1,1) per triangle; spheres by longitude and colatitude around the centre).
 void hit_uv(const udm1scene::Shape &shape, const udm1scene::Hit &h, double *u, double *v);

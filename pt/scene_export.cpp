@@ -103,6 +103,8 @@ void export_scene(const udm1scene::Scene &scene, int width, int height, int max_
                 }
             }
             js << "}";
+        } else {  // pbrt-v4's default material (default_material())
+            js << ", \"material\": {\"type\": \"diffuse\", \"reflectance\": [0.5, 0.5, 0.5]}";
         }
         if (s.light >= 0) {
             const udm1scene::AreaLight &l = scene.lights[s.light];

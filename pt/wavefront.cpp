@@ -285,7 +285,7 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
     std::vector<size_t> first_of_shape;  // each shape's first triangle's entry
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const Shape &s = scene.shapes[k];
-        Vec3 R = Bsdf().diffuse.R;  // the default material
+        Vec3 R = default_material().diffuse.R;
         if (s.material >= 0) {
             Hit h;
             Vec3 ns(0, 0, 1);

@@ -480,7 +480,9 @@ static double polygon_irradiance(Vec3 p, Vec3 n, const std::vector<Vec3> &v, dou
 // A 20 x 20 light facing down 40 units above a diffuse floor (reflectance 0.5), moved by `offset` along
 // x and tilted by `tilt` degrees towards the strip x in [15, 215] that a camera `height` above the floor
 // sees (16 x 1 pixels, so that pixel k sees light arriving at 20 to 79 degrees from the normal), maxdepth 1.
-static std::string light_over_plane(double offset, double height, double tilt, std::vector<Vec3> *light)
+// Without `material` the floor has none: pbrt-v4's default material is the same diffuse 0.5.
+static std::string light_over_plane(double offset, double height, double tilt, std::vector<Vec3> *light,
+                                    bool material = true)
 {
     const double t = tilt * M_PI / 180, c = std::cos(t), sn = std::sin(t);
     light->clear();
@@ -500,10 +502,11 @@ static std::string light_over_plane(double offset, double height, double tilt, s
                   "Integrator \"path\" \"integer maxdepth\" [ 1 ]\nWorldBegin\n"
                   "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\n"
                   "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [%s ]\nAttributeEnd\n"
-                  "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+                  "%s"
                   "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [ %.17g 0 -1000 %.17g 0 -1000 "
                   "%.17g 0 1000 %.17g 0 1000 ]\n",
-                  offset + 115, height, offset + 115, fov, P.c_str(), offset - 1000, offset + 1000, offset + 1000,
+                  offset + 115, height, offset + 115, fov, P.c_str(),
+                  material ? "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n" : "", offset - 1000, offset + 1000, offset + 1000,
                   offset - 1000);
     return buf;
 }
@@ -521,10 +524,10 @@ static void test_light_over_plane()
     int failures = 0;
     for (double offset : {0.0, 1e3, 1e5, 1e6})
         for (double height : {60.0, 3000.0})
-            for (double tilt : {0.0, 50.0}) {
+            for (double tilt : {0.0, 50.0, -1.0}) {  // -1: no tilt, and no material on the floor
                 std::vector<Vec3> light;
                 FILE *f = std::fopen(path, "w");
-                std::fputs(light_over_plane(offset, height, tilt, &light).c_str(), f);
+                std::fputs(light_over_plane(offset, height, std::max(tilt, 0.0), &light, tilt >= 0).c_str(), f);
                 std::fclose(f);
                 Scene s = load_scene(path);
                 EmbreeScene rt(s);

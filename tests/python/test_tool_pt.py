@@ -375,6 +375,7 @@ def test_film_light_and_media_settings(tmp_path):
 
 TEX_SCENE = HEAD.replace("WorldBegin", 'Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]\nWorldBegin') + """
 AttributeBegin
+Material "diffuse" "rgb reflectance" [ 0 0 0 ]
 AreaLightSource "diffuse" "rgb L" [ 1 1 1 ] "bool twosided" true
 Shape "trianglemesh" "point3 P" [ -50 -50 -9  50 -50 -9  50 50 -9  -50 50 -9 ] "integer indices" [ 0 1 2 0 2 3 ]
 AttributeEnd
