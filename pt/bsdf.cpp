@@ -253,13 +253,20 @@ double fresnel_complex(double cos_i, double eta, double k)
     return (rpl + rpp) / 2;
 }
 
-namespace {
-Vec3 fresnel_rgb(double cos_i, Vec3 eta, Vec3 k)
+Vec3 FresnelTable::at(double c) const
 {
-    return Vec3(fresnel_complex(cos_i, eta.x, k.x), fresnel_complex(cos_i, eta.y, k.y),
-                fresnel_complex(cos_i, eta.z, k.z));
+    double x = std::clamp(c, 0.0, 1.0) * (N - 1);
+    int i = std::min((int)x, N - 2);
+    double t = x - i;
+    return Vec3(r[0][i] + t * (r[0][i + 1] - r[0][i]), r[1][i] + t * (r[1][i + 1] - r[1][i]),
+                r[2][i] + t * (r[2][i + 1] - r[2][i]));
 }
-}  // namespace
+
+Vec3 Conductor::fresnel(double c) const
+{
+    if (table) return table->at(c);
+    return Vec3(fresnel_complex(c, eta.x, k.x), fresnel_complex(c, eta.y, k.y), fresnel_complex(c, eta.z, k.z));
+}
 
 Vec3 Conductor::f(Vec3 wo, Vec3 wi) const
 {
@@ -269,7 +276,7 @@ Vec3 Conductor::f(Vec3 wo, Vec3 wi) const
     Vec3 wm = wi + wo;
     if (udm1scene::dot(wm, wm) == 0) return Vec3();
     wm = udm1scene::normalize(wm);
-    Vec3 F = fresnel_rgb(std::fabs(udm1scene::dot(wo, wm)), eta, k);
+    Vec3 F = fresnel(std::fabs(udm1scene::dot(wo, wm)));
     return F * (mf.D(wm) * mf.G(wo, wi) / (4 * ci * co));
 }
 
@@ -287,7 +294,7 @@ bool Conductor::sample(Vec3 wo, double u1, double u2, Sample *s) const
     if (specular()) {
         Vec3 wi(-wo.x, -wo.y, wo.z);
         if (wi.z == 0) return false;
-        s->wi = wi, s->f = fresnel_rgb(std::fabs(wi.z), eta, k) * (1 / std::fabs(wi.z)), s->pdf = 1;
+        s->wi = wi, s->f = fresnel(std::fabs(wi.z)) * (1 / std::fabs(wi.z)), s->pdf = 1;
         s->specular = true, s->reflection = true;
         return true;
     }
@@ -298,7 +305,7 @@ bool Conductor::sample(Vec3 wo, double u1, double u2, Sample *s) const
     s->pdf = mf.pdf(wo, wm) / (4 * std::fabs(udm1scene::dot(wo, wm)));
     double co = std::fabs(wo.z), ci = std::fabs(wi.z);
     if (ci == 0 || co == 0 || !(s->pdf > 0)) return false;
-    s->f = fresnel_rgb(std::fabs(udm1scene::dot(wo, wm)), eta, k) * (mf.D(wm) * mf.G(wo, wi) / (4 * ci * co));
+    s->f = fresnel(std::fabs(udm1scene::dot(wo, wm))) * (mf.D(wm) * mf.G(wo, wi) / (4 * ci * co));
     s->wi = wi, s->specular = false, s->reflection = true;
     return true;
 }

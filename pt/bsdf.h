@@ -55,11 +55,23 @@ struct Dielectric {
     bool specular() const { return eta == 1 || mf.smooth(); }
 };
 
+// A metal's Fresnel reflectance by RGB channel, tabulated over the cosine of the incident angle: a
+// spectral metal's reflectance as pbrt-v4 would record it (material.h builds it; the red channel of gold
+// exceeds 1 and falls towards grazing angles: no complex index per channel does that).
+struct FresnelTable {
+    static constexpr int N = 65;  // cos theta = 0, 1/64, ..., 1
+    float r[3][N];
+    Vec3 at(double cos_theta) const;  // linear interpolation
+};
+
 // A metal: Trowbridge-Reitz microfacets (or a perfect mirror when smooth) with the Fresnel
-// reflectance of a conductor of complex index eta + i k, per RGB channel (pbrt-v4 ConductorBxDF).
+// reflectance of a conductor of complex index eta + i k, per RGB channel (pbrt-v4 ConductorBxDF), or
+// of a spectral one through its table.
 struct Conductor {
     Vec3 eta{1, 1, 1}, k{0, 0, 0};
+    const FresnelTable *table = nullptr;  // if set, in place of eta and k
     Microfacets mf;
+    Vec3 fresnel(double cos_i) const;
     Vec3 f(Vec3 wo, Vec3 wi) const;
     double pdf(Vec3 wo, Vec3 wi) const;
     bool sample(Vec3 wo, double u1, double u2, Sample *s) const;

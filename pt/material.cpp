@@ -6,6 +6,9 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <memory>
+
+#include "spectrum.h"
 
 namespace udm1pt {
 
@@ -23,6 +26,33 @@ Vec3 rgb_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 fall
     return v;
 }
 
+// A "spectrum" parameter as a spectrum: (wavelength, value) pairs (the parser has read spectrum files
+// into pairs) or one of the named spectra udm1 knows.
+udm1scene::Spectrum spectrum_of(const udm1scene::Param &p)
+{
+    if (p.strings.size() == 1) {
+        if (const udm1scene::Spectrum *s = udm1scene::named_spectrum(p.strings[0])) return *s;
+        throw SceneError(p.where + ": '" + p.name + "': the named spectrum \"" + p.strings[0] +
+                         "\" is not known (udm1 knows " + udm1scene::known_spectra() + ")");
+    }
+    return udm1scene::spectrum_from_pairs(p.numbers, p.where);
+}
+
+// An albedo (a reflectance of at most 1): "rgb" (refused with a component above 1, as pbrt-v4 refuses it)
+// or "spectrum" (its RGB under D65, udm1scene::albedo_rgb).
+Vec3 albedo_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 fallback)
+{
+    const udm1scene::Param *p = ps.find(name);
+    if (!p) return fallback;
+    if (p->type == "spectrum") return udm1scene::albedo_rgb(spectrum_of(*p));
+    Vec3 v = rgb_param(ps, name, fallback);
+    if (v.x > 1 || v.y > 1 || v.z > 1)
+        throw SceneError(p->where + ": RGB parameter '" + name + "' is an albedo and has a component above 1 (" +
+                         udm1scene::number_text(v.x) + " " + udm1scene::number_text(v.y) + " " +
+                         udm1scene::number_text(v.z) + "), which pbrt-v4 refuses too");
+    return v;
+}
+
 void only(const udm1scene::ParamSet &ps, std::initializer_list<const char *> allowed, const std::string &what)
 {
     for (const udm1scene::Param &p : ps.params) {
@@ -32,49 +62,51 @@ void only(const udm1scene::ParamSet &ps, std::initializer_list<const char *> all
     }
 }
 
-// RGB stand-ins for pbrt-v4's named spectra (pbrt works spectrally; udm1-pt in RGB): the refractive
-// index n + i k of metals at about 650, 550 and 450 nm (the RGB table of Hindefjord, from the same
-// measured data pbrt-v4 ships), and the index of glasses at 550 nm.
-struct NamedSpectrum {
-    const char *name;
-    Vec3 value;
-};
-const NamedSpectrum NAMED_SPECTRA[] = {
-    {"metal-Au-eta", Vec3(0.18299, 0.42108, 1.3734)}, {"metal-Au-k", Vec3(3.4242, 2.3459, 1.7704)},
-    {"metal-Ag-eta", Vec3(0.15943, 0.14512, 0.13547)}, {"metal-Ag-k", Vec3(3.9291, 3.19, 2.3808)},
-    {"metal-Cu-eta", Vec3(0.27105, 0.67693, 1.3164)}, {"metal-Cu-k", Vec3(3.6092, 2.6248, 2.2921)},
-    {"metal-Al-eta", Vec3(1.3456, 0.96521, 0.61722)}, {"metal-Al-k", Vec3(7.4746, 6.3995, 5.3031)},
-    {"glass-BK7", Vec3(1.5185, 1.5185, 1.5185)}, {"glass-BAF10", Vec3(1.6700, 1.6700, 1.6700)},
-    {"glass-F11", Vec3(1.6200, 1.6200, 1.6200)},
-};
-
-// A "spectrum" or "rgb" or "float" parameter as RGB: a named spectrum, (lambda, value) pairs
-// (piecewise linear, taken at 650/550/450 nm), an rgb triple or one number.
+// A parameter that is a float, an rgb triple or a spectrum, as RGB: a spectrum's values at about 650,
+// 550 and 450 nm (a conductor given partly as rgb, a dielectric's index: its green value).
 Vec3 spectrum_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 fallback)
 {
     const udm1scene::Param *p = ps.find(name);
     if (!p) return fallback;
     if (p->type == "float" && p->numbers.size() == 1) return Vec3(p->numbers[0], p->numbers[0], p->numbers[0]);
     if (p->type == "rgb" && p->numbers.size() == 3) return Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
-    if (p->type == "spectrum" && p->strings.size() == 1) {
-        for (const NamedSpectrum &n : NAMED_SPECTRA)
-            if (p->strings[0] == n.name) return n.value;
-        throw SceneError(p->where + ": '" + name + "': the named spectrum \"" + p->strings[0] + "\" is not known");
-    }
-    if (p->type == "spectrum" && p->numbers.size() >= 2 && p->numbers.size() % 2 == 0) {
-        auto at = [&](double lambda) {
-            const std::vector<double> &v = p->numbers;
-            if (lambda <= v[0]) return v[1];
-            for (size_t i = 2; i < v.size(); i += 2)
-                if (lambda <= v[i]) return v[i - 1] + (v[i + 1] - v[i - 1]) * (lambda - v[i - 2]) / (v[i] - v[i - 2]);
-            return v[v.size() - 1];
-        };
-        for (size_t i = 2; i < p->numbers.size(); i += 2)
-            if (!(p->numbers[i] > p->numbers[i - 2]))
-                throw SceneError(p->where + ": '" + name + "': wavelengths must increase");
-        return Vec3(at(650), at(550), at(450));
+    if (p->type == "spectrum") {
+        udm1scene::Spectrum s = spectrum_of(*p);
+        return Vec3(s.at(650), s.at(550), s.at(450));
     }
     throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
+}
+
+// A conductor's index given as a float or a spectrum (absent: pbrt-v4's default, copper's).
+udm1scene::Spectrum index_spectrum(const udm1scene::ParamSet &ps, const std::string &name)
+{
+    const udm1scene::Param *p = ps.find(name);
+    if (!p) return *udm1scene::named_spectrum("metal-Cu-" + name);
+    if (p->type == "float" && p->numbers.size() == 1) return udm1scene::Spectrum::constant(p->numbers[0]);
+    if (p->type == "spectrum") return spectrum_of(*p);
+    throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
+}
+
+// The Fresnel table of a spectral conductor: its reflectance at each wavelength, projected on RGB as
+// pbrt-v4's film records it under D65 (udm1scene::albedo_rgb), at 65 incident angles.
+std::unique_ptr<FresnelTable> fresnel_table(const udm1scene::Spectrum &eta, const udm1scene::Spectrum &k,
+                                            const std::string &where)
+{
+    double n[udm1scene::WAVELENGTHS], kk[udm1scene::WAVELENGTHS], r[udm1scene::WAVELENGTHS];
+    for (int l = 0; l < udm1scene::WAVELENGTHS; ++l) {
+        n[l] = eta.at(360 + l), kk[l] = k.at(360 + l);
+        if (!(n[l] > 0) || !(kk[l] >= 0))
+            throw SceneError(where + ": conductor: eta must be positive and k not negative at every wavelength (" +
+                             std::to_string(360 + l) + " nm)");
+    }
+    auto t = std::make_unique<FresnelTable>();
+    for (int i = 0; i < FresnelTable::N; ++i) {
+        double c = (double)i / (FresnelTable::N - 1);
+        for (int l = 0; l < udm1scene::WAVELENGTHS; ++l) r[l] = fresnel_complex(c, n[l], kk[l]);
+        Vec3 rgb = udm1scene::albedo_rgb(r);
+        for (int ch = 0; ch < 3; ++ch) t->r[ch][i] = (float)rgb[ch];
+    }
+    return t;
 }
 
 // pbrt-v4's roughness parameters: roughness or uroughness/vroughness, remapped unless remaproughness false.
@@ -154,7 +186,7 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             only(ps, {"reflectance", "displacement"}, "diffuse");
             b.kind = Bsdf::Diffuse;
             mm.reflectance_tex = texture_param(scene, ps, "reflectance", "spectrum");
-            if (mm.reflectance_tex < 0) b.diffuse.R = rgb_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
+            if (mm.reflectance_tex < 0) b.diffuse.R = albedo_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
         } else if (m.type == "coateddiffuse") {
             only(ps, {"reflectance", "roughness", "uroughness", "vroughness", "remaproughness", "thickness", "eta",
                       "maxdepth", "nsamples", "albedo", "g", "displacement"},
@@ -162,7 +194,7 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             b.kind = Bsdf::CoatedDiffuse;
             Coated &c = b.coated;
             mm.reflectance_tex = texture_param(scene, ps, "reflectance", "spectrum");
-            if (mm.reflectance_tex < 0) c.bottom.R = rgb_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
+            if (mm.reflectance_tex < 0) c.bottom.R = albedo_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
             roughness(&c.top.mf, "coateddiffuse");
             c.top.eta = ps.get_float("eta", 1.5);
             c.thickness = std::max(ps.get_float("thickness", 0.01), 1e-300);
@@ -171,24 +203,31 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             if (!(c.top.eta > 0)) throw SceneError(ps.where + ": coateddiffuse: eta must be positive");
             if (c.max_depth < 1 || c.max_depth > 100 || c.samples < 1 || c.samples > 100)
                 throw SceneError(ps.where + ": coateddiffuse: maxdepth and nsamples must be in 1..100");
-            Vec3 albedo = rgb_param(ps, "albedo", Vec3());
+            Vec3 albedo = albedo_param(ps, "albedo", Vec3());
             if (nonzero(albedo))
                 throw SceneError(ps.where + ": coateddiffuse: a scattering medium between the layers (albedo > 0) "
                                             "is not supported");
         } else if (m.type == "conductor") {
             only(ps, {"eta", "k", "roughness", "uroughness", "vroughness", "remaproughness", "displacement"}, "conductor");
             b.kind = Bsdf::ConductorKind;
-            b.conductor.eta = spectrum_param(ps, "eta", Vec3(0.27105, 0.67693, 1.3164));  // pbrt's default: copper
-            b.conductor.k = spectrum_param(ps, "k", Vec3(3.6092, 2.6248, 2.2921));
             roughness(&b.conductor.mf, "conductor");
-            if (!(b.conductor.eta.x > 0 && b.conductor.eta.y > 0 && b.conductor.eta.z > 0) ||
-                !(b.conductor.k.x >= 0 && b.conductor.k.y >= 0 && b.conductor.k.z >= 0))
-                throw SceneError(ps.where + ": conductor: eta must be positive and k not negative");
+            const udm1scene::Param *pe = ps.find("eta"), *pk = ps.find("k");
+            if ((pe && pe->type == "rgb") || (pk && pk->type == "rgb")) {  // per channel (pbrt upsamples the rgb)
+                b.conductor.eta = spectrum_param(ps, "eta", Vec3());
+                b.conductor.k = spectrum_param(ps, "k", Vec3());
+                if (!pe || !pk) throw SceneError(ps.where + ": conductor: an rgb eta or k needs the other one too");
+                if (!(b.conductor.eta.x > 0 && b.conductor.eta.y > 0 && b.conductor.eta.z > 0) ||
+                    !(b.conductor.k.x >= 0 && b.conductor.k.y >= 0 && b.conductor.k.z >= 0))
+                    throw SceneError(ps.where + ": conductor: eta must be positive and k not negative");
+            } else {  // spectral (pbrt's default: copper): its Fresnel reflectance as pbrt-v4 records it
+                tables_.push_back(fresnel_table(index_spectrum(ps, "eta"), index_spectrum(ps, "k"), ps.where));
+                b.conductor.table = tables_.back().get();
+            }
         } else if (m.type == "dielectric") {
             only(ps, {"eta", "roughness", "uroughness", "vroughness", "remaproughness", "displacement"}, "dielectric");
             b.kind = Bsdf::DielectricKind;
             Vec3 eta = spectrum_param(ps, "eta", Vec3(1.5, 1.5, 1.5));
-            b.dielectric.eta = eta.y;  // one index for all channels (no dispersion): green's, 550 nm
+            b.dielectric.eta = eta.y;  // one index for all channels (no dispersion): 550 nm's
             roughness(&b.dielectric.mf, "dielectric");
             if (!(b.dielectric.eta > 0)) throw SceneError(ps.where + ": dielectric: eta must be positive");
         } else if (m.type == "mix") {

@@ -2,9 +2,9 @@
 // subset (diffuse, coateddiffuse, conductor, dielectric, mix) becomes a BSDF template plus the
 // textures that vary it over the surface (reflectance, roughness, a mix's amount); at a hit, at()
 // evaluates them and resolves a mix as pbrt-v4 does: the second material where a hash of the point and
-// the outgoing direction falls below the amount. pbrt-v4's named spectra become documented RGB
-// stand-ins (metals: n + i k at about 650, 550, 450 nm; glasses and spectrum pairs: the value at
-// 550 nm for a dielectric's single index).
+// the outgoing direction falls below the amount. Spectra become RGB as pbrt-v4's film would record
+// them (scene/spectrum.h): reflectances under D65, a spectral metal's Fresnel reflectance by channel
+// and angle (a table), a dielectric's single index at 550 nm.
 #pragma once
 
 #include "bsdf.h"
@@ -12,6 +12,7 @@
 #include "scene.h"
 #include "texture.h"
 
+#include <memory>
 #include <vector>
 
 namespace udm1pt {
@@ -45,6 +46,7 @@ public:
 private:
     Textures textures_;
     std::vector<MaterialModel> models_;
+    std::vector<std::unique_ptr<FresnelTable>> tables_;  // spectral conductors' (their BSDFs point here)
 };
 
 // pbrt-v4's default material, that of a shape with no Material or NamedMaterial before it (area

@@ -6,8 +6,8 @@
 
 #include "file_read.h"
 
-#include "color.h"
 #include "mesh_io.h"
+#include "spectrum.h"
 
 #include <cmath>
 #include <cctype>
@@ -124,6 +124,8 @@ public:
         if (depth > 8) throw SceneError(path + ": Include nested too deeply");
         Lexer lex(read_regular_file(path, "scene file"), path);
         std::string dir = path.find('/') == std::string::npos ? "" : path.substr(0, path.find_last_of('/') + 1);
+        std::string outer_dir = dir_;
+        dir_ = dir;
         for (;;) {
             Token t = lex.next();
             if (t.kind == Token::End) break;
@@ -131,6 +133,7 @@ public:
                 throw SceneError(lex.where(t.line) + ": expected a directive, found '" + t.text + "'");
             directive(lex, t, dir, depth);
         }
+        dir_ = outer_dir;
     }
 
     void finish()
@@ -221,9 +224,33 @@ private:
             } else {
                 take(v);
             }
+            if (p.type == "spectrum" && !geometry_only_) resolve_spectrum(p);
             ps.params.push_back(std::move(p));
         }
         return ps;
+    }
+
+    // A "spectrum" parameter names a spectrum udm1 knows, or a file of (wavelength, value) pairs relative
+    // to the scene file's folder (pbrt-v4 tries the two in that order): the file's pairs replace its name.
+    // Pairs are checked (an even count, increasing wavelengths).
+    void resolve_spectrum(Param &p)
+    {
+        if (p.strings.size() > 1 || (p.strings.size() == 1 && !p.numbers.empty()))
+            throw SceneError(p.where + ": '" + p.name + "' needs one spectrum: a name or (wavelength, value) pairs");
+        if (p.strings.size() == 1 && !named_spectrum(p.strings[0])) {
+            const std::string &file = p.strings[0];
+            std::string full = file.size() && file[0] == '/' ? file : dir_ + file;
+            Spectrum s;
+            try {
+                s = read_spectrum_file(full);
+            } catch (const SceneError &e) {
+                throw SceneError(p.where + ": '" + p.name + "': \"" + file + "\" is not a named spectrum that udm1 knows (" +
+                                 known_spectra() + ") nor a spectrum file (" + e.what() + ")");
+            }
+            p.strings.clear();
+            for (size_t i = 0; i < s.nm.size(); ++i) p.numbers.push_back(s.nm[i]), p.numbers.push_back(s.value[i]);
+        }
+        if (p.strings.empty()) spectrum_from_pairs(p.numbers, p.where + ": '" + p.name + "'");
     }
 
     void only(const ParamSet &ps, std::initializer_list<const char *> allowed, const std::string &what,
@@ -253,6 +280,30 @@ private:
     }
 
     void transform(const Mat4 &t) { st_.ctm = st_.ctm * t; }
+
+    // A light's emission parameter as linear sRGB: an rgb triple as it is, a blackbody or any other
+    // spectrum (pairs, a named spectrum or a file) at luminance 1, as pbrt-v4 normalizes a light's
+    // spectrum before its scale (spectrum.h).
+    Vec3 emission(const ParamSet &ps, const std::string &name, const std::string &what)
+    {
+        const Param *p = ps.find(name);
+        Vec3 rgb;
+        if (p->type == "rgb") {
+            if (!ps.get_rgb(name, &rgb)) throw SceneError(p->where + ": " + what + ": \"rgb " + name + "\" needs 3 numbers");
+            if (rgb.x < 0 || rgb.y < 0 || rgb.z < 0) throw SceneError(p->where + ": " + what + ": negative emission");
+            return rgb;
+        }
+        if (p->type == "blackbody") {
+            if (p->numbers.size() != 1 || !(p->numbers[0] >= 1000 && p->numbers[0] <= 40000))
+                throw SceneError(p->where + ": " + what + ": \"blackbody " + name + "\" needs one temperature in 1000..40000 K");
+            return illuminant_rgb(Spectrum::blackbody(p->numbers[0]), p->where);
+        }
+        if (p->type == "spectrum") {
+            const Spectrum *named = p->strings.size() == 1 ? named_spectrum(p->strings[0]) : nullptr;
+            return illuminant_rgb(named ? *named : spectrum_from_pairs(p->numbers, p->where), p->where);
+        }
+        throw SceneError(p->where + ": " + what + ": '" + name + "' must be rgb, blackbody or spectrum");
+    }
 
     void directive(Lexer &lex, const Token &t, const std::string &dir, int depth)
     {
@@ -373,15 +424,7 @@ private:
             if (type != "diffuse") throw SceneError(here + ": AreaLightSource \"" + type + "\" is not supported (diffuse only)");
             only(ps, {"L", "scale", "twosided"}, "AreaLightSource");
             AreaLight l;
-            if (const Param *L = ps.find("L")) {
-                if (L->type == "blackbody" && L->numbers.size() == 1) {
-                    if (!(L->numbers[0] >= 1000 && L->numbers[0] <= 40000))
-                        throw SceneError(L->where + ": AreaLightSource: blackbody temperature outside 1000..40000 K");
-                    l.L = blackbody_rgb(L->numbers[0]);  // luminance 1 before the scale, as pbrt-v4
-                } else if (L->type != "rgb" || !ps.get_rgb("L", &l.L)) {
-                    throw SceneError(L->where + ": AreaLightSource: only \"rgb L\" and \"blackbody L\" are supported");
-                }
-            }
+            if (ps.find("L")) l.L = emission(ps, "L", "AreaLightSource");
             l.scale = ps.get_float("scale", 1.0);
             l.twosided = ps.get_bool("twosided", false);
             l.where = here;
@@ -544,6 +587,7 @@ private:
     std::set<std::string> ignored_kinds_;
     std::set<std::string> media_;  // MakeNamedMedium names
     std::map<std::string, int> textures_;
+    std::string dir_;  // the folder of the file being read (relative file names)
 };
 
 }  // namespace

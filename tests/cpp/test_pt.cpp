@@ -5,11 +5,11 @@
 #include "../c/check.h"
 
 #include "builtin.h"
-#include "color.h"
 #include "embree_scene.h"
 #include "integrator.h"
 #include "../../tools/common/image_write.h"
 #include "lights.h"
+#include "spectrum.h"
 
 #include <tbb/global_control.h>
 
@@ -354,6 +354,8 @@ static void test_glass_and_metal_in_the_furnace()
 
 // "blackbody L": luminance 1 before the scale (as pbrt-v4 normalizes it), warm below about 6500 K and
 // cool above, near white at D65's temperature.
+static Vec3 blackbody_rgb(double kelvin) { return illuminant_rgb(Spectrum::blackbody(kelvin), "test"); }
+
 static void test_blackbody()
 {
     for (double t : {2000.0, 3000.0, 5500.0, 6504.0, 10000.0}) {
