@@ -265,6 +265,7 @@ int run_render(Options o)
     if (!scene.ignored.empty())  // one line: what ambient occlusion does not need
         std::fprintf(stderr, "udm1-ao: note: %zu kind(s) of appearance left out, first %s\n", scene.ignored.size(),
                      scene.ignored[0].c_str());
+    for (const std::string &n : scene.notes) std::fprintf(stderr, "udm1-ao: note: %s\n", n.c_str());
     if (!o.size_given && scene.source.rfind("builtin:", 0) == 0) o.ao.width = o.ao.height = 256;
     if ((o.ao.first || o.ao.count || o.ao.bounds[2]) && !o.output.empty() && !udm1app::is_exr_path(o.output))
         throw Error("-o '" + o.output + "': a sample range or tile is written as OpenEXR (.exr), whose counts merge", 2);

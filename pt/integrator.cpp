@@ -72,7 +72,16 @@ struct Tracer {
         for (int depth = 0;; ++depth) {
             Hit h;
             ++*rays;
-            if (!rt.intersect(o, d, 0.0, 1e300, &h)) break;
+            if (!rt.intersect(o, d, 0.0, 1e300, &h)) {  // the ray leaves the scene: the environment, if any
+                if (lights.has_environment()) {
+                    Vec3 Le = lights.environment(d);
+                    if (depth == 0 || specular_bounce || strategy == Strategy::Bsdf)
+                        L = L + mul(beta, Le);
+                    else if (strategy == Strategy::Mis)
+                        L = L + mul(beta, Le) * power_heuristic(p_b, lights.environment_pdf(d));
+                }
+                break;
+            }
             Vec3 wo = -d;
             Vec3 Le = lights.emitted(h, wo);
             if (nonzero(Le)) {
@@ -102,7 +111,8 @@ struct Tracer {
                     Vec3 wi_l = frame.to_local(ls.wi);
                     Vec3 f = bsdf.f(wo_l, wi_l) * std::fabs(wi_l.z);
                     if (nonzero(f)) {
-                        udm1scene::Segment sg = udm1scene::shadow_segment(h.p, h.ng, h.t, ls.q, ls.n);
+                        udm1scene::Segment sg = ls.infinite ? udm1scene::segment_to_infinity(h.p, h.ng, h.t, ls.wi)
+                                                            : udm1scene::shadow_segment(h.p, h.ng, h.t, ls.q, ls.n);
                         ++*rays;
                         bool visible;
                         if (ls.sphere) {
@@ -114,7 +124,7 @@ struct Tracer {
                             visible = sg.len > 0 && !rt.occluded(sg.o, sg.d, 0.0, sg.len);
                         }
                         if (visible) {
-                            double w = strategy == Strategy::Mis ? power_heuristic(ls.pdf, bsdf.pdf(wo_l, wi_l)) : 1;
+                            double w = strategy == Strategy::Mis && !ls.delta ? power_heuristic(ls.pdf, bsdf.pdf(wo_l, wi_l)) : 1;
                             L = L + mul(mul(beta, f), ls.L) * (w / ls.pdf);
                         }
                     }

@@ -43,7 +43,9 @@ namespace udm1pt {
 // reused only when it matches).
 constexpr int LAYOUT_VERSION = 4;
 
-enum class Strategy { Mis, Nee, Bsdf };  // how light is found: both (MIS), light sampling only, BSDF sampling only
+// How light is found: both (MIS), light sampling only, BSDF sampling only (which cannot find point, spot
+// and distant lights: with Bsdf they are left out).
+enum class Strategy { Mis, Nee, Bsdf };
 // Which path loop traces: the wavefront loop where the scene and options are in its subset (Auto), or
 // one of the two by force (Wavefront throws for a scene outside the subset). See wavefront.h.
 enum class Loop { Auto, Scalar, Wavefront };

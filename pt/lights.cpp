@@ -1,8 +1,11 @@
 // lights.cpp - see lights.h.
 #include "lights.h"
 
+#include "../tools/common/image_read.h"
+
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace udm1pt {
 
@@ -69,6 +72,101 @@ bool sample_spherical_triangle(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2, double u0, dou
 }
 }  // namespace
 
+// The equal-area mapping's forward direction, from pbrt-v4's definition: the square's diagonal distance
+// gives the polar angle's sine-like radius, the position along the diagonal the azimuth.
+Vec3 equal_area_square_to_sphere(double u, double v)
+{
+    double a = 2 * u - 1, b = 2 * v - 1, ap = std::fabs(a), bp = std::fabs(b);
+    double signed_distance = 1 - (ap + bp), r = 1 - std::fabs(signed_distance);
+    double phi = (r == 0 ? 1 : (bp - ap) / r + 1) * PI / 4;
+    double z = std::copysign(1 - r * r, signed_distance), s = r * std::sqrt(std::max(0.0, 2 - r * r));
+    return Vec3(std::copysign(std::cos(phi), a) * s, std::copysign(std::sin(phi), b) * s, z);
+}
+
+// Its inverse, with an exact arctangent.
+void equal_area_sphere_to_square(Vec3 d, double *u, double *v)
+{
+    double x = std::fabs(d.x), y = std::fabs(d.y), z = std::fabs(d.z);
+    double r = std::sqrt(std::max(0.0, 1 - z));
+    double a = std::max(x, y), b = a == 0 ? 0 : std::min(x, y) / a;
+    double phi = std::atan(b) * 2 / PI;
+    if (x < y) phi = 1 - phi;
+    double vv = phi * r, uu = r - vv;
+    if (d.z < 0) {  // the southern hemisphere: mirrored into the square's corners
+        std::swap(uu, vv);
+        uu = 1 - uu, vv = 1 - vv;
+    }
+    *u = 0.5 * (std::copysign(uu, d.x) + 1);
+    *v = 0.5 * (std::copysign(vv, d.y) + 1);
+}
+
+namespace {
+inline float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// An environment image: square, RGB, finite; 8-bit files decoded from sRGB (pbrt-v4 reads them so).
+EnvironmentMap read_environment(const udm1scene::LightSource &src)
+{
+    udm1app::LoadedImage im;
+    try {
+        im = udm1app::read_image(src.filename);
+    } catch (const std::exception &e) {
+        throw udm1scene::SceneError(src.where + ": LightSource \"infinite\": " + e.what());
+    }
+    auto fail = [&](const std::string &why) {
+        throw udm1scene::SceneError(src.where + ": LightSource \"infinite\": " + src.filename + ": " + why);
+    };
+    if (im.width != im.height)
+        fail("the image is " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+             ", not square (pbrt-v4's equal-area environment maps are)");
+    if (im.channels < 3) fail("the image needs R, G and B channels");
+    EnvironmentMap m;
+    m.res = im.width;
+    m.rgb.resize(3 * (size_t)m.res * m.res);
+    for (size_t p = 0; p < (size_t)m.res * m.res; ++p)
+        for (int c = 0; c < 3; ++c) {
+            float x = im.pixels[p * im.channels + c];
+            if (!std::isfinite(x)) fail("a pixel is not finite (" + udm1scene::number_text(x) + ")");
+            if (im.bits == 8) x = srgb_to_linear(x);
+            m.rgb[3 * p + c] = std::max(0.0f, x);
+        }
+    m.row_cdf.assign(m.res + 1, 0.0);
+    m.pixel_cdf.assign((size_t)m.res * (m.res + 1), 0.0);
+    for (int y = 0; y < m.res; ++y) {
+        double *row = &m.pixel_cdf[(size_t)y * (m.res + 1)];
+        for (int x = 0; x < m.res; ++x) {
+            const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+            row[x + 1] = row[x] + luminance(Vec3(c[0], c[1], c[2]));
+        }
+        m.row_cdf[y + 1] = m.row_cdf[y] + row[m.res];
+    }
+    m.total = m.row_cdf[m.res];
+    return m;
+}
+
+// The index i with cdf[i] <= target < cdf[i + 1] among cdf[0..n], skipping empty intervals, and target
+// rescaled to [0, 1) within it.
+int pick(const double *cdf, int n, double target, double *rescaled)
+{
+    int i = (int)(std::upper_bound(cdf, cdf + n + 1, target) - cdf) - 1;
+    i = std::clamp(i, 0, n - 1);
+    while (cdf[i + 1] <= cdf[i] && i > 0) --i;
+    double w = cdf[i + 1] - cdf[i];
+    *rescaled = w > 0 ? std::clamp((target - cdf[i]) / w, 0.0, 0x1.fffffffffffffp-1) : 0;
+    return i;
+}
+
+// pbrt-v4's SmoothStep: 0 below a, 1 above b, a cubic between.
+double smooth_step(double x, double a, double b)
+{
+    if (a == b) return x < a ? 0 : 1;
+    double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+}
+}  // namespace
+
 // Solid-angle sampling only near the light (area / distance^2 to its centroid above near_): farther
 // away 1/r^2 varies little over the light and area sampling gives the same error for less work
 // (`python tools/bench_pt.py --estimators` measures the choice).
@@ -83,7 +181,7 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
         first_of_shape_[k] = (int)lights_.size();
         if (s.kind == udm1scene::Shape::Sphere) {
             Light l;
-            l.sphere = true, l.center = s.center, l.radius = s.radius, l.area = 4 * PI * s.radius * s.radius;
+            l.kind = Light::Sphere, l.center = s.center, l.radius = s.radius, l.area = 4 * PI * s.radius * s.radius;
             l.L = L, l.twosided = al.twosided, l.shape = (int)k;
             lights_.push_back(l);
             continue;
@@ -104,9 +202,66 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
         }
         if (!(total > 0)) throw udm1scene::SceneError(s.where + ": an area light of zero area");
     }
+    // the scene's bounding sphere: the power of lights at infinity, as pbrt-v4 measures it
+    Vec3 lo, hi;
+    scene.bounds(&lo, &hi);
+    double r = std::max(0.5 * length(hi - lo), 1e-9);
+    std::vector<double> extra_power;  // of the light sources, in order
+    for (const udm1scene::LightSource &src : scene.light_sources) {
+        only_area_ = false;
+        Light l;
+        l.L = src.L;
+        double power = 0;
+        switch (src.kind) {
+        case udm1scene::LightSource::Point:
+            l.kind = Light::Point, l.center = src.position;
+            power = 4 * PI * luminance(l.L);
+            break;
+        case udm1scene::LightSource::Spot:
+            l.kind = Light::Spot, l.center = src.position, l.axis = src.direction;
+            l.cos_start = src.cos_start, l.cos_end = src.cos_end;
+            power = 2 * PI * luminance(l.L) * ((1 - l.cos_start) + (l.cos_start - l.cos_end) / 2);
+            break;
+        case udm1scene::LightSource::Distant:
+            l.kind = Light::Distant, l.axis = src.direction;
+            power = PI * r * r * luminance(l.L);
+            break;
+        case udm1scene::LightSource::Infinite: {
+            l.kind = Light::Infinite;
+            l.world_from_light = src.world_from_light;
+            src.world_from_light.inverse(&l.light_from_world);  // (the parser refused a singular one)
+            double mean = luminance(l.L);
+            if (!src.filename.empty()) {
+                maps_.push_back(read_environment(src));
+                const EnvironmentMap &m = maps_.back();
+                l.map = (int)maps_.size() - 1;
+                if (src.illuminance > 0) {  // pbrt-v4: the upper hemisphere's illuminance of the map
+                    double e = 0;
+                    for (int y = 0; y < m.res; ++y)
+                        for (int x = 0; x < m.res; ++x) {
+                            Vec3 w = equal_area_square_to_sphere((x + 0.5) / m.res, (y + 0.5) / m.res);
+                            const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+                            if (w.z > 0) e += luminance(Vec3(c[0], c[1], c[2])) * w.z;
+                        }
+                    e *= 2 * PI / ((double)m.res * m.res);
+                    if (e > 0) l.L = l.L * (src.illuminance / e);
+                }
+                mean = l.L.x * m.total / ((double)m.res * m.res);
+            }
+            power = 4 * PI * PI * r * r * mean;
+            environments_.push_back((int)lights_.size());
+            break;
+        }
+        }
+        lights_.push_back(l);
+        extra_power.push_back(power);
+    }
     double sum = 0;
+    size_t next_extra = 0;
     for (const Light &l : lights_) {
-        double power = luminance(l.L) * l.area * PI * (l.twosided ? 2 : 1);
+        double power = l.kind == Light::Triangle || l.kind == Light::Sphere
+                           ? luminance(l.L) * l.area * PI * (l.twosided ? 2 : 1)
+                           : extra_power[next_extra++];
         sum += power > 0 ? power : 0;
         cdf_.push_back(sum);
     }
@@ -114,20 +269,94 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
     if (sum > 0)
         for (size_t i = 0; i < lights_.size(); ++i) prob_[i] = (cdf_[i] - (i ? cdf_[i - 1] : 0)) / sum;
     else
-        lights_.clear(), cdf_.clear(), prob_.clear(), first_of_shape_.assign(scene.shapes.size(), -1);
+        lights_.clear(), cdf_.clear(), prob_.clear(), first_of_shape_.assign(scene.shapes.size(), -1), environments_.clear();
 }
 
 int Lights::light_of(const udm1scene::Hit &h) const
 {
     if (h.shape >= first_of_shape_.size() || first_of_shape_[h.shape] < 0) return -1;
     const Light &first = lights_[first_of_shape_[h.shape]];
-    return first_of_shape_[h.shape] + (first.sphere ? 0 : (int)h.prim);
+    return first_of_shape_[h.shape] + (first.kind == Light::Sphere ? 0 : (int)h.prim);
 }
 
 Vec3 Lights::radiance(const Light &l, Vec3 n, Vec3 w) const
 {
     if (!l.twosided && dot(n, w) <= 0) return Vec3();
     return l.L;
+}
+
+Vec3 Lights::environment_of(const Light &l, Vec3 d) const
+{
+    if (l.map < 0) return l.L;
+    const EnvironmentMap &m = maps_[l.map];
+    double u, v;
+    equal_area_sphere_to_square(normalize(l.light_from_world.vector(d)), &u, &v);
+    int x = std::clamp((int)(u * m.res), 0, m.res - 1), y = std::clamp((int)(v * m.res), 0, m.res - 1);
+    const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+    return Vec3(c[0] * l.L.x, c[1] * l.L.y, c[2] * l.L.z);
+}
+
+double Lights::environment_pdf_of(const Light &l, Vec3 d) const
+{
+    if (l.map < 0) return 1 / (4 * PI);
+    const EnvironmentMap &m = maps_[l.map];
+    double u, v;
+    equal_area_sphere_to_square(normalize(l.light_from_world.vector(d)), &u, &v);
+    int x = std::clamp((int)(u * m.res), 0, m.res - 1), y = std::clamp((int)(v * m.res), 0, m.res - 1);
+    const double *row = &m.pixel_cdf[(size_t)y * (m.res + 1)];
+    return (row[x + 1] - row[x]) / m.total * ((double)m.res * m.res) / (4 * PI);  // the square's area is 4 pi sr
+}
+
+Vec3 Lights::environment(Vec3 d) const
+{
+    Vec3 L;
+    for (int i : environments_) L = L + environment_of(lights_[i], d);
+    return L;
+}
+
+double Lights::environment_pdf(Vec3 d) const
+{
+    double pdf = 0;
+    for (int i : environments_) pdf += prob_[i] * environment_pdf_of(lights_[i], d);
+    return pdf;
+}
+
+// The lights that are not shapes: point and spot lights (a delta in position), distant lights (a delta
+// in direction), environments (uniform: by uniform directions; a map: by its pixels' luminance).
+bool Lights::sample_source(const Light &l, double prob, Vec3 p, double u1, double u2, LightSample *s) const
+{
+    s->n = Vec3();
+    if (l.kind == Light::Point || l.kind == Light::Spot) {
+        Vec3 d = l.center - p;
+        double d2 = dot(d, d);
+        if (!(d2 > 0)) return false;
+        s->dist = std::sqrt(d2), s->wi = d * (1 / s->dist), s->q = l.center;
+        double falloff = l.kind == Light::Spot ? smooth_step(-dot(s->wi, l.axis), l.cos_end, l.cos_start) : 1;
+        s->L = l.L * (falloff / d2), s->pdf = prob, s->delta = true;
+        return falloff > 0;
+    }
+    s->infinite = true;
+    if (l.kind == Light::Distant) {
+        s->wi = l.axis, s->L = l.L, s->pdf = prob, s->delta = true;
+        return true;
+    }
+    if (l.map < 0) {  // a uniform environment: uniform directions
+        double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z)), sn, cs;
+        udm1scene::sincos_2pi(u2, &sn, &cs);
+        s->wi = Vec3(r * cs, r * sn, z), s->L = l.L, s->pdf = prob / (4 * PI);
+        return true;
+    }
+    const EnvironmentMap &m = maps_[l.map];  // a row by u1, a pixel of it by u2, the point in it by both rescaled
+    double fy, fx;
+    int y = pick(m.row_cdf.data(), m.res, u1 * m.total, &fy);
+    const double *row = &m.pixel_cdf[(size_t)y * (m.res + 1)];
+    int x = pick(row, m.res, u2 * row[m.res], &fx);
+    Vec3 w = equal_area_square_to_sphere((x + fx) / m.res, (y + fy) / m.res);
+    s->wi = normalize(l.world_from_light.vector(w));
+    const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+    s->L = Vec3(c[0] * l.L.x, c[1] * l.L.y, c[2] * l.L.z);
+    s->pdf = prob * (row[x + 1] - row[x]) / m.total * ((double)m.res * m.res) / (4 * PI);
+    return s->pdf > 0;
 }
 
 Vec3 Lights::emitted(const udm1scene::Hit &h, Vec3 w) const
@@ -149,7 +378,7 @@ double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
 {
     Vec3 d = q - p;
     double d2 = dot(d, d);
-    if (l.sphere) {
+    if (l.kind == Light::Sphere) {
         double dc2 = dot(l.center - p, l.center - p), r2 = l.radius * l.radius;
         if (dc2 > r2 * 1.0001) {  // outside: the cone of directions
             double sin2 = r2 / dc2, one_minus_cos = sin2 < 0.00068523 ? sin2 / 2 + sin2 * sin2 / 8 : 1 - std::sqrt(1 - sin2);
@@ -157,7 +386,7 @@ double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
         }
     }
     double omega;
-    if (!l.sphere && by_solid_angle(l, p, &omega)) return 1 / omega;
+    if (l.kind == Light::Triangle && by_solid_angle(l, p, &omega)) return 1 / omega;
     double c = std::fabs(dot(nq, d)) / std::sqrt(d2);
     return c > 0 ? d2 / (c * l.area) : 0;
 }
@@ -174,11 +403,13 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
     if (lights_.empty()) return false;
     size_t i = choose(u1, &u1);
     const Light &l = lights_[i];
-    s->shape = l.shape, s->sphere = l.sphere;
+    s->shape = l.shape, s->sphere = l.kind == Light::Sphere;
+    s->delta = s->infinite = false;
+    if (l.kind != Light::Triangle && l.kind != Light::Sphere) return sample_source(l, prob_[i], p, u1, u2, s);
     Vec3 q, nq;
     double omega = 0;
     bool spherical = false;  // a triangle sampled by solid angle
-    if (l.sphere) {
+    if (l.kind == Light::Sphere) {
         Vec3 dc = l.center - p;
         double dc2 = dot(dc, dc), r2 = l.radius * l.radius;
         if (dc2 > r2 * 1.0001) {

@@ -79,6 +79,14 @@ struct Options {
     bool size_given = false, sampler_given = false, spp_given = false, exact = false;
 };
 
+void check_sample_range(const Options &o)
+{
+    if (o.pt.first >= o.pt.spp) throw Error("--spp-first " + std::to_string(o.pt.first) + " is not below --spp " + std::to_string(o.pt.spp));
+    if (o.pt.count && o.pt.first + o.pt.count > o.pt.spp)
+        throw Error("--spp-first + --spp-count (" + std::to_string(o.pt.first + o.pt.count) + ") exceeds --spp " +
+                    std::to_string(o.pt.spp));
+}
+
 Options parse(int argc, char **argv)
 {
     Options o;
@@ -173,10 +181,7 @@ Options parse(int argc, char **argv)
         if (o.spps.empty()) o.spps = {o.pt.spp};
     }
     if (o.command == "render" && o.output.empty() && o.png.empty()) o.png = "pt.png";
-    if (o.pt.first >= o.pt.spp) throw Error("--spp-first " + std::to_string(o.pt.first) + " is not below --spp " + std::to_string(o.pt.spp));
-    if (o.pt.count && o.pt.first + o.pt.count > o.pt.spp)
-        throw Error("--spp-first + --spp-count (" + std::to_string(o.pt.first + o.pt.count) + ") exceeds --spp " +
-                    std::to_string(o.pt.spp));
+    if (o.spp_given || o.command != "render") check_sample_range(o);  // else once the scene's Sampler is read
     return o;
 }
 
@@ -326,11 +331,18 @@ int run_render(Options o)
         udm1pt::Lights lights(scene);      // and zero-area lights
         if (!scene.media_where.empty() && scene.integrator == "volpath")
             throw Error(scene.media_where + ": participating media need Integrator \"volpath\", which udm1-pt does not model", 1);
-        if (!scene.media_where.empty() && o.command != "export")  // pbrt-v4's PathIntegrator ignores media too
-            std::fprintf(stderr, "udm1-pt: note: %s: media are left out, as Integrator \"path\" leaves them out\n",
-                         scene.media_where.c_str());
-        if (lights.empty() && o.command != "export")
-            std::fprintf(stderr, "udm1-pt: note: %s has no area lights: the image is black\n", o.scene.c_str());
+        if (o.command == "render" && !o.spp_given && !scene.sampler_where.empty()) {  // the scene's sample count
+            o.pt.spp = (uint32_t)scene.pixel_samples;
+            check_sample_range(o);
+            scene.notes.push_back(scene.sampler_where + ": " + std::to_string(o.pt.spp) +
+                                  " samples per pixel, the Sampler's pixelsamples (--spp overrides); sampler " +
+                                  o.pt.sampler + " in place of \"" + scene.sampler + "\" (--sampler chooses)");
+        }
+        if (!scene.media_where.empty())  // pbrt-v4's PathIntegrator ignores media too
+            scene.notes.push_back(scene.media_where + ": media are left out, as Integrator \"path\" leaves them out");
+        if (lights.empty()) scene.notes.push_back(o.scene + " has no lights: the image is black");
+        if (o.command != "export")
+            for (const std::string &n : scene.notes) std::fprintf(stderr, "udm1-pt: note: %s\n", n.c_str());
     } catch (const udm1scene::SceneError &e) {
         throw Error(e.what(), 1);
     }

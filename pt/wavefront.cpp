@@ -29,6 +29,7 @@ std::string wavefront_unsupported(const Scene &scene, const Options &opt)
         if (refl && refl->type == "texture") return s.where + ": a textured reflectance";
     }
     if (!light) return "no area light";
+    if (!scene.light_sources.empty()) return scene.light_sources[0].where + ": a LightSource";
     return "";
 }
 

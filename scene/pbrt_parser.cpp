@@ -366,16 +366,35 @@ private:
         } else if (d == "Sampler") {
             scene_.sampler = string_arg(lex, "Sampler");
             ParamSet ps = params(lex, t.line);
+            scene_.sampler_where = here;
             scene_.pixel_samples = ps.get_int("pixelsamples", 16);
+            if (scene_.pixel_samples < 1 || scene_.pixel_samples > (1 << 24))
+                throw SceneError(here + ": Sampler: pixelsamples " + std::to_string(scene_.pixel_samples) + " outside 1..2^24");
+        } else if (d == "Accelerator") {
+            std::string type = string_arg(lex, "Accelerator");
+            params(lex, t.line);
+            scene_.notes.push_back(here + ": Accelerator \"" + type + "\" ignored: rays are traced by Embree (the image does not depend on it)");
         } else if (d == "Integrator") {
             scene_.integrator = string_arg(lex, "Integrator");
             ParamSet ps = params(lex, t.line);
             if (geometry_only_) {
                 ignore(here, "Integrator");
             } else {  // udm1-pt is a unidirectional path tracer; volpath without media is the same
-                if (scene_.integrator != "path" && scene_.integrator != "volpath")
-                    throw SceneError(here + ": Integrator \"" + scene_.integrator + "\" is not supported (path)");
-                only(ps, {"maxdepth"}, "Integrator");
+                const std::string &in = scene_.integrator;
+                if (in != "path" && in != "volpath" && in != "simplepath" && in != "randomwalk")
+                    throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath without media; "
+                                            "simplepath and randomwalk render as path)");
+                only(ps, {"maxdepth", "lightsampler", "samplelights", "samplebsdf", "regularize"}, "Integrator");
+                if (ps.get_bool("regularize", false))
+                    throw SceneError(ps.find("regularize")->where + ": Integrator: regularize (a biased image) is not supported");
+                if (in == "simplepath" || in == "randomwalk") {  // the same image in the limit, found another way
+                    scene_.notes.push_back(here + ": Integrator \"" + in + "\" renders as \"path\" (the same image it "
+                                                  "converges to; noise differs)");
+                    scene_.integrator = "path";
+                }
+                if (ps.find("lightsampler") || ps.find("samplelights") || ps.find("samplebsdf"))
+                    scene_.notes.push_back(here + ": Integrator: lightsampler, samplelights and samplebsdf ignored (they "
+                                                  "change the noise, not the image; udm1-pt chooses lights by power, with MIS)");
             }
             scene_.max_depth = ps.get_int("maxdepth", 5);
             if (scene_.max_depth < 0 || scene_.max_depth > 1000)
@@ -432,6 +451,8 @@ private:
                 throw SceneError(here + ": AreaLightSource: negative emission");
             templates_.push_back(l);
             st_.light_template = (int)templates_.size() - 1;
+        } else if (d == "LightSource" && !geometry_only_) {
+            light_source(lex, t, dir);
         } else if (d == "Shape") {
             shape(lex, t, dir);
         } else if (d == "Include" || d == "Import") {
@@ -496,6 +517,74 @@ private:
         } else {
             throw SceneError(here + ": unsupported directive '" + d + "'");
         }
+    }
+
+    // LightSource "point" | "spot" | "distant" | "infinite", placed by the current transform, with pbrt-v4's
+    // parameters, defaults and normalization: the emission spectrum at 1 nit (or as rgb), times "scale";
+    // "power" (point, spot) or "illuminance" (distant, infinite) in its place where given.
+    void light_source(Lexer &lex, const Token &t, const std::string &dir)
+    {
+        const std::string here = lex.where(t.line);
+        std::string type = string_arg(lex, "LightSource");
+        ParamSet ps = params(lex, t.line);
+        const double PI = 3.14159265358979323846;
+        LightSource l;
+        l.where = here;
+        const Mat4 &m = st_.ctm;
+        auto emitted = [&](const char *name) { return ps.find(name) ? emission(ps, name, "LightSource") : Vec3(1, 1, 1); };
+        double scale = ps.get_float("scale", 1.0), power = ps.get_float("power", -1), lux = ps.get_float("illuminance", -1);
+        if (!(scale >= 0) || !std::isfinite(scale)) throw SceneError(here + ": LightSource: scale must not be negative");
+        if (type == "point" || type == "spot") {
+            only(ps, {"I", "scale", "power", "from", "to", "coneangle", "conedeltaangle"}, "LightSource \"" + type + "\"");
+            if (type == "point" && (ps.find("to") || ps.find("coneangle") || ps.find("conedeltaangle")))
+                throw SceneError(here + ": LightSource \"point\": unsupported parameter (to, coneangle, conedeltaangle are a spot's)");
+            Vec3 from = ps.get_point("from", Vec3()), I = emitted("I");
+            l.position = m.point(from);
+            double solid_angle = 4 * PI;  // of the emission at full intensity, for "power"
+            if (type == "spot") {
+                l.kind = LightSource::Spot;
+                Vec3 axis = m.vector(ps.get_point("to", Vec3(0, 0, 1)) - from);
+                if (!(length(axis) > 0)) throw SceneError(here + ": LightSource \"spot\": from and to coincide");
+                l.direction = normalize(axis);
+                double cone = ps.get_float("coneangle", 30), delta = ps.get_float("conedeltaangle", 5);
+                if (!(cone > 0 && cone <= 180 && delta >= 0 && delta <= cone))
+                    throw SceneError(here + ": LightSource \"spot\": coneangle must be in (0, 180] and conedeltaangle in [0, coneangle]");
+                l.cos_end = std::cos(cone * PI / 180), l.cos_start = std::cos((cone - delta) * PI / 180);
+                solid_angle = 2 * PI * ((1 - l.cos_start) + (l.cos_start - l.cos_end) / 2);
+            }
+            if (power > 0) scale *= power / solid_angle;  // (an rgb I keeps its own magnitude, as in pbrt-v4)
+            l.L = I * scale;
+        } else if (type == "distant") {
+            only(ps, {"L", "scale", "from", "to", "illuminance"}, "LightSource \"distant\"");
+            l.kind = LightSource::Distant;
+            Vec3 w = m.vector(ps.get_point("from", Vec3()) - ps.get_point("to", Vec3(0, 0, 1)));
+            if (!(length(w) > 0)) throw SceneError(here + ": LightSource \"distant\": from and to coincide");
+            l.direction = normalize(w);
+            Vec3 L = emitted("L");
+            if (lux > 0) scale *= lux;
+            l.L = L * scale;
+        } else if (type == "infinite") {
+            only(ps, {"L", "scale", "filename", "illuminance", "portal"}, "LightSource \"infinite\"");
+            if (const Param *p = ps.find("portal")) throw SceneError(p->where + ": LightSource \"infinite\": portals are not supported");
+            l.kind = LightSource::Infinite;
+            l.world_from_light = m;
+            Mat4 inv;
+            if (!m.inverse(&inv)) throw SceneError(here + ": LightSource \"infinite\": singular transform");
+            std::string file = ps.get_string("filename", "");
+            if (!file.empty()) {
+                if (ps.find("L")) throw SceneError(here + ": LightSource \"infinite\": both \"L\" and \"filename\" given");
+                l.filename = file[0] == '/' ? file : dir + file;
+                l.illuminance = lux;  // needs the image: the renderer applies it
+                l.L = Vec3(scale, scale, scale);
+            } else {
+                Vec3 L = emitted("L");
+                if (lux > 0) scale *= lux / PI;  // a uniform sky's illuminance is pi L
+                l.L = L * scale;
+            }
+        } else {
+            throw SceneError(here + ": LightSource \"" + type + "\" is not supported (point, spot, distant, infinite)");
+        }
+        scene_.light_sources.push_back(l);
     }
 
     void shape(Lexer &lex, const Token &t, const std::string &dir)

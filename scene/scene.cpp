@@ -72,6 +72,14 @@ bool ParamSet::get_rgb(const std::string &name, Vec3 *rgb) const
     return true;
 }
 
+Vec3 ParamSet::get_point(const std::string &name, Vec3 fallback) const
+{
+    const Param *p = find(name);
+    if (!p) return fallback;
+    if (p->numbers.size() != 3) throw SceneError(p->where + ": '" + name + "' needs a point (3 numbers)");
+    return Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
+}
+
 size_t Scene::triangle_count() const
 {
     size_t n = 0;
@@ -133,6 +141,14 @@ uint64_t Scene::digest() const
         }
     }
     for (const AreaLight &l : lights) f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.scale), f.value(l.twosided);
+    for (const LightSource &l : light_sources) {
+        f.value((int)l.kind), f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.position.x), f.value(l.position.y),
+            f.value(l.position.z), f.value(l.direction.x), f.value(l.direction.y), f.value(l.direction.z);
+        f.value(l.cos_start), f.value(l.cos_end), f.value(l.illuminance);
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) f.value(l.world_from_light.m[r][c]);
+        f.vec(std::vector<char>(l.filename.begin(), l.filename.end()));
+    }
     return f.h;
 }
 

@@ -39,6 +39,7 @@ struct ParamSet {
     bool get_bool(const std::string &name, bool fallback) const;
     std::string get_string(const std::string &name, const std::string &fallback) const;
     bool get_rgb(const std::string &name, Vec3 *rgb) const;
+    Vec3 get_point(const std::string &name, Vec3 fallback) const;  // "point3 name" [x y z]
 };
 
 // A pbrt-v4 texture of the subset: "imagemap" (an image file, repeated, bilinear, 8-bit files
@@ -62,6 +63,21 @@ struct AreaLight {
     Vec3 L{1, 1, 1};
     double scale = 1;
     bool twosided = false;
+    std::string where;
+};
+
+// A pbrt-v4 LightSource: a light that is not a shape. Emission in linear sRGB with pbrt-v4's
+// normalization and "scale", "power" or "illuminance" applied (radiance for distant and infinite
+// lights, intensity for point and spot lights).
+struct LightSource {
+    enum Kind { Point, Spot, Distant, Infinite } kind = Point;
+    Vec3 L{1, 1, 1};
+    Vec3 position;                    // point, spot: world space
+    Vec3 direction{0, 0, 1};          // spot: its axis; distant: towards the light (unit, world space)
+    double cos_start = 1, cos_end = 0;  // spot: full intensity inside cos_start, none outside cos_end
+    Mat4 world_from_light;            // infinite: the map's orientation (+z its pole)
+    std::string filename;             // infinite: an equal-area octahedral environment map ("" uniform)
+    double illuminance = -1;          // infinite with a map: the upper hemisphere's target illuminance
     std::string where;
 };
 
@@ -92,17 +108,22 @@ struct Scene {
     double film_scale = 1;              // pbrt-v4's imaging ratio: exposuretime * iso / 100
     std::string film_sensor = "cie1931";  // named in the file; udm1-pt renders plain RGB whatever it is
     std::string media_where;              // file:line of the first MakeNamedMedium, if any
-    std::string sampler;  // the scene's Sampler directive, for information
-    int pixel_samples = 16;
+    std::string sampler;        // the scene's Sampler directive (udm1's renderers use their own samplers)
+    std::string sampler_where;  // its file:line ("" without one)
+    int pixel_samples = 16;     // its "pixelsamples" (pbrt-v4's default 16)
     std::string integrator = "path";
     int max_depth = 5;
     std::vector<Material> materials;
     std::vector<Texture> textures;  // referenced from material parameters "texture NAME" by name
     std::vector<AreaLight> lights;
+    std::vector<LightSource> light_sources;
     std::vector<Shape> shapes;
     std::string source;  // file name, or "built-in NAME"
     // What a geometry-only load left out, one "file:line: what" per kind of directive or parameter.
     std::vector<std::string> ignored;
+    // What the renderers substitute or ignore because it does not change the image (an Integrator that
+    // converges to the same image, an Accelerator), one "file:line: what" each, for the user to read.
+    std::vector<std::string> notes;
 
     size_t triangle_count() const;
     // Axis-aligned bounds of all shapes (for ray offsets and default cameras).

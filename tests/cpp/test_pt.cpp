@@ -576,6 +576,179 @@ static void test_light_over_plane()
     std::remove(path);
 }
 
+// A scene file in a temporary folder (with its other files beside it), loaded.
+struct TempScene {
+    std::string dir;
+    TempScene()
+    {
+        char tmpl[] = "/tmp/udm1_test_scene_XXXXXX";
+        dir = mkdtemp(tmpl) ? tmpl : "";
+        CHECK(!dir.empty());
+    }
+    ~TempScene()
+    {
+        for (const char *f : {"/s.pbrt", "/map.exr"}) std::remove((dir + f).c_str());
+        rmdir(dir.c_str());
+    }
+    Scene load(const std::string &text) const
+    {
+        FILE *f = std::fopen((dir + "/s.pbrt").c_str(), "w");
+        std::fputs(text.c_str(), f);
+        std::fclose(f);
+        return load_scene(dir + "/s.pbrt");
+    }
+};
+
+// A floor (y = 0, reflectance 0.5, up to 1000 from the origin) seen from 30 above by a 16 x 16 camera
+// (fov 60: x and z in about [-17, 17]), direct light only, with `lights` and what else the text adds.
+static std::string floor_under(const std::string &lights)
+{
+    return "LookAt 0 30 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ 60 ]\n"
+           "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
+           "Integrator \"path\" \"integer maxdepth\" [ 1 ]\nWorldBegin\n" + lights +
+           "\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+           "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [ -1000 0 -1000  1000 0 -1000  "
+           "1000 0 1000  -1000 0 1000 ]\n";
+}
+
+// Each pixel of floor_under's image against a closed form of the irradiance E(p) at floor point p: the
+// pixel's mean of 0.5 / pi E over a 16 x 16 grid in it. rel: the tolerance relative to the value, plus
+// 1e-3 of the brightest pixel (where a pixel straddles a spot's cone, its few values are within that).
+template <class Irradiance>
+static void check_floor(const Scene &s, const EmbreeScene &rt, Options o, Irradiance E, double rel, const char *what)
+{
+    CameraRays cam(s);
+    std::vector<float> m = run(s, rt, o).mean();
+    double want[256], top = 0;
+    for (int k = 0; k < 256; ++k) {
+        double sum = 0;
+        for (int i = 0; i < 16; ++i)
+            for (int j = 0; j < 16; ++j) {
+                Vec3 org, d;
+                cam.ray(k % 16 + (i + 0.5) / 16, k / 16 + (j + 0.5) / 16, &org, &d);
+                sum += 0.5 / M_PI * E(org + d * (-org.y / d.y));
+            }
+        want[k] = sum / 256, top = std::max(top, want[k]);
+    }
+    int bad = 0;
+    for (int py = 0; py < 16; ++py)
+        for (int px = 0; px < 16; ++px) {
+            double w = want[16 * py + px], got = m[3 * (16 * py + px) + 1];
+            if (!(std::fabs(got - w) <= rel * w + 1e-3 * top * (rel > 1e-6)) && bad++ < 4)
+                CHECKF(false, "%s, strategy %d, pixel (%d, %d): %.6g, closed form %.6g", what, (int)o.strategy, px, py,
+                       got, w);
+        }
+    CHECKF(bad == 0, "%s, strategy %d: %d pixels off the closed form", what, (int)o.strategy, bad);
+}
+
+// pbrt-v4's LightSources against closed forms on the floor: a point light (I cos / r^2), a spot light
+// (the same with its smooth falloff between the cone's inner and outer angles), a distant light (L cos),
+// a uniform environment (pi L) and an environment map (the map integrated over the hemisphere, pixel by
+// pixel: they are equal-area), by light sampling, BSDF sampling where it can find the light, and MIS.
+static void test_light_sources()
+{
+    // the equal-area mapping: the square's centre is the pole, its corners the other pole, and the two
+    // directions invert each other
+    CHECK(length(equal_area_square_to_sphere(0.5, 0.5) - Vec3(0, 0, 1)) < 1e-12);
+    CHECK(length(equal_area_square_to_sphere(0, 1) - Vec3(0, 0, -1)) < 1e-12);
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> U(0, 1);
+    for (int k = 0; k < 10000; ++k) {
+        double u = U(rng), v = U(rng), u2, v2;
+        Vec3 w = equal_area_square_to_sphere(u, v);
+        equal_area_sphere_to_square(w, &u2, &v2);
+        CHECKF(std::fabs(length(w) - 1) < 1e-12 && std::fabs(u2 - u) < 1e-9 && std::fabs(v2 - v) < 1e-9,
+               "(%.17g, %.17g) -> (%.17g, %.17g)", u, v, u2, v2);
+    }
+    TempScene t;
+    const double h = 8, I = 50;
+    {
+        Scene s = t.load(floor_under("LightSource \"point\" \"point3 from\" [ 3 8 2 ] \"rgb I\" [ 50 50 50 ]"));
+        EmbreeScene rt(s);
+        auto E = [&](Vec3 p) {
+            Vec3 d = Vec3(3, h, 2) - p;
+            double r = length(d);
+            return I * h / (r * r * r);
+        };
+        Options o;
+        o.spp = 256;
+        for (Strategy st : {Strategy::Mis, Strategy::Nee}) o.strategy = st, check_floor(s, rt, o, E, 2e-3, "point light");
+    }
+    {
+        // a spot 8 above the origin, turned to the floor: full intensity within 20 degrees, none beyond 30
+        Scene s = t.load(floor_under("LightSource \"spot\" \"point3 from\" [ 0 8 0 ] \"point3 to\" [ 0 0 0 ] "
+                                     "\"rgb I\" [ 50 50 50 ] \"float coneangle\" [ 30 ] \"float conedeltaangle\" [ 10 ]"));
+        EmbreeScene rt(s);
+        const double c_end = std::cos(30 * M_PI / 180), c_start = std::cos(20 * M_PI / 180);
+        auto E = [&](Vec3 p) {
+            Vec3 d = Vec3(0, h, 0) - p;
+            double r = length(d), c = h / r, x = std::clamp((c - c_end) / (c_start - c_end), 0.0, 1.0);
+            return I * x * x * (3 - 2 * x) * h / (r * r * r);
+        };
+        Options o;
+        o.spp = 256;
+        check_floor(s, rt, o, E, 2e-3, "spot light");
+    }
+    {
+        Scene s = t.load(floor_under("LightSource \"distant\" \"point3 from\" [ 1 2 0.5 ] \"point3 to\" [ 0 0 0 ] "
+                                     "\"rgb L\" [ 3 3 3 ]"));
+        EmbreeScene rt(s);
+        double c = 2 / std::sqrt(1 + 4 + 0.25);
+        Options o;
+        o.spp = 4;
+        check_floor(s, rt, o, [&](Vec3) { return 3 * c; }, 1e-6, "distant light");
+    }
+    {
+        // a uniform sky of radiance 2 (blackbody 6504 K at luminance 1, scaled; every channel near 2)
+        Scene s = t.load(floor_under("LightSource \"infinite\" \"rgb L\" [ 2 2 2 ]"));
+        EmbreeScene rt(s);
+        Options o;
+        o.spp = 256;
+        for (Strategy st : {Strategy::Mis, Strategy::Nee, Strategy::Bsdf}) {
+            o.strategy = st;
+            check_floor(s, rt, o, [](Vec3) { return 2 * M_PI; }, st == Strategy::Bsdf ? 1e-9 : 0.03, "uniform sky");
+        }
+    }
+    {
+        // a 32 x 32 map, turned so that its pole is up (+y): a gradient and a small bright patch (which light
+        // sampling finds and BSDF sampling rarely does), against the map integrated over the upper hemisphere
+        const int n = 32;
+        std::vector<float> px(3 * n * n);
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                bool patch = x >= 12 && x < 14 && y >= 9 && y < 11;
+                for (int c = 0; c < 3; ++c)
+                    px[3 * (y * n + x) + c] = patch ? 40.0f + 10 * c : 0.2f + 0.6f * x / n + 0.1f * c + 0.3f * y / n;
+            }
+        udm1app::write_image(t.dir + "/map.exr", px, n, n, 3);
+        Scene s = t.load(floor_under("AttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string filename\" "
+                                     "\"map.exr\" \"float scale\" [ 1.5 ]\nAttributeEnd"));
+        EmbreeScene rt(s);
+        // the map's radiance is constant over each pixel and every pixel subtends 4 pi / n^2: irradiance of the
+        // light-space upper hemisphere (z > 0, world y > 0) by a fine grid in each pixel
+        std::vector<Vec3> dirs;
+        std::vector<double> lum;
+        const int sub = 12;
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x)
+                for (int i = 0; i < sub; ++i)
+                    for (int j = 0; j < sub; ++j) {
+                        Vec3 w = equal_area_square_to_sphere((x + (i + 0.5) / sub) / n, (y + (j + 0.5) / sub) / n);
+                        if (w.z <= 0) continue;
+                        dirs.push_back(w);
+                        lum.push_back(1.5 * px[3 * (y * n + x) + 1] * 4 * M_PI / ((double)n * n * sub * sub));
+                    }
+        double E = 0;
+        for (size_t k = 0; k < dirs.size(); ++k) E += lum[k] * dirs[k].z;
+        Options o;
+        o.spp = 1024;
+        for (Strategy st : {Strategy::Mis, Strategy::Nee}) {  // (the patch makes BSDF sampling too noisy to test)
+            o.strategy = st;
+            check_floor(s, rt, o, [&](Vec3) { return E; }, 0.01, "environment map");
+        }
+    }
+}
+
 // The Crown (the paper's scene, ../shared/scenes): with its lights one at a time, direct light only, light
 // sampling, BSDF sampling and MIS agree in the mean. Its lights are lit at grazing angles over much of
 // the crown, where a shadow ray that met the light's own surface once lost up to 55 % of one light.
@@ -802,6 +975,7 @@ int main()
     test_bsdf_consistency();
     test_light_sampling();
     test_light_over_plane();
+    test_light_sources();
     test_crown_lights_one_by_one();
     test_blackbody();
     test_metal_and_glass();

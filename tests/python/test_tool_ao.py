@@ -339,3 +339,18 @@ def test_unwritable_output(tmp_path):
     r = run("--spp", "1", "--size", "8x8", "-o", str(tmp_path / "good.exr"), "--png", str(tmp_path / "no" / "x.png"))
     assert r.returncode == 1
     assert list(tmp_path.iterdir()) == []
+
+
+def test_what_ambient_occlusion_does_not_need_is_noted(tmp_path):
+    # lights, an integrator and an accelerator are not geometry: rendered, with one note line each kind
+    scene = tmp_path / "s.pbrt"
+    scene.write_text('Integrator "simplepath"\nAccelerator "bvh"\n' + HEAD
+                     + 'LightSource "infinite" "string filename" "sky.exr"\nLightSource "point" "rgb I" [ 1 1 1 ]\n' + TRI)
+    plain = tmp_path / "plain.pbrt"
+    plain.write_text(HEAD + TRI)
+    r = ok("--scene", str(scene), "--spp", "4", "--size", "8x8", "-o", str(tmp_path / "a.exr"))
+    notes = [l for l in r.stderr.splitlines() if l.startswith("udm1-ao: note: ")]
+    assert any(f"{scene}:2: Accelerator \"bvh\" ignored" in n for n in notes), r.stderr
+    assert any("appearance left out" in n for n in notes), r.stderr
+    ok("--scene", str(plain), "--spp", "4", "--size", "8x8", "-o", str(tmp_path / "b.exr"))
+    assert ok("compare", str(tmp_path / "a.exr"), str(tmp_path / "b.exr")).stdout.startswith("mse 0 ")  # the same image

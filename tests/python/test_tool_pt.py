@@ -231,7 +231,15 @@ PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty f
     "text,line,words",
     [
         (HEAD + "Frobnicate 3\n" + TRI, 4, "unsupported directive 'Frobnicate'"),
-        (HEAD + 'LightSource "infinite"\n' + TRI, 4, "unsupported directive 'LightSource'"),
+        (HEAD + 'LightSource "goniometric"\n' + TRI, 4, 'LightSource "goniometric" is not supported'),
+        (HEAD + 'LightSource "infinite" "string filename" "nomap.exr"\n' + TRI, 4, "nomap.exr"),
+        (HEAD + 'LightSource "infinite" "string filename" "wide.exr"\n' + TRI, 4, "not square"),
+        (HEAD + 'LightSource "infinite" "rgb L" [ 1 1 1 ] "string filename" "wide.exr"\n' + TRI, 4, 'both "L" and "filename"'),
+        (HEAD + 'LightSource "infinite" "point3 portal" [ 0 0 0 1 0 0 1 1 0 0 1 0 ]\n' + TRI, 4, "portals are not supported"),
+        (HEAD + 'LightSource "spot" "float coneangle" [ 30 ] "float conedeltaangle" [ 40 ]\n' + TRI, 4, "conedeltaangle"),
+        (HEAD + 'LightSource "point" "point3 to" [ 0 0 1 ]\n' + TRI, 4, "to, coneangle, conedeltaangle are a spot's"),
+        (HEAD + 'LightSource "distant" "point3 from" [ 1 1 1 ] "point3 to" [ 1 1 1 ]\n' + TRI, 4, "from and to coincide"),
+        (HEAD + 'LightSource "point" "rgb I" [ 1 -1 1 ]\n' + TRI, 4, "negative emission"),
         (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 x ]\n', 4, "x"),
         (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 1e999 ]\n', 4, "1e999"),
         (HEAD + 'Shape "trianglemesh" "point3 P" [ 0 0 0 1 ]\n', 4, "3 numbers per vertex"),
@@ -272,6 +280,10 @@ def test_bad_scenes_name_file_and_line(text, line, words, tmp_path):
     (tmp_path / "trunc.ply").write_bytes(PLY_HEAD + b"\0" * 20)
     (tmp_path / "badindex.ply").write_bytes(PLY_HEAD + np.zeros(9, "<f4").tobytes() + b"\3"
                                             + np.array([0, 1, 3], "<i4").tobytes())
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    mi.Bitmap(np.ones((2, 4, 3), np.float32)).write(str(tmp_path / "wide.exr"))  # not an equal-area map
     before = set(tmp_path.iterdir())
     r = run("--scene", str(scene), "--spp", "1", "--size", "8x8", "-o", "out.exr", "--png", "out.png", cwd=tmp_path)
     assert r.returncode == 1, r.stderr
@@ -688,3 +700,47 @@ def test_spectral_gold_reflects_as_pbrt_records_it(tmp_path):
                      'Shape "trianglemesh" "point3 P" [ -5 -5 -4  5 -5 -4  5 5 -4  -5 5 -4 ] "integer indices" [ 0 1 2 0 2 3 ]\n')
     got = mean_of(ok("--scene", str(scene), "--spp", "4", "-o", str(tmp_path / "gold.exr")))
     assert want[0] > 1 and np.allclose(got, want, rtol=1e-3), (got, want)
+
+
+def test_directives_that_change_nothing_are_rendered_with_a_note(tmp_path):
+    # Integrator "simplepath" and "randomwalk" converge to "path"'s image, an Accelerator does not change
+    # it: rendered, the same image bit for bit, with one note line each naming file and line
+    body = ('Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]\n' + HEAD
+            + 'AttributeBegin\nAreaLightSource "diffuse" "rgb L" [ 4 4 4 ]\n'
+              'Shape "trianglemesh" "point3 P" [ -1 2 -1  1 2 -1  1 2 1  -1 2 1 ] "integer indices" [ 0 1 2 0 2 3 ]\n'
+              'AttributeEnd\nShape "trianglemesh" "point3 P" [ -3 -1 -3  3 -1 -3  3 -1 3  -3 -1 3 ] '
+              '"integer indices" [ 0 1 2 0 2 3 ]\n')
+    images = {}
+    for name, head in [("path", 'Integrator "path"\n'), ("simplepath", 'Integrator "simplepath" "integer maxdepth" [ 5 ]\n'),
+                       ("randomwalk", 'Integrator "randomwalk"\n'), ("accel", 'Accelerator "kdtree" "integer maxprims" [ 4 ]\n')]:
+        scene = tmp_path / f"{name}.pbrt"
+        scene.write_text(head + body)
+        out = tmp_path / f"{name}.exr"
+        r = ok("--scene", str(scene), "--spp", "8", "-o", str(out))
+        notes = [l for l in r.stderr.splitlines() if l.startswith("udm1-pt: note: ")]
+        if name == "path":
+            assert notes == [], r.stderr
+        else:
+            assert len(notes) == 1 and f"{scene}:1:" in notes[0], r.stderr
+            assert ('renders as "path"' if name != "accel" else 'Accelerator "kdtree" ignored') in notes[0], r.stderr
+        images[name] = out.read_bytes()
+    assert images["simplepath"] == images["path"] == images["randomwalk"] == images["accel"]
+    # a biased variant is refused
+    bad = tmp_path / "reg.pbrt"
+    bad.write_text('Integrator "path" "bool regularize" true\n' + body)
+    fails_cleanly(run, ["--scene", str(bad), "--spp", "1", "-o", "reg.exr"], "regularize", tmp_path, code=1)
+
+
+def test_the_scenes_pixelsamples_without_spp(tmp_path):
+    scene = tmp_path / "s.pbrt"
+    scene.write_text('Sampler "halton" "integer pixelsamples" [ 8 ]\n'
+                     'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]\n' + HEAD + TRI)
+    r = ok("--scene", str(scene), "-o", str(tmp_path / "a.exr"))
+    assert RENDER_LINE.match(r.stdout).group(2) == "8", r.stdout
+    notes = [l for l in r.stderr.splitlines() if l.startswith("udm1-pt: note: ")]
+    assert any(f"{scene}:1: 8 samples per pixel" in n and '"halton"' in n for n in notes), r.stderr
+    r = ok("--scene", str(scene), "--spp", "4", "-o", str(tmp_path / "b.exr"))  # --spp wins, nothing to say
+    assert RENDER_LINE.match(r.stdout).group(2) == "4" and "samples per pixel" not in r.stderr, (r.stdout, r.stderr)
+    # a sample range checked against the scene's count
+    fails_cleanly(run, ["--scene", str(scene), "--spp-first", "8", "-o", "c.exr"], "--spp-first 8 is not below --spp 8",
+                  tmp_path, code=2)
