@@ -710,6 +710,24 @@ static void test_light_sources()
         }
     }
     {
+        // the furnace: a diffuse sphere (reflectance 0.8) filling the view under a uniform sky of radiance 1, every
+        // bounce counted: a convex body sees only the sky, so it reflects 0.8 everywhere, whatever the depth
+        Scene s = t.load("LookAt 0 0 -3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" [ 20 ]\n"
+                         "Film \"rgb\" \"integer xresolution\" [ 8 ] \"integer yresolution\" [ 8 ]\nWorldBegin\n"
+                         "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n"
+                         "Material \"diffuse\" \"rgb reflectance\" [ 0.8 0.8 0.8 ]\nShape \"sphere\" \"float radius\" [ 1 ]\n");
+        EmbreeScene rt(s);
+        Options o;
+        o.spp = 256, o.max_depth = 20;
+        for (Strategy st : {Strategy::Mis, Strategy::Nee, Strategy::Bsdf}) {
+            o.strategy = st;
+            std::vector<float> m = run(s, rt, o).mean();
+            double worst = 0;
+            for (float v : m) worst = std::max(worst, std::fabs(v - 0.8));
+            CHECKF(worst < (st == Strategy::Bsdf ? 1e-6 : 0.02), "furnace, strategy %d: a pixel %.5f off 0.8", (int)st, worst);
+        }
+    }
+    {
         // a 32 x 32 map, turned so that its pole is up (+y): a gradient and a small bright patch (which light
         // sampling finds and BSDF sampling rarely does), against the map integrated over the upper hemisphere
         const int n = 32;
