@@ -103,6 +103,9 @@ bench)
     "$PY" tools/bench_pt.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
     udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (tools/bench_pt.py --estimators)"
     "$PY" tools/bench_pt.py --estimators --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
+    udm1_log "udm1-pt against pbrt-v4 on every shared and test scene (tools/bench_accuracy.py; pbrt-v4 is built once"
+    udm1_log "from ../shared/anchors into build/anchors, about 10 minutes; skipped with a message where it is absent)"
+    "$PY" tools/bench_accuracy.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/accuracy"
     udm1_log "scale-out: udm1.distributed on 1 and 2 local Dask workers against the tools alone (tools/bench_distributed.py)"
     UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_distributed.py --tool "$ROOT/build/pt/udm1-pt" \
         --out "$ROOT/build/bench_distributed"

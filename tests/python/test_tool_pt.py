@@ -744,3 +744,14 @@ def test_the_scenes_pixelsamples_without_spp(tmp_path):
     # a sample range checked against the scene's count
     fails_cleanly(run, ["--scene", str(scene), "--spp-first", "8", "-o", "c.exr"], "--spp-first 8 is not below --spp 8",
                   tmp_path, code=2)
+
+
+@pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "tests" / "scenes").glob("*.pbrt")))
+def test_the_project_scenes_render(name, tmp_path):
+    # the scenes the accuracy benchmark compares with pbrt-v4 (tools/bench_accuracy.py): they render, every
+    # channel finite and lit
+    r = ok("--scene", str(ROOT / "tests" / "scenes" / f"{name}.pbrt"), "--spp", "4", "--size", "40x30",
+           "-o", str(tmp_path / "out.exr"))
+    mean = mean_of(r)
+    assert np.all(np.isfinite(mean)) and np.all(mean > 0.01), mean
+    assert "warning" not in r.stdout, r.stdout

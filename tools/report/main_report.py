@@ -13,6 +13,8 @@ terminal, and records what each did in OUT/steps.json:
     tent        beyond the paper: the tent transform's effect per integrand (udm1_bench_samplers error)
     screen      beyond the paper: blue-noise error from screen-space decorrelation (screen_report.py)
     crown       with --full, where ../shared has it: the same protocol on the paper's Crown at 100 x 140
+    accuracy    with --full: udm1-pt against pbrt-v4 on every shared and test scene (tools/bench_accuracy.py;
+                pbrt-v4 built once from ../shared/anchors, skipped with a message where it is absent)
 
 then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
 the steps (a failed step is shown failed, with its error, and its numbers are not shown), the paper's
@@ -112,7 +114,7 @@ def plan(args, out: Path) -> list[Step]:
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
              [[py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]], ["screen.json"],
              "screen.html"),
-    ] + crown_step(args, py, tools["pt"], out)
+    ] + crown_step(args, py, tools["pt"], out) + accuracy_step(args, py, tools["pt"], out)
 
 
 def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
@@ -126,6 +128,15 @@ def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
     return [Step("crown", "Path tracing: the Crown, the paper's Figure 10 scene (udm1-pt, 100 x 140)",
                  [[py, str(HERE / "pt_report.py"), "--pt", pt, "--out", str(out / "crown"), "--scene", str(crown),
                    "--size", "100x140", "--sweep-size", "50x70"]], ["crown/pt.json"], "crown/pt.html")]
+
+
+def accuracy_step(args, py: str, pt: str, out: Path) -> list[Step]:
+    """--full: udm1-pt against pbrt-v4 on the same files (the tool skips, saying why, what is absent)."""
+    if not args.full:
+        return []
+    return [Step("accuracy", "Path tracing: udm1-pt against pbrt-v4 on the same scene files (image means)",
+                 [[py, str(ROOT / "tools" / "bench_accuracy.py"), "--tool", pt, "--out", str(out / "accuracy")]],
+                 ["accuracy/accuracy.json"], "accuracy/accuracy.md")]
 
 
 def file_digest(path: str) -> str:

@@ -433,6 +433,32 @@ def pt_section(doc, out: Path, state, step: str = "pt", prefix: str = ""):
     doc.para(f"Details, sweeps and verdicts per scene in [{step}]({prefix}pt.html).")
 
 
+def accuracy_section(doc, out: Path, state):
+    doc.heading(2, "Agreement with pbrt-v4", "accuracy")
+    if not_shown(doc, state, "accuracy"):
+        return
+    acc = load(out, "accuracy/accuracy.json")
+    if acc.get("skipped"):
+        doc.para(f"**Not measured**: {acc['skipped']}.")
+        return
+    doc.para("Each scene file rendered by udm1-pt and by pbrt-v4 (box filter, same size and spp, several seeds): "
+             "the image mean per channel and the relative difference with its standard error. A difference above "
+             "1 % has a stated cause, and the variants under it remove the cause one step at a time.")
+    rows = [{"scene": r["scene"], "variant": r["variant"] or "as is", "spp": r["spp"],
+             **{f"d{c}": 100 * r["difference"][c] for c in range(3)},
+             "se": 100 * max(r["difference_stderr"])} for r in acc["rows"]]
+    doc.table("accuracy", "udm1-pt against pbrt-v4", [
+        ("scene", "scene", ""), ("variant", "variant", ""), ("spp", "spp", "d"), ("d0", "R difference (%)", "+.2f"),
+        ("d1", "G difference (%)", "+.2f"), ("d2", "B difference (%)", "+.2f"), ("se", "largest s.e. (%)", ".2f")], rows)
+    for r in acc["rows"]:
+        if not r["variant"] and r.get("cause") and max(abs(x) for x in r["difference"]) > 0.01:
+            doc.para(f"**{r['scene']}**: {r['cause']}.")
+    doc.image("accuracy/accuracy.png", "differences")
+    for r in acc["rows"]:
+        if not r["variant"] and (out / "accuracy" / r["scene"] / "compare.png").exists():
+            doc.image(f"accuracy/{r['scene']}/compare.png", f"{r['scene']}: pbrt-v4, udm1-pt, difference")
+
+
 def ratio(a: float, b: float) -> float:
     """a / b, with an exact (zero-error) b shown as an infinite gain rather than dropped."""
     if b == 0:
@@ -529,4 +555,6 @@ def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
         guarded(doc, section, out, state)
     if "crown" in state:
         guarded(doc, pt_section, out, state, "crown", "crown/")
+    if "accuracy" in state:
+        guarded(doc, accuracy_section, out, state)
     return figures
