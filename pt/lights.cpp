@@ -101,11 +101,6 @@ void equal_area_sphere_to_square(Vec3 d, double *u, double *v)
 }
 
 namespace {
-inline float srgb_to_linear(float c)
-{
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
 // An environment image: square, RGB, finite; 8-bit files decoded from sRGB (pbrt-v4 reads them so).
 EnvironmentMap read_environment(const udm1scene::LightSource &src)
 {
@@ -129,7 +124,7 @@ EnvironmentMap read_environment(const udm1scene::LightSource &src)
         for (int c = 0; c < 3; ++c) {
             float x = im.pixels[p * im.channels + c];
             if (!std::isfinite(x)) fail("a pixel is not finite (" + udm1scene::number_text(x) + ")");
-            if (im.bits == 8) x = srgb_to_linear(x);
+            if (im.bits == 8) x = udm1app::srgb_to_linear(x);
             m.rgb[3 * p + c] = std::max(0.0f, x);
         }
     m.row_cdf.assign(m.res + 1, 0.0);

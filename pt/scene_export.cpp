@@ -61,6 +61,8 @@ void write_ply(const std::string &path, const udm1scene::Shape &s)
 
 void export_scene(const udm1scene::Scene &scene, int width, int height, int max_depth, const std::string &dir)
 {
+    if (!scene.light_sources.empty())  // scene.json describes shapes and their emission only
+        throw Error(scene.light_sources[0].where + ": export writes area lights only, not a LightSource", 1);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir)) throw Error("cannot create the folder '" + dir + "'", 1);

@@ -9,13 +9,6 @@
 
 namespace udm1pt {
 
-namespace {
-inline float srgb_to_linear(float c)
-{
-    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-}  // namespace
-
 Textures::Textures(const udm1scene::Scene &scene) : tex_(scene.textures)
 {
     std::map<std::pair<std::string, bool>, int> loaded;
@@ -42,7 +35,7 @@ Textures::Textures(const udm1scene::Scene &scene) : tex_(scene.textures)
             for (size_t p = 0; p < (size_t)im.width * im.height; ++p)
                 for (int c = 0; c < im.channels; ++c) {
                     float x = li.pixels[p * li.channels + c];
-                    im.linear[p * im.channels + c] = decode ? srgb_to_linear(x) : x;
+                    im.linear[p * im.channels + c] = decode ? udm1app::srgb_to_linear(x) : x;
                 }
             images_.push_back(std::move(im));
             it = loaded.emplace(key, (int)images_.size() - 1).first;

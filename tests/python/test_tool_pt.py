@@ -187,6 +187,9 @@ def test_cornell_box_mean_matches_mitsuba(tmp_path):
     ours = mean_of(ok("--spp", "256", "--size", "96x96", "-o", str(tmp_path / "ours.exr")))
     rel = np.abs(ours / theirs - 1)
     assert np.all(rel < 0.01), (ours, theirs)
+    # a LightSource has no place in scene.json: refused, naming it, nothing written
+    fails_cleanly(run, ["export", "out", "--scene", str(ROOT / "tests" / "scenes" / "lights.pbrt")],
+                  "lights.pbrt:8: export writes area lights only", tmp_path, code=1)
 
 
 @pytest.mark.skipif(not SCENES.is_dir(), reason=f"{SCENES} is absent: the shared test scenes are not here")

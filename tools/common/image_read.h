@@ -2,6 +2,7 @@
 // image comparison the renderers report (one definition everywhere).
 #pragma once
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -17,6 +18,12 @@ struct LoadedImage {
 
 // Throws Error naming the file if it cannot be read.
 LoadedImage read_image(const std::string &path);
+
+// An 8-bit file's sRGB-encoded value decoded to linear (pbrt-v4 decodes 8-bit images so).
+inline float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
 
 // Throws Error "cannot read 'path': not a regular file" for a device, FIFO or folder (a reader would wait on
 // /dev/zero forever); a missing file is left to the reader's own error.
