@@ -220,15 +220,20 @@ def compare_png(images: dict, path: Path) -> None:
 
 
 def table(rows: list[dict]) -> str:
-    lines = ["| scene | variant | spp x seeds | pbrt-v4 mean (R G B) | udm1-pt mean (R G B) | difference % (R / G / B) |"
-             " +- 1 s.e. % | pbrt-v4 s | udm1-pt s |", "|---|---|---|---|---|---|---|---|---|"]
+    """One row per render pair: both means and the noise of each (the largest channel's standard error,
+    relative), the difference per channel and its standard error, both renderers' seconds per render."""
+    lines = ["| scene | variant | spp x seeds | pbrt-v4 mean (R G B) | s.e. % | udm1-pt mean (R G B) | s.e. % |"
+             " difference % (R / G / B) | +- 1 s.e. % | pbrt-v4 s | udm1-pt s |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         f = lambda v: " ".join(f"{x:.5f}" for x in v)
+        noise = lambda w: f"{100 * max(e / m for e, m in zip(r[w]['stderr'], r[w]['mean'])):.2f}"
         d = " / ".join(f"{100 * x:+.2f}" for x in r["difference"])
         e = " / ".join(f"{100 * x:.2f}" for x in r["difference_stderr"])
         flag = " **>1 %**" if max(abs(x) for x in r["difference"]) > 0.01 else ""
         lines.append(f"| {r['scene']} | {r['variant'] or 'as is'} | {r['spp']} x {r['seeds']} | {f(r['pbrt']['mean'])} | "
-                     f"{f(r['udm1']['mean'])} | {d}{flag} | {e} | {r['pbrt']['seconds']:.1f} | {r['udm1']['seconds']:.1f} |")
+                     f"{noise('pbrt')} | {f(r['udm1']['mean'])} | {noise('udm1')} | {d}{flag} | {e} | "
+                     f"{r['pbrt']['seconds']:.1f} | {r['udm1']['seconds']:.1f} |")
     return "\n".join(lines)
 
 
