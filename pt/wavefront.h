@@ -7,7 +7,7 @@
 // roulette, next ray) in loops over the live paths that the compiler vectorizes.
 //
 // The subset: triangle meshes without vertex normals, untextured diffuse materials without bump maps,
-// triangle area lights, a pinhole camera, MIS (--strategy mis). Everything else - spheres, coated,
+// triangle area lights (no LightSource), a pinhole camera, MIS (--strategy mis). Everything else - spheres, coated,
 // metal, glass, mixes, textures, vertex normals, a thin lens, the single-strategy estimators - goes
 // through the scalar loop. Light sampling by solid angle near a light is done in double by Lights, path
 // by path, as in the scalar loop (a vectorized test with a margin picks the paths Lights decides for);
