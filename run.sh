@@ -60,10 +60,10 @@ test)
         shift
         (cd tests/python && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
             UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
-            UDM1_SEQ_TOOL="$ROOT/build-asan/tools/udm1-seq" UDM1_NOISE_TOOL="$ROOT/build-asan/noise/udm1-noise" \
-            UDM1_AO_TOOL="$ROOT/build-asan/ao/udm1-ao" UDM1_PT_TOOL="$ROOT/build-asan/pt/udm1-pt" \
-            UDM1_BENCH_SAMPLERS="$ROOT/build-asan/tools/udm1_bench_samplers" \
-            UDM1_BENCH_NOISE="$ROOT/build-asan/tools/udm1_bench_noise" UDM1_BUILD_DIR="$ROOT/build-asan" \
+            UDM1_SEQ_TOOL="$ROOT/build-asan/bin/udm1-seq" UDM1_NOISE_TOOL="$ROOT/build-asan/bin/udm1-noise" \
+            UDM1_AO_TOOL="$ROOT/build-asan/bin/udm1-ao" UDM1_PT_TOOL="$ROOT/build-asan/bin/udm1-pt" \
+            UDM1_BENCH_SAMPLERS="$ROOT/build-asan/bin/udm1_bench_samplers" \
+            UDM1_BENCH_NOISE="$ROOT/build-asan/bin/udm1_bench_noise" UDM1_BUILD_DIR="$ROOT/build-asan" \
             "$PY" -m pytest -q -p no:cacheprovider --basetemp="$(mktemp -d)" "$@") >"$log" 2>&1
     }
     logs="$(mktemp -d)"
@@ -85,29 +85,29 @@ bench)
     shift || true
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
-    udm1_log "C throughput (tools/bench_seq.c)"
-    ./build/tools/udm1_bench_seq "$@"
-    udm1_log "Python throughput against numpy and scipy (tools/bench_python.py)"
-    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_python.py
-    udm1_log "every sampler's throughput (tools/bench_samplers.c)"
-    ./build/tools/udm1_bench_samplers throughput
-    udm1_log "noise against libnoise (tools/bench_noise.cpp) and FastNoise Lite (tools/bench_noise.py)"
-    ./build/tools/udm1_bench_noise
-    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_noise.py
-    udm1_log "udm1-ao against a bare Embree loop over the same rays, and each sampler's cost (tools/bench_ao.cpp)"
-    ./build/tools/udm1_bench_ao
-    udm1_log "udm1-pt's scalar loop against a bare Embree replay of its own rays: Embree's share of its time (tools/bench_pt_embree.cpp)"
-    ./build/tools/udm1_bench_pt_embree --spp 64
-    ./build/tools/udm1_bench_pt_embree --spp 64 --sampler sobol-owen
-    udm1_log "udm1-pt against Mitsuba 3: throughput, equal spp, equal error (tools/bench_pt.py, about 15 minutes)"
-    "$PY" tools/bench_pt.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
-    udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (tools/bench_pt.py --estimators)"
-    "$PY" tools/bench_pt.py --estimators --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/bench_pt"
-    udm1_log "udm1-pt against pbrt-v4 on every shared and test scene (tools/bench_accuracy.py; pbrt-v4 is built once"
+    udm1_log "C throughput (bench/bench_seq.c)"
+    ./build/bin/udm1_bench_seq "$@"
+    udm1_log "Python throughput against numpy and scipy (bench/bench_python.py)"
+    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_python.py
+    udm1_log "every sampler's throughput (bench/bench_samplers.c)"
+    ./build/bin/udm1_bench_samplers throughput
+    udm1_log "noise against libnoise (bench/bench_noise.cpp) and FastNoise Lite (bench/bench_noise.py)"
+    ./build/bin/udm1_bench_noise
+    PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_noise.py
+    udm1_log "udm1-ao against a bare Embree loop over the same rays, and each sampler's cost (bench/bench_ao.cpp)"
+    ./build/bin/udm1_bench_ao
+    udm1_log "udm1-pt's scalar loop against a bare Embree replay of its own rays: Embree's share of its time (bench/bench_pt_embree.cpp)"
+    ./build/bin/udm1_bench_pt_embree --spp 64
+    ./build/bin/udm1_bench_pt_embree --spp 64 --sampler sobol-owen
+    udm1_log "udm1-pt against Mitsuba 3: throughput, equal spp, equal error (bench/bench_pt.py, about 15 minutes)"
+    "$PY" bench/bench_pt.py --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/bench_pt"
+    udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (bench/bench_pt.py --estimators)"
+    "$PY" bench/bench_pt.py --estimators --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/bench_pt"
+    udm1_log "udm1-pt against pbrt-v4 on every shared and test scene (bench/bench_accuracy.py; pbrt-v4 is built once"
     udm1_log "from ../shared/anchors into build/anchors, about 10 minutes; skipped with a message where it is absent)"
-    "$PY" tools/bench_accuracy.py --tool "$ROOT/build/pt/udm1-pt" --out "$ROOT/build/accuracy"
-    udm1_log "scale-out: udm1.distributed on 1 and 2 local Dask workers against the tools alone (tools/bench_distributed.py)"
-    UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" tools/bench_distributed.py --tool "$ROOT/build/pt/udm1-pt" \
+    "$PY" bench/bench_accuracy.py --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/accuracy"
+    udm1_log "scale-out: udm1.distributed on 1 and 2 local Dask workers against the tools alone (bench/bench_distributed.py)"
+    UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_distributed.py --tool "$ROOT/build/bin/udm1-pt" \
         --out "$ROOT/build/bench_distributed"
     ;;
 fuzz)

@@ -2,7 +2,7 @@
 #   Debian packages (apt-get, as root or through sudo) and the Python packages of
 #   python/requirements.txt into the virtual environment .venv.
 
-UDM1_DEBIAN_PACKAGES=(build-essential cmake ninja-build pkg-config binutils python3 python3-venv libopenimageio-dev
+UDM1_DEBIAN_PACKAGES=(build-essential cmake ninja-build pkg-config binutils abigail-tools python3 python3-venv libopenimageio-dev
                       libtbb-dev libembree-dev povray libnoise-dev)
 
 udm1_log() { printf '[udm1] %s\n' "$*" >&2; }

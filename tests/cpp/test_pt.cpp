@@ -7,7 +7,7 @@
 #include "builtin.h"
 #include "embree_scene.h"
 #include "integrator.h"
-#include "../../tools/common/image_write.h"
+#include "udm1app/image_write.h"
 #include "lights.h"
 #include "spectrum.h"
 

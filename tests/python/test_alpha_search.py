@@ -18,7 +18,7 @@ ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 import alpha_search  # noqa: E402
 
-WOPT_ARGS = dict(dims=64, max_prime=16384, n_min=32, n_max=4096)  # as in libudm1/src/presets.c
+WOPT_ARGS = dict(dims=64, max_prime=16384, n_min=32, n_max=4096)  # as in libudm1/src/seq/presets.c
 
 
 @pytest.mark.parametrize("ks,n", [((2, 13), 300), ((6761, 1999), 1000), ((3, 5), 37)])

@@ -1,4 +1,4 @@
-"""The hardening matrices over every command-line tool (issue 10):
+"""The hardening matrices over every command-line tool:
 
 - bad input: each documented bad input gives a one-line error that names it, a non-zero exit, and no
   output file (not even a temporary one) in the output folder;

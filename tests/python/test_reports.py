@@ -118,7 +118,7 @@ def test_bad_output_folder(tmp_path):
 
 @pytest.mark.skipif(not PT, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
 def test_accuracy_benchmark(tmp_path):
-    # tools/bench_accuracy.py's plumbing without pbrt-v4: a stand-in "pbrt" that renders with udm1-pt itself
+    # bench/bench_accuracy.py's plumbing without pbrt-v4: a stand-in "pbrt" that renders with udm1-pt itself
     # gives differences of exactly 0; one that leaves out indirect light gives a difference above 1 %,
     # which has no stated cause for the sky scene: named, exit 1
     def stub(name, extra):
@@ -131,7 +131,7 @@ def test_accuracy_benchmark(tmp_path):
         return path
 
     def bench(pbrt, out):
-        return subprocess.run([sys.executable, str(ROOT / "tools" / "bench_accuracy.py"), "--tool", PT, "--pbrt",
+        return subprocess.run([sys.executable, str(ROOT / "bench" / "bench_accuracy.py"), "--tool", PT, "--pbrt",
                                str(pbrt), "--only", "sky,spectral", "--seeds", "2", "--scale", "0.01", "--out", str(out)],
                               capture_output=True, text=True, timeout=600)
 

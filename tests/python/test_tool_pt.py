@@ -175,10 +175,10 @@ def test_strategies_agree_on_the_cornell_box(tmp_path):
 
 def test_cornell_box_mean_matches_mitsuba(tmp_path):
     """The built-in Cornell box, exported by `udm1-pt export` (world-space PLY and scene.json) and
-    rendered by Mitsuba 3 scalar_rgb's path integrator (tools/mitsuba_scene.py states how the scenes
+    rendered by Mitsuba 3 scalar_rgb's path integrator (bench/mitsuba_scene.py states how the scenes
     are matched): the mean radiance agrees within 1 % per channel."""
     pytest.importorskip("mitsuba")
-    sys.path.insert(0, str(ROOT / "tools"))
+    sys.path.insert(0, str(ROOT / "bench"))
     import mitsuba_scene
 
     ok("export", str(tmp_path / "scene"), "--size", "96x96")
@@ -562,7 +562,7 @@ def test_embree_share_benchmark_replays_the_render(tmp_path):
     """udm1_bench_pt_embree records every query of a render (it refuses to report if the count differs from
     the render's own ray count, or if the single and stream replays disagree on the hits) and prints
     Embree's share of the render time."""
-    bench = pathlib.Path(BUILD) / "tools" / "udm1_bench_pt_embree"
+    bench = pathlib.Path(BUILD) / "bin" / "udm1_bench_pt_embree"
     r = subprocess.run([str(bench), "--size", "16x16", "--spp", "2", "--reps", "1"], capture_output=True, text=True,
                        timeout=300)
     assert r.returncode == 0, r.stderr
@@ -584,10 +584,10 @@ def test_embree_share_benchmark_replays_the_render(tmp_path):
 
 
 def test_ab_tool_alternates_two_builds(tmp_path):
-    """tools/ab_pt.py (the step A/Bs of BENCHMARKS.md): both binaries render every round, the summary
+    """bench/ab_pt.py (the step A/Bs of BENCHMARKS.md): both binaries render every round, the summary
     gives each one's minimum and whether the images are identical (the same build twice: identical; a
     different sampler seed through a wrapper: different). Bad input is one line, exit 2, no file left."""
-    ab = [sys.executable, str(ROOT / "tools" / "ab_pt.py")]
+    ab = [sys.executable, str(ROOT / "bench" / "ab_pt.py")]
     r = subprocess.run([*ab, TOOL, TOOL, "--rounds", "2", "--", "--size", "8x8", "--spp", "2"], capture_output=True,
                        text=True, timeout=300, cwd=tmp_path)
     assert r.returncode == 0, r.stderr
@@ -751,7 +751,7 @@ def test_the_scenes_pixelsamples_without_spp(tmp_path):
 
 @pytest.mark.parametrize("name", sorted(p.stem for p in (ROOT / "tests" / "scenes").glob("*.pbrt")))
 def test_the_project_scenes_render(name, tmp_path):
-    # the scenes the accuracy benchmark compares with pbrt-v4 (tools/bench_accuracy.py): they render, every
+    # the scenes the accuracy benchmark compares with pbrt-v4 (bench/bench_accuracy.py): they render, every
     # channel finite and lit
     r = ok("--scene", str(ROOT / "tests" / "scenes" / f"{name}.pbrt"), "--spp", "4", "--size", "40x30",
            "-o", str(tmp_path / "out.exr"))

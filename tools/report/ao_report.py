@@ -12,7 +12,7 @@ against time.
 Writes OUT/ao.md, OUT/ao.html, OUT/ao_*.png, OUT/ao.csv and OUT/ao.json;
 the images and the reference go to OUT/ao/.
 
-    python tools/report/ao_report.py --ao build/ao/udm1-ao --out report
+    python tools/report/ao_report.py --ao build/bin/udm1-ao --out report
 """
 
 from __future__ import annotations
@@ -205,7 +205,7 @@ The paper's Figure 6 (section 4.2) on `{args.scene}` at {args.size}: AO = (1/pi)
 the library provides it (each sampler's default), compared with a {args.ref_spp}-spp reference
 (`{ref_line}`). PSNR has peak 1 on linear AO values (10 log10(1/MSE)). Times are udm1-ao's render time
 (median of the seeds, all cores, scene loading excluded). Made in {time.time() - t0:.0f} s by
-`python tools/report/ao_report.py --ao build/ao/udm1-ao --out report`. Raw numbers: [ao.csv](ao.csv), [ao.json](ao.json).
+`python tools/report/ao_report.py --ao build/bin/udm1-ao --out report`. Raw numbers: [ao.csv](ao.csv), [ao.json](ao.json).
 
 ## Verdict
 At {args.spp} spp the best mean PSNR over {args.seeds} seeds is **{best['sampler']}** ({best['psnr_mean']:.2f} dB);

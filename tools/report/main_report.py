@@ -13,7 +13,7 @@ terminal, and records what each did in OUT/steps.json:
     tent        beyond the paper: the tent transform's effect per integrand (udm1_bench_samplers error)
     screen      beyond the paper: blue-noise error from screen-space decorrelation (screen_report.py)
     crown       with --full, where ../shared has it: the same protocol on the paper's Crown at 100 x 140
-    accuracy    with --full: udm1-pt against pbrt-v4 on every shared and test scene (tools/bench_accuracy.py;
+    accuracy    with --full: udm1-pt against pbrt-v4 on every shared and test scene (bench/bench_accuracy.py;
                 pbrt-v4 built once from ../shared/anchors, skipped with a message where it is absent)
 
 then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
@@ -75,11 +75,11 @@ TENT_SAMPLERS = ["wr", "wr+tent", "rd", "rd+tent", "wopt", "wopt+tent", "lattice
 def plan(args, out: Path) -> list[Step]:
     """The steps and their exact commands for this configuration."""
     py, b = sys.executable, Path(args.build)
-    tools = {"bench_samplers": args.bench_samplers or str(b / "tools" / "udm1_bench_samplers"),
-             "bench_noise": args.bench_noise or str(b / "tools" / "udm1_bench_noise"),
-             "noise": args.noise or str(b / "noise" / "udm1-noise"),
-             "ao": args.ao or str(b / "ao" / "udm1-ao"),
-             "pt": args.pt or str(b / "pt" / "udm1-pt")}
+    tools = {"bench_samplers": args.bench_samplers or str(b / "bin" / "udm1_bench_samplers"),
+             "bench_noise": args.bench_noise or str(b / "bin" / "udm1_bench_noise"),
+             "noise": args.noise or str(b / "bin" / "udm1-noise"),
+             "ao": args.ao or str(b / "bin" / "udm1-ao"),
+             "pt": args.pt or str(b / "bin" / "udm1-pt")}
     q = ["--quick"] if args.quick else []
     o = ["--out", str(out)]
     seeds = "16" if args.full else "8"
@@ -102,7 +102,7 @@ def plan(args, out: Path) -> list[Step]:
         Step("noise", "Noise: the paper's Figures 2 and 3, evaluations per second, spectra",
              [[tools["noise"], "figures", "-o", str(out / "noise")],
               [tools["bench_noise"], "--reps", noise_reps],
-              [py, str(ROOT / "tools" / "bench_noise.py"), "--reps", noise_reps],
+              [py, str(ROOT / "bench" / "bench_noise.py"), "--reps", noise_reps],
               [py, str(HERE / "noise_report.py"), *o, *q]],
              ["noise/figures.md", "noise_libnoise.txt", "noise_fastnoise.txt", "noise_spectra.json"], "noise/figures.md",
              stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
@@ -135,7 +135,7 @@ def accuracy_step(args, py: str, pt: str, out: Path) -> list[Step]:
     if not args.full:
         return []
     return [Step("accuracy", "Path tracing: udm1-pt against pbrt-v4 on the same scene files (image means)",
-                 [[py, str(ROOT / "tools" / "bench_accuracy.py"), "--tool", pt, "--out", str(out / "accuracy")]],
+                 [[py, str(ROOT / "bench" / "bench_accuracy.py"), "--tool", pt, "--out", str(out / "accuracy")]],
                  ["accuracy/accuracy.json"], "accuracy/accuracy.md")]
 
 

@@ -22,7 +22,7 @@ own --out folder).
 
 Writes OUT/pt.md, OUT/pt.html, OUT/pt_*.png, OUT/pt.csv and OUT/pt.json; images go to OUT/pt/.
 
-    python tools/report/pt_report.py --pt build/pt/udm1-pt --out report [--full]
+    python tools/report/pt_report.py --pt build/bin/udm1-pt --out report [--full]
 """
 
 from __future__ import annotations
@@ -298,7 +298,7 @@ A difference within two standard errors of the difference of the mean PSNRs (ove
         w.writeheader()
         w.writerows(csv_rows)
     (out / "pt.json").write_text(json.dumps({"scenes": results, "paper": PAPER, "seconds": time.time() - t0}, indent=1))
-    cmd = "python tools/report/pt_report.py --pt build/pt/udm1-pt --out report" + (" --full" if args.full else "")
+    cmd = "python tools/report/pt_report.py --pt build/bin/udm1-pt --out report" + (" --full" if args.full else "")
     md = f"""# udm1 path tracing report
 
 The paper's Figure 8/10 protocol (section 5) on udm1-pt: unidirectional path tracing with next-event

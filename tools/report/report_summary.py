@@ -369,7 +369,7 @@ def noise_section(doc, out: Path, state):
     rows = parse_libnoise((out / "noise_libnoise.txt").read_text()) + \
         parse_fastnoise((out / "noise_fastnoise.txt").read_text())
     doc.para("Evaluations per second, each ratio against the anchor named in its row, measured in the same run "
-             "(udm1_bench_noise and tools/bench_noise.py).")
+             "(udm1_bench_noise and bench/bench_noise.py).")
     doc.table("noise_speed", "noise speed", [("method", "method", ""), ("per_second", "per second", ".3g"),
                                              ("ratio", "ratio", ".2f"), ("anchor", "anchor", "")], rows)
     spec = load(out, "noise_spectra.json")

@@ -8,7 +8,7 @@ Writes OUT/samplers.md, OUT/samplers.html, OUT/samplers_*.png,
 OUT/samplers_error.csv and OUT/samplers.json. The error table comes from the
 C benchmark `udm1_bench_samplers error` (timing in C, one thread).
 
-    PYTHONPATH=python python tools/report/sampler_report.py --bench build/tools/udm1_bench_samplers --out report
+    PYTHONPATH=python python tools/report/sampler_report.py --bench build/bin/udm1_bench_samplers --out report
 """
 
 from __future__ import annotations

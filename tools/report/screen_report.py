@@ -2,7 +2,7 @@
 
 Each Weyl sampler renders with its usual per-pixel random shift ("shift") and with the screen-space shift
 ("screen": pixel (x, y) takes the points m N .. m N + N - 1 of one shifted sequence, m its Morton index and
-N the spp; libudm1/src/screen_shift.h), beside
+N the spp; libudm1/src/weyl/weyl.h), beside
 Owen-scrambled Sobol and PMJ02 with their own randomization. For each: RMSE against a reference (mean over
 seeds), render time, and the share of the error image's energy at low screen frequencies (radius below
 1/8 of the sampling rate, relative to the mean: 1 for white noise, below 1 for blue noise). The MSE is
@@ -11,7 +11,7 @@ what equal time compares; the low-frequency share is what the eye sees at low sp
 Writes OUT/screen.json, OUT/screen.md, OUT/screen.html, OUT/screen_errors.png, OUT/screen_spectra.png;
 renders and references go to OUT/screen/.
 
-    PYTHONPATH=python python tools/report/screen_report.py --ao build/ao/udm1-ao --pt build/pt/udm1-pt --out report
+    PYTHONPATH=python python tools/report/screen_report.py --ao build/bin/udm1-ao --pt build/bin/udm1-pt --out report
 """
 
 from __future__ import annotations

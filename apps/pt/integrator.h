@@ -1,0 +1,98 @@
+// integrator.h - unidirectional path tracing with next-event estimation and
+// multiple importance sampling (power heuristic), Russian roulette and a maximum
+// depth, as pbrt-v4's "path" integrator, in RGB. Two loops trace it: the scalar loop
+// here (one path at a time, in double, every material and light) and, for the scenes of
+// its subset, the wavefront loop (wavefront.h: many paths at a time, in float); the same
+// estimator and sampler points in both (Options::loop chooses).
+//
+// Dimension layout: one sampler point per path. For pixel p and sample index i the
+// udm1 cursor starts at (stream p, index i, dimension 0) and hands out, in order:
+//   0, 1            position in the pixel (box filter)
+//   2, 3            only if the camera has a lens (lensradius > 0): the point on the thin lens
+//   then for each path vertex that scatters (depth 0, 1, ..., maxdepth - 1), 6 values:
+//   +0, +1          next-event estimation: +0 picks the light (by power) and, rescaled,
+//                   gives with +1 the point on it
+//   +2              BSDF lobe / layer choice
+//   +3              Russian roulette
+//   +4, +5          BSDF direction
+// so a path of depth d uses 2 + 6d dimensions (4 + 6d with a lens) and depth 5 uses 32. Every 2D decision
+// starts at an even dimension: samplers that are stratified by pairs of dimensions
+// (PMJ02, CMJ, padded sets) stratify each 2D decision, not half of two. A sampler with
+// fewer dimensions D (WMMR and HWMMR have 22) gives dimensions >= D by the library's
+// padding rule: independent hashed uniforms of (seed, pixel, index, dimension) - random,
+// not low-discrepancy, and never a reuse of the set's own dimensions.
+#pragma once
+
+#include "bsdf.h"
+#include "embree_scene.h"
+#include "lights.h"
+#include "material.h"
+#include "scene.h"
+
+#include "udm1app/partial_image.h"
+
+#include <udm1/udm1.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace udm1pt {
+
+// Changes whenever the estimator or the dimension layout above changes (cached references are
+// reused only when it matches).
+constexpr int LAYOUT_VERSION = 4;
+
+// How light is found: both (MIS), light sampling only, BSDF sampling only (which cannot find point, spot
+// and distant lights: with Bsdf they are left out).
+enum class Strategy { Mis, Nee, Bsdf };
+// Which path loop traces: the wavefront loop where the scene and options are in its subset (Auto), or
+// one of the two by force (Wavefront throws for a scene outside the subset). See wavefront.h.
+enum class Loop { Auto, Scalar, Wavefront };
+
+struct Options {
+    std::string sampler = "sobol-owen";
+    uint32_t spp = 16;        // the whole render's samples per pixel (point sets use K = spp)
+    uint64_t first = 0;       // this run's range of sample indices: [first, first + count)
+    uint64_t count = 0;       // 0: all of [first, spp)
+    int bounds[4] = {0, 0, 0, 0};  // the pixels rendered: [x0, x1) x [y0, y1); all zero: every pixel
+    uint64_t seed = 1;
+    uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
+    int width = 0, height = 0;  // 0: the scene's film
+    int max_depth = -1;         // -1: the scene's Integrator maxdepth (pbrt's default 5)
+    Strategy strategy = Strategy::Mis;
+    bool roulette = true;
+    int rr_depth = 3;           // roulette from this vertex on (0 = the first hit; pbrt-v4 starts at 1)
+    double near_light = Lights::NEAR_DEFAULT;  // see Lights; `bench/bench_pt.py --estimators` measures both
+    Loop loop = Loop::Auto;
+};
+
+// Per-pixel sums of the samples in fixed point (2^-24 units, int64, channels R, G, B), so that sums
+// of disjoint sample ranges and tiles add up exactly: split and whole runs give the same image bit
+// for bit (udm1app/partial_image.h).
+using Accumulator = udm1app::PartialImage;
+constexpr double SAMPLE_SCALE = 16777216.0;  // 2^24
+constexpr double MAX_SAMPLE = 1e9;           // larger sample values are clamped (and counted)
+
+struct Stats {
+    double seconds = 0;
+    uint64_t paths = 0, rays = 0;  // camera paths; all rays (camera, continuation, shadow)
+    uint32_t dimensions = 0;       // the sampler's own dimensions (the rest padded)
+    uint32_t path_dimensions = 0;  // what a path of maximum depth uses
+    bool wavefront = false;        // which loop traced
+};
+
+// The sampler of a render: opt's preset, seed and randomization, min(path_dims, the preset's maximum)
+// dimensions, K = spp for point sets. Throws std::runtime_error (unknown sampler, bad parameters).
+using Sequence = std::unique_ptr<udm1_seq, void (*)(udm1_seq *)>;
+Sequence make_sequence(const Options &opt, uint32_t path_dims);
+
+// Throws std::runtime_error with a one-line message (unknown sampler, bad range, material, a forced
+// wavefront loop on a scene outside its subset).
+Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats);
+// The same with the scene's materials (and their textures) made once by the caller.
+Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
+                   const Options &opt, Stats *stats);
+
+
+}  // namespace udm1pt

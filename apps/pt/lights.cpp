@@ -1,0 +1,463 @@
+// lights.cpp - see lights.h.
+#include "lights.h"
+
+#include "udm1app/image_read.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace udm1pt {
+
+using udm1scene::cross;
+using udm1scene::dot;
+using udm1scene::length;
+using udm1scene::normalize;
+
+namespace {
+const double PI = 3.14159265358979323846;
+inline double luminance(Vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+
+// pbrt-v4's bounds for sampling a triangle by solid angle: below, the spherical triangle is too
+// thin for the arithmetic; above, nearly a hemisphere
+const double MIN_SPHERICAL_AREA = 3e-4, MAX_SPHERICAL_AREA = 6.22;
+
+
+inline double safe_asin(double x) { return std::asin(std::clamp(x, -1.0, 1.0)); }
+inline double safe_sqrt(double x) { return std::sqrt(std::max(0.0, x)); }
+inline double angle_between(Vec3 a, Vec3 b)  // accurate for nearly equal and nearly opposite unit vectors
+{
+    return dot(a, b) < 0 ? PI - 2 * safe_asin(length(a + b) / 2) : 2 * safe_asin(length(b - a) / 2);
+}
+inline Vec3 gram_schmidt(Vec3 v, Vec3 w) { return v - w * dot(v, w); }
+
+// The solid angle of triangle (p0, p1, p2) seen from p (Van Oosterom and Strackee 1983).
+double solid_angle(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2)
+{
+    Vec3 a = normalize(p0 - p), b = normalize(p1 - p), c = normalize(p2 - p);
+    return std::fabs(2 * std::atan2(dot(a, cross(b, c)), 1 + dot(a, b) + dot(a, c) + dot(b, c)));
+}
+
+// Arvo's (1995) uniform sampling of the spherical triangle that (p0, p1, p2) subtends from p, in
+// pbrt-v4's formulation: returns the point of the triangle the sampled direction meets.
+bool sample_spherical_triangle(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2, double u0, double u1, Vec3 *q)
+{
+    Vec3 a = normalize(p0 - p), b = normalize(p1 - p), c = normalize(p2 - p);
+    Vec3 n_ab = cross(a, b), n_bc = cross(b, c), n_ca = cross(c, a);
+    if (dot(n_ab, n_ab) == 0 || dot(n_bc, n_bc) == 0 || dot(n_ca, n_ca) == 0) return false;
+    n_ab = normalize(n_ab), n_bc = normalize(n_bc), n_ca = normalize(n_ca);
+    double alpha = angle_between(n_ab, -n_ca), beta = angle_between(n_bc, -n_ab), gamma = angle_between(n_ca, -n_bc);
+    double A_pi = alpha + beta + gamma, Ap_pi = PI + u0 * (A_pi - PI);  // the sub-triangle's area, plus pi
+    double sin_a = std::sin(alpha), cos_a = std::cos(alpha), sin_ap = std::sin(Ap_pi), cos_ap = std::cos(Ap_pi);
+    double sin_phi = sin_ap * cos_a - cos_ap * sin_a, cos_phi = cos_ap * cos_a + sin_ap * sin_a;
+    double k1 = cos_phi + cos_a, k2 = sin_phi - sin_a * dot(a, b);
+    double den = (k2 * sin_phi + k1 * cos_phi) * sin_a;
+    double cos_bp = den != 0 ? std::clamp((k2 + (k2 * cos_phi - k1 * sin_phi) * cos_a) / den, -1.0, 1.0) : 1.0;
+    double sin_bp = safe_sqrt(1 - cos_bp * cos_bp);
+    Vec3 cp = a * cos_bp + normalize(gram_schmidt(c, a)) * sin_bp;
+    double cos_t = 1 - u1 * (1 - dot(cp, b)), sin_t = safe_sqrt(1 - cos_t * cos_t);
+    Vec3 w = b * cos_t + normalize(gram_schmidt(cp, b)) * sin_t;
+    // where w meets the triangle (Moller-Trumbore), barycentrics clamped into it
+    Vec3 e1 = p1 - p0, e2 = p2 - p0, s1 = cross(w, e2);
+    double div = dot(s1, e1);
+    if (div == 0 || !std::isfinite(div)) return false;
+    Vec3 sp = p - p0;
+    double b1 = std::clamp(dot(sp, s1) / div, 0.0, 1.0), b2 = std::clamp(dot(w, cross(sp, e1)) / div, 0.0, 1.0);
+    if (b1 + b2 > 1) {
+        double sum = b1 + b2;
+        b1 /= sum, b2 /= sum;
+    }
+    *q = p0 * (1 - b1 - b2) + p1 * b1 + p2 * b2;
+    return std::isfinite(q->x) && std::isfinite(q->y) && std::isfinite(q->z);
+}
+}  // namespace
+
+// The equal-area mapping's forward direction, from pbrt-v4's definition: the square's diagonal distance
+// gives the polar angle's sine-like radius, the position along the diagonal the azimuth.
+Vec3 equal_area_square_to_sphere(double u, double v)
+{
+    double a = 2 * u - 1, b = 2 * v - 1, ap = std::fabs(a), bp = std::fabs(b);
+    double signed_distance = 1 - (ap + bp), r = 1 - std::fabs(signed_distance);
+    double phi = (r == 0 ? 1 : (bp - ap) / r + 1) * PI / 4;
+    double z = std::copysign(1 - r * r, signed_distance), s = r * std::sqrt(std::max(0.0, 2 - r * r));
+    return Vec3(std::copysign(std::cos(phi), a) * s, std::copysign(std::sin(phi), b) * s, z);
+}
+
+// Its inverse, with an exact arctangent.
+void equal_area_sphere_to_square(Vec3 d, double *u, double *v)
+{
+    double x = std::fabs(d.x), y = std::fabs(d.y), z = std::fabs(d.z);
+    double r = std::sqrt(std::max(0.0, 1 - z));
+    double a = std::max(x, y), b = a == 0 ? 0 : std::min(x, y) / a;
+    double phi = std::atan(b) * 2 / PI;
+    if (x < y) phi = 1 - phi;
+    double vv = phi * r, uu = r - vv;
+    if (d.z < 0) {  // the southern hemisphere: mirrored into the square's corners
+        std::swap(uu, vv);
+        uu = 1 - uu, vv = 1 - vv;
+    }
+    *u = 0.5 * (std::copysign(uu, d.x) + 1);
+    *v = 0.5 * (std::copysign(vv, d.y) + 1);
+}
+
+namespace {
+// An environment image: square, RGB, finite; 8-bit files decoded from sRGB (pbrt-v4 reads them so).
+EnvironmentMap read_environment(const udm1scene::LightSource &src)
+{
+    udm1app::LoadedImage im;
+    try {
+        im = udm1app::read_image(src.filename);
+    } catch (const std::exception &e) {
+        throw udm1scene::SceneError(src.where + ": LightSource \"infinite\": " + e.what());
+    }
+    auto fail = [&](const std::string &why) {
+        throw udm1scene::SceneError(src.where + ": LightSource \"infinite\": " + src.filename + ": " + why);
+    };
+    if (im.width != im.height)
+        fail("the image is " + std::to_string(im.width) + "x" + std::to_string(im.height) +
+             ", not square (pbrt-v4's equal-area environment maps are)");
+    if (im.channels < 3) fail("the image needs R, G and B channels");
+    EnvironmentMap m;
+    m.res = im.width;
+    m.rgb.resize(3 * (size_t)m.res * m.res);
+    for (size_t p = 0; p < (size_t)m.res * m.res; ++p)
+        for (int c = 0; c < 3; ++c) {
+            float x = im.pixels[p * im.channels + c];
+            if (!std::isfinite(x)) fail("a pixel is not finite (" + udm1scene::number_text(x) + ")");
+            if (im.bits == 8) x = udm1app::srgb_to_linear(x);
+            m.rgb[3 * p + c] = std::max(0.0f, x);
+        }
+    m.row_cdf.assign(m.res + 1, 0.0);
+    m.pixel_cdf.assign((size_t)m.res * (m.res + 1), 0.0);
+    for (int y = 0; y < m.res; ++y) {
+        double *row = &m.pixel_cdf[(size_t)y * (m.res + 1)];
+        for (int x = 0; x < m.res; ++x) {
+            const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+            row[x + 1] = row[x] + luminance(Vec3(c[0], c[1], c[2]));
+        }
+        m.row_cdf[y + 1] = m.row_cdf[y] + row[m.res];
+    }
+    m.total = m.row_cdf[m.res];
+    return m;
+}
+
+// The index i with cdf[i] <= target < cdf[i + 1] among cdf[0..n], skipping empty intervals, and target
+// rescaled to [0, 1) within it.
+int pick(const double *cdf, int n, double target, double *rescaled)
+{
+    int i = (int)(std::upper_bound(cdf, cdf + n + 1, target) - cdf) - 1;
+    i = std::clamp(i, 0, n - 1);
+    while (cdf[i + 1] <= cdf[i] && i > 0) --i;
+    double w = cdf[i + 1] - cdf[i];
+    *rescaled = w > 0 ? std::clamp((target - cdf[i]) / w, 0.0, 0x1.fffffffffffffp-1) : 0;
+    return i;
+}
+
+// pbrt-v4's SmoothStep: 0 below a, 1 above b, a cubic between.
+double smooth_step(double x, double a, double b)
+{
+    if (a == b) return x < a ? 0 : 1;
+    double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
+    return t * t * (3 - 2 * t);
+}
+}  // namespace
+
+// Solid-angle sampling only near the light (area / distance^2 to its centroid above near_): farther
+// away 1/r^2 varies little over the light and area sampling gives the same error for less work
+// (`python bench/bench_pt.py --estimators` measures the choice).
+Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
+{
+    first_of_shape_.assign(scene.shapes.size(), -1);
+    for (size_t k = 0; k < scene.shapes.size(); ++k) {
+        const udm1scene::Shape &s = scene.shapes[k];
+        if (s.light < 0) continue;
+        const udm1scene::AreaLight &al = scene.lights[s.light];
+        Vec3 L = al.L * al.scale;
+        first_of_shape_[k] = (int)lights_.size();
+        if (s.kind == udm1scene::Shape::Sphere) {
+            Light l;
+            l.kind = Light::Sphere, l.center = s.center, l.radius = s.radius, l.area = 4 * PI * s.radius * s.radius;
+            l.L = L, l.twosided = al.twosided, l.shape = (int)k;
+            lights_.push_back(l);
+            continue;
+        }
+        double total = 0;
+        for (unsigned t = 0; t < s.indices.size() / 3; ++t) {
+            const uint32_t *i = &s.indices[3 * (size_t)t];
+            Light l;
+            l.p0 = Vec3(s.P[3 * i[0]], s.P[3 * i[0] + 1], s.P[3 * i[0] + 2]);
+            l.p1 = Vec3(s.P[3 * i[1]], s.P[3 * i[1] + 1], s.P[3 * i[1] + 2]);
+            l.p2 = Vec3(s.P[3 * i[2]], s.P[3 * i[2] + 1], s.P[3 * i[2] + 2]);
+            l.area = 0.5 * length(cross(l.p1 - l.p0, l.p2 - l.p0));
+            l.centroid = (l.p0 + l.p1 + l.p2) * (1.0 / 3);
+            l.n = l.area > 0 ? udm1scene::triangle_normal(s, t) : Vec3(0, 0, 1);
+            l.L = L, l.twosided = al.twosided, l.shape = (int)k;
+            total += l.area;
+            lights_.push_back(l);  // zero-area triangles stay (indices match) with zero power
+        }
+        if (!(total > 0)) throw udm1scene::SceneError(s.where + ": an area light of zero area");
+    }
+    // the scene's bounding sphere: the power of lights at infinity, as pbrt-v4 measures it
+    Vec3 lo, hi;
+    scene.bounds(&lo, &hi);
+    double r = std::max(0.5 * length(hi - lo), 1e-9);
+    std::vector<double> extra_power;  // of the light sources, in order
+    for (const udm1scene::LightSource &src : scene.light_sources) {
+        only_area_ = false;
+        Light l;
+        l.L = src.L;
+        double power = 0;
+        switch (src.kind) {
+        case udm1scene::LightSource::Point:
+            l.kind = Light::Point, l.center = src.position;
+            power = 4 * PI * luminance(l.L);
+            break;
+        case udm1scene::LightSource::Spot:
+            l.kind = Light::Spot, l.center = src.position, l.axis = src.direction;
+            l.cos_start = src.cos_start, l.cos_end = src.cos_end;
+            power = 2 * PI * luminance(l.L) * ((1 - l.cos_start) + (l.cos_start - l.cos_end) / 2);
+            break;
+        case udm1scene::LightSource::Distant:
+            l.kind = Light::Distant, l.axis = src.direction;
+            power = PI * r * r * luminance(l.L);
+            break;
+        case udm1scene::LightSource::Infinite: {
+            l.kind = Light::Infinite;
+            l.world_from_light = src.world_from_light;
+            src.world_from_light.inverse(&l.light_from_world);  // (the parser refused a singular one)
+            double mean = luminance(l.L);
+            if (!src.filename.empty()) {
+                maps_.push_back(read_environment(src));
+                const EnvironmentMap &m = maps_.back();
+                l.map = (int)maps_.size() - 1;
+                if (src.illuminance > 0) {  // pbrt-v4: the upper hemisphere's illuminance of the map
+                    double e = 0;
+                    for (int y = 0; y < m.res; ++y)
+                        for (int x = 0; x < m.res; ++x) {
+                            Vec3 w = equal_area_square_to_sphere((x + 0.5) / m.res, (y + 0.5) / m.res);
+                            const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+                            if (w.z > 0) e += luminance(Vec3(c[0], c[1], c[2])) * w.z;
+                        }
+                    e *= 2 * PI / ((double)m.res * m.res);
+                    if (e > 0) l.L = l.L * (src.illuminance / e);
+                }
+                mean = l.L.x * m.total / ((double)m.res * m.res);
+            }
+            power = 4 * PI * PI * r * r * mean;
+            environments_.push_back((int)lights_.size());
+            break;
+        }
+        }
+        lights_.push_back(l);
+        extra_power.push_back(power);
+    }
+    double sum = 0;
+    size_t next_extra = 0;
+    for (const Light &l : lights_) {
+        double power = l.kind == Light::Triangle || l.kind == Light::Sphere
+                           ? luminance(l.L) * l.area * PI * (l.twosided ? 2 : 1)
+                           : extra_power[next_extra++];
+        sum += power > 0 ? power : 0;
+        cdf_.push_back(sum);
+    }
+    prob_.assign(lights_.size(), 0.0);
+    if (sum > 0)
+        for (size_t i = 0; i < lights_.size(); ++i) prob_[i] = (cdf_[i] - (i ? cdf_[i - 1] : 0)) / sum;
+    else
+        lights_.clear(), cdf_.clear(), prob_.clear(), first_of_shape_.assign(scene.shapes.size(), -1), environments_.clear();
+}
+
+int Lights::light_of(const udm1scene::Hit &h) const
+{
+    if (h.shape >= first_of_shape_.size() || first_of_shape_[h.shape] < 0) return -1;
+    const Light &first = lights_[first_of_shape_[h.shape]];
+    return first_of_shape_[h.shape] + (first.kind == Light::Sphere ? 0 : (int)h.prim);
+}
+
+Vec3 Lights::radiance(const Light &l, Vec3 n, Vec3 w) const
+{
+    if (!l.twosided && dot(n, w) <= 0) return Vec3();
+    return l.L;
+}
+
+Vec3 Lights::environment_of(const Light &l, Vec3 d) const
+{
+    if (l.map < 0) return l.L;
+    const EnvironmentMap &m = maps_[l.map];
+    double u, v;
+    equal_area_sphere_to_square(normalize(l.light_from_world.vector(d)), &u, &v);
+    int x = std::clamp((int)(u * m.res), 0, m.res - 1), y = std::clamp((int)(v * m.res), 0, m.res - 1);
+    const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+    return Vec3(c[0] * l.L.x, c[1] * l.L.y, c[2] * l.L.z);
+}
+
+double Lights::environment_pdf_of(const Light &l, Vec3 d) const
+{
+    if (l.map < 0) return 1 / (4 * PI);
+    const EnvironmentMap &m = maps_[l.map];
+    double u, v;
+    equal_area_sphere_to_square(normalize(l.light_from_world.vector(d)), &u, &v);
+    int x = std::clamp((int)(u * m.res), 0, m.res - 1), y = std::clamp((int)(v * m.res), 0, m.res - 1);
+    const double *row = &m.pixel_cdf[(size_t)y * (m.res + 1)];
+    return (row[x + 1] - row[x]) / m.total * ((double)m.res * m.res) / (4 * PI);  // the square's area is 4 pi sr
+}
+
+Vec3 Lights::environment(Vec3 d) const
+{
+    Vec3 L;
+    for (int i : environments_) L = L + environment_of(lights_[i], d);
+    return L;
+}
+
+double Lights::environment_pdf(Vec3 d) const
+{
+    double pdf = 0;
+    for (int i : environments_) pdf += prob_[i] * environment_pdf_of(lights_[i], d);
+    return pdf;
+}
+
+// The lights that are not shapes: point and spot lights (a delta in position), distant lights (a delta
+// in direction), environments (uniform: by uniform directions; a map: by its pixels' luminance).
+bool Lights::sample_source(const Light &l, double prob, Vec3 p, double u1, double u2, LightSample *s) const
+{
+    s->n = Vec3();
+    if (l.kind == Light::Point || l.kind == Light::Spot) {
+        Vec3 d = l.center - p;
+        double d2 = dot(d, d);
+        if (!(d2 > 0)) return false;
+        s->dist = std::sqrt(d2), s->wi = d * (1 / s->dist), s->q = l.center;
+        double falloff = l.kind == Light::Spot ? smooth_step(-dot(s->wi, l.axis), l.cos_end, l.cos_start) : 1;
+        s->L = l.L * (falloff / d2), s->pdf = prob, s->delta = true;
+        return falloff > 0;
+    }
+    s->infinite = true;
+    if (l.kind == Light::Distant) {
+        s->wi = l.axis, s->L = l.L, s->pdf = prob, s->delta = true;
+        return true;
+    }
+    if (l.map < 0) {  // a uniform environment: uniform directions
+        double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z)), sn, cs;
+        udm1scene::sincos_2pi(u2, &sn, &cs);
+        s->wi = Vec3(r * cs, r * sn, z), s->L = l.L, s->pdf = prob / (4 * PI);
+        return true;
+    }
+    const EnvironmentMap &m = maps_[l.map];  // a row by u1, a pixel of it by u2, the point in it by both rescaled
+    double fy, fx;
+    int y = pick(m.row_cdf.data(), m.res, u1 * m.total, &fy);
+    const double *row = &m.pixel_cdf[(size_t)y * (m.res + 1)];
+    int x = pick(row, m.res, u2 * row[m.res], &fx);
+    Vec3 w = equal_area_square_to_sphere((x + fx) / m.res, (y + fy) / m.res);
+    s->wi = normalize(l.world_from_light.vector(w));
+    const float *c = &m.rgb[3 * ((size_t)y * m.res + x)];
+    s->L = Vec3(c[0] * l.L.x, c[1] * l.L.y, c[2] * l.L.z);
+    s->pdf = prob * (row[x + 1] - row[x]) / m.total * ((double)m.res * m.res) / (4 * PI);
+    return s->pdf > 0;
+}
+
+Vec3 Lights::emitted(const udm1scene::Hit &h, Vec3 w) const
+{
+    int i = light_of(h);
+    if (i < 0) return Vec3();
+    return radiance(lights_[i], h.ng, w);
+}
+
+bool Lights::by_solid_angle(const Light &l, Vec3 p, double *omega) const
+{
+    // far, or behind a one-sided light (no light reaches p however it is sampled): by area, the cheaper
+    if (far(l, p) || (!l.twosided && dot(l.n, p - l.p0) <= 0)) return false;
+    *omega = solid_angle(p, l.p0, l.p1, l.p2);
+    return *omega >= MIN_SPHERICAL_AREA && *omega <= MAX_SPHERICAL_AREA;
+}
+
+double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
+{
+    Vec3 d = q - p;
+    double d2 = dot(d, d);
+    if (l.kind == Light::Sphere) {
+        double dc2 = dot(l.center - p, l.center - p), r2 = l.radius * l.radius;
+        if (dc2 > r2 * 1.0001) {  // outside: the cone of directions
+            double sin2 = r2 / dc2, one_minus_cos = sin2 < 0.00068523 ? sin2 / 2 + sin2 * sin2 / 8 : 1 - std::sqrt(1 - sin2);
+            return 1 / (2 * PI * one_minus_cos);
+        }
+    }
+    double omega;
+    if (l.kind == Light::Triangle && by_solid_angle(l, p, &omega)) return 1 / omega;
+    double c = std::fabs(dot(nq, d)) / std::sqrt(d2);
+    return c > 0 ? d2 / (c * l.area) : 0;
+}
+
+double Lights::pdf(Vec3 p, const udm1scene::Hit &h) const
+{
+    int i = light_of(h);
+    if (i < 0) return 0;
+    return prob_[i] * pdf_light(lights_[i], p, h.p, h.ng);
+}
+
+bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
+{
+    if (lights_.empty()) return false;
+    size_t i = choose(u1, &u1);
+    const Light &l = lights_[i];
+    s->shape = l.shape, s->sphere = l.kind == Light::Sphere;
+    s->delta = s->infinite = false;
+    if (l.kind != Light::Triangle && l.kind != Light::Sphere) return sample_source(l, prob_[i], p, u1, u2, s);
+    Vec3 q, nq;
+    double omega = 0;
+    bool spherical = false;  // a triangle sampled by solid angle
+    if (l.kind == Light::Sphere) {
+        Vec3 dc = l.center - p;
+        double dc2 = dot(dc, dc), r2 = l.radius * l.radius;
+        if (dc2 > r2 * 1.0001) {
+            // a direction in the cone the sphere subtends, then the point it hits
+            double dist = std::sqrt(dc2), sin2_max = r2 / dc2, cos_max = std::sqrt(std::max(0.0, 1 - sin2_max));
+            double one_minus_cos_max = sin2_max < 0.00068523 ? sin2_max / 2 + sin2_max * sin2_max / 8 : 1 - cos_max;
+            double sin2 = sin2_max < 0.00068523 ? sin2_max * u1 : 0;
+            double cos_t = sin2_max < 0.00068523 ? std::sqrt(1 - sin2) : (cos_max - 1) * u1 + 1;
+            if (sin2_max >= 0.00068523) sin2 = std::max(0.0, 1 - cos_t * cos_t);
+            // the angle at the centre between -dc and the point (pbrt-v4, Sphere::Sample)
+            double cos_alpha = sin2 / std::sqrt(sin2_max) + cos_t * std::sqrt(std::max(0.0, 1 - sin2 / sin2_max));
+            double sin_alpha = std::sqrt(std::max(0.0, 1 - cos_alpha * cos_alpha));
+            double sin_phi, cos_phi;
+            udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+            Vec3 wc = dc * (1 / dist);
+            udm1scene::Frame f(wc);
+            nq = (f.t * (sin_alpha * cos_phi) + f.b * (sin_alpha * sin_phi)) + (-wc) * cos_alpha;
+            nq = normalize(nq);
+            q = l.center + nq * l.radius;
+            Vec3 d = q - p;
+            s->dist = length(d);
+            s->wi = d * (1 / s->dist);
+            s->L = radiance(l, nq, -s->wi);
+            s->q = q, s->n = nq;
+            s->pdf = prob_[i] / (2 * PI * one_minus_cos_max);
+            return s->pdf > 0 && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
+        }
+        // inside the sphere: by area
+        double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z)), sin_phi, cos_phi;
+        udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+        nq = Vec3(r * cos_phi, r * sin_phi, z);
+        q = l.center + nq * l.radius;
+    } else {
+        // by solid angle where the spherical triangle is well formed (pbrt-v4), else by area
+        spherical = by_solid_angle(l, p, &omega);
+        if (!spherical || !sample_spherical_triangle(p, l.p0, l.p1, l.p2, u1, u2, &q)) {
+            if (spherical) return false;
+            double su = std::sqrt(u1), b0 = 1 - su, b1 = u2 * su;
+            q = l.p0 * b0 + l.p1 * b1 + l.p2 * (1 - b0 - b1);
+        }
+        nq = l.n;
+    }
+    Vec3 d = q - p;
+    double d2 = dot(d, d);
+    if (d2 <= 0) return false;
+    s->dist = std::sqrt(d2);
+    s->wi = d * (1 / s->dist);
+    s->q = q, s->n = nq;
+    s->L = radiance(l, nq, -s->wi);
+    // the density pdf_light() gives, without deciding the sampling method again
+    double c = std::fabs(dot(nq, d)) / s->dist;
+    s->pdf = prob_[i] * (spherical ? 1 / omega : c > 0 ? d2 / (c * l.area) : 0);
+    return s->pdf > 0 && std::isfinite(s->pdf) && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
+}
+
+}  // namespace udm1pt

@@ -1,0 +1,202 @@
+/*
+ * udm1/noise.h - lattice gradient noise (Perlin's and from any udm1 sequence), POV-Ray's patterns
+ * and colour maps.
+ * Part of libudm1's public interface; udm1/udm1.h includes every part.
+ */
+#ifndef UDM1_NOISE_H
+#define UDM1_NOISE_H
+
+#include "udm1/core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------ */
+/* Noise and procedural patterns (1.2)                                       */
+/* ------------------------------------------------------------------------ */
+/*
+ * A udm1_noise holds a lattice noise's tables: a permutation of 0..255 and 256
+ * unit gradients. Where they come from (desc.table):
+ *  NULL or "perlin"  Ken Perlin's reference permutation (Improved Noise, 2002);
+ *                    with UDM1_NOISE_IMPROVED, udm1_noise_3d equals his
+ *                    reference implementation (noise(3.14, 42, 7) =
+ *                    0.13691995878400012). Gradients: his 16 edge directions.
+ *  "drand48"         the paper's baseline: srand48(seed), 256 gradients
+ *                    (theta = acos(2u - 1), phi = 2 pi v from two drand48()),
+ *                    then the swap shuffle p[i] <-> p[floor(256 drand48())], i = 0..255.
+ *  any preset name   from that udm1 sequence (seed, default randomization,
+ *                    stream 0; point sets with K = 256). Ranking sequence values
+ *                    gives an almost arithmetic permutation (three-distance
+ *                    theorem) and lattice artifacts, so the values x_k of
+ *                    dimension 0 are whitened by the shuffled nested Weyl
+ *                    transform of Holian et al. (1994), u_k = {G {(k+1) x_k} + 1/2}
+ *                    with G = 2^64/phi, computed in 64-bit integers, and drive a
+ *                    Fisher-Yates shuffle (i = 255..1: j = floor((i+1) u_{255-i})).
+ *                    Gradients: the sequence's points in dimensions (1, 2) (or
+ *                    the whitened values of dimension 0 at indices 256.. for
+ *                    sets with fewer dimensions) mapped to the sphere as above.
+ * Kinds (desc.kind):
+ *  UDM1_NOISE_IMPROVED  Perlin 2002: quintic fade 6t^5 - 15t^4 + 10t^3, the
+ *                       gradient of a corner chosen by its hash among 16 edge
+ *                       directions; 2D and 1D use the gradient sets of
+ *                       Gustavson's noise1234 (+-u +-2v; +-(1..8)x).
+ *  UDM1_NOISE_CLASSIC   Perlin 1985 gradient noise: the gradient table, cubic
+ *                       fade 3t^2 - 2t^3 (the paper's noise pictures).
+ * Periods (desc.period[3], 0 = none): the lattice wraps every period[i] units
+ * on that axis, any integer, so a texture covering [0, period) is seamless.
+ * Coordinates are doubles and stay correct far from the origin: the lattice
+ * cell is found with exact floating-point floor and fmod (no int overflow,
+ * |x| up to the largest double); past 2^52 every double is a lattice point
+ * and the noise is 0. A NaN or infinite coordinate gives NaN from the scalar
+ * functions and UDM1_ERROR_INVALID_ARGUMENT from the batch ones.
+ * A udm1_noise is immutable and may be shared by threads.
+ */
+typedef struct udm1_noise udm1_noise;
+
+typedef enum udm1_noise_kind { UDM1_NOISE_IMPROVED = 0, UDM1_NOISE_CLASSIC = 1 } udm1_noise_kind;
+
+typedef struct udm1_noise_desc {
+    uint32_t struct_size; /* sizeof(udm1_noise_desc); set by udm1_noise_desc_init; read as udm1_seq_desc's */
+    uint32_t kind;        /* udm1_noise_kind */
+    const char *table;    /* NULL/"perlin", "drand48" or a preset name */
+    uint64_t seed;
+    uint32_t period[3];   /* 0: not periodic on that axis */
+    uint32_t reserved;    /* set to 0 */
+} udm1_noise_desc;
+
+UDM1_API void udm1_noise_desc_init(udm1_noise_desc *desc);
+/* Errors: NULL_ARGUMENT, INVALID_ARGUMENT (struct_size, kind, reserved, a period
+ * above 2^30), UNKNOWN_PRESET (table), OUT_OF_MEMORY. */
+UDM1_API udm1_status udm1_noise_create(const udm1_noise_desc *desc, udm1_noise **out);
+UDM1_API void udm1_noise_destroy(udm1_noise *noise);
+/* The permutation (256 entries) and gradients (256 x 3) of a noise, copied out.
+ * Either pointer may be NULL. Errors: NULL_ARGUMENT (noise). */
+UDM1_API udm1_status udm1_noise_tables(const udm1_noise *noise, uint8_t *perm, double *gradients);
+
+/* Noise values, about in [-1, 1] (not bounded by 1: |n| up to ~1.04). */
+UDM1_API double udm1_noise_1d(const udm1_noise *noise, double x);
+UDM1_API double udm1_noise_2d(const udm1_noise *noise, double x, double y);
+UDM1_API double udm1_noise_3d(const udm1_noise *noise, double x, double y, double z);
+
+/* Noise values at n points of `dims` (1, 2 or 3) coordinates, point i at
+ * xyz[i * stride]. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (dims, stride < dims,
+ * a non-finite coordinate: the message names the point; out's values are then
+ * unspecified). */
+UDM1_API udm1_status udm1_noise_points(const udm1_noise *noise, uint32_t dims, const double *xyz, size_t n,
+                                       size_t stride, double *out);
+
+/* Patterns: a value at a 3D point. UDM1_PATTERN_NOISE, FBM, TURBULENCE and
+ * RIDGED are the raw noise sums; the others follow POV-Ray 3.7's definitions
+ * over N(P) = clamp((1 + noise_3d(P)) / 2, 0, 1) in the place of POV's Noise
+ * (so shapes and ranges match POV-Ray's, not its pixels):
+ *  FBM          sum_{i<octaves} omega^i noise(lambda^i P)
+ *  TURBULENCE   POV's Turbulence: g1(N(P)) + sum_{i=1}^{octaves-1} omega^i (2 N(lambda^i P) - 1/2),
+ *               g1(n) = clamp(2n - 1/2, 0, 1)
+ *  RIDGED       sum_{i<octaves} omega^i (1 - |noise(lambda^i P)|)^2
+ *  BOZO, BUMPS  N(P) (they differ only in POV's default colour maps)
+ *  GRANITE      sum_{i<6} min(|1 - 2 N(4 2^i P)|, 1/2) / 2^i
+ *  AGATE        n = (cyc(1.3 agate_turb T(P) + 1.1 z) + 1) / 2, value max(n, 0)^0.77
+ *  MARBLE       x + turbulence.x T(P), triangle wave by default
+ *  WOOD         |(x + cyc((x + D.x) turbulence.x), y + cyc((y + D.y) turbulence.y))| with
+ *               D = DTurbulence(P) (|(x, y)| without turbulence), triangle wave by default
+ *  WRINKLES     (sum_{i<10} 0.5^i g1(N(2^i P))) / 2
+ *  LEOPARD      ((sin x + sin y + sin z) / 3)^2
+ *  ONION        fmod(|P|, 1)
+ *  RIPPLES      (1 + mean_i cyc(|P - s_i| frequency + phase)) / 2
+ *  WAVES        (2.5 + mean_i cyc(|P - s_i| frequency f_i + phase) / f_i) / 5
+ * with cyc(v) = sin(2 pi frac(v)), T = TURBULENCE, DTurbulence the same sum
+ * of the vector noise DNoise(P) = (noise(P), noise(P + o1), noise(P + o2)),
+ * o1 = (31.416, -47.853, 12.793), o2 = (-101.234, 67.125, -23.478), the 10
+ * wave sources s_i = DNoise((i, 0, 0)) normalized, and f_i from POV's wave
+ * generator (r <- r 1812433253 + 12345 from r = -560851967, f_i =
+ * ((r >> 16) & 0x7FFF) / 32767 + 0.01). A non-zero `turbulence` vector also
+ * displaces P by DTurbulence(P) * turbulence before every pattern but marble
+ * and wood (POV's turbulence warp). After the pattern, POV's wave shaping:
+ * v = fmod(v frequency + phase, 1.00001) (if frequency != 0), wrapped into
+ * [0, 1), then the wave function. The POV patterns give values in [0, 1]. */
+typedef enum udm1_pattern {
+    UDM1_PATTERN_NOISE = 1,
+    UDM1_PATTERN_FBM = 2,
+    UDM1_PATTERN_TURBULENCE = 3,
+    UDM1_PATTERN_RIDGED = 4,
+    UDM1_PATTERN_BOZO = 5,
+    UDM1_PATTERN_BUMPS = 6,
+    UDM1_PATTERN_GRANITE = 7,
+    UDM1_PATTERN_AGATE = 8,
+    UDM1_PATTERN_MARBLE = 9,
+    UDM1_PATTERN_WOOD = 10,
+    UDM1_PATTERN_WRINKLES = 11,
+    UDM1_PATTERN_LEOPARD = 12,
+    UDM1_PATTERN_ONION = 13,
+    UDM1_PATTERN_RIPPLES = 14,
+    UDM1_PATTERN_WAVES = 15
+} udm1_pattern;
+
+typedef enum udm1_wave {
+    UDM1_WAVE_DEFAULT = 0,  /* triangle for marble and wood, ramp for the others */
+    UDM1_WAVE_RAMP = 1,
+    UDM1_WAVE_TRIANGLE = 2,
+    UDM1_WAVE_SINE = 3,     /* (1 + cyc(v)) / 2 */
+    UDM1_WAVE_SCALLOP = 4,  /* |cyc(v / 2)| */
+    UDM1_WAVE_CUBIC = 5,    /* 3v^2 - 2v^3 */
+    UDM1_WAVE_POLY = 6      /* v^exponent */
+} udm1_wave;
+
+typedef struct udm1_pattern_params {
+    uint32_t struct_size;  /* set by udm1_pattern_params_init */
+    uint32_t pattern;      /* udm1_pattern */
+    uint32_t octaves;      /* 1..10; POV default 6 */
+    uint32_t wave;         /* udm1_wave */
+    double omega;          /* POV default 0.5 */
+    double lambda;         /* POV default 2 */
+    double turbulence[3];  /* POV's turbulence vector; default 0 */
+    double frequency;      /* wave frequency; default 1 (0: no wave shaping) */
+    double phase;          /* default 0 */
+    double exponent;       /* poly wave; default 1 */
+    double agate_turb;     /* default 1 */
+} udm1_pattern_params;
+
+/* POV-Ray's defaults for `pattern`. Does nothing if params is NULL. */
+UDM1_API void udm1_pattern_params_init(udm1_pattern_params *params, uint32_t pattern);
+/* The name ("marble") of a pattern, NULL if unknown; and the pattern of a name, 0 if unknown. */
+UDM1_API const char *udm1_pattern_name(uint32_t pattern);
+UDM1_API uint32_t udm1_pattern_from_name(const char *name);
+/* The value of a pattern at (x, y, z). params is not checked here (see
+ * udm1_pattern_grid); non-finite coordinates give NaN. */
+UDM1_API double udm1_pattern_eval(const udm1_noise *noise, const udm1_pattern_params *params, double x, double y,
+                                  double z);
+/* Rows [row0, row0 + rows) of a width x height grid into out (row-major, the
+ * first given row first): pixel (i, j) is the pattern at
+ * origin + (i + 1/2) * step_x + (j + 1/2) * step_y (3-vectors). Rows can be
+ * computed by different threads into their own part of an image.
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (sizes 0 or above 65536, rows past
+ * height, a bad params field: struct_size, pattern, octaves outside 1..10,
+ * non-finite numbers, origin/steps not finite). */
+UDM1_API udm1_status udm1_pattern_grid(const udm1_noise *noise, const udm1_pattern_params *params, uint32_t width,
+                                       uint32_t height, uint32_t row0, uint32_t rows, const double origin[3],
+                                       const double step_x[3], const double step_y[3], float *out);
+/* The pattern at n points (point i at xyz[i * stride], 3 coordinates).
+ * Errors: as udm1_pattern_grid, and INVALID_ARGUMENT for a non-finite point. */
+UDM1_API udm1_status udm1_pattern_points(const udm1_noise *noise, const udm1_pattern_params *params,
+                                         const double *xyz, size_t n, size_t stride, double *out);
+
+/* Colour maps with POV-Ray's lookup: entries sorted by value; below the first
+ * or above the last, their colour; between two, linear interpolation; equal
+ * values make a hard edge. */
+typedef struct udm1_color_entry {
+    double value;
+    float rgb[3];
+} udm1_color_entry;
+/* Errors: NULL_ARGUMENT, INVALID_ARGUMENT (count 0, entries not sorted). */
+UDM1_API udm1_status udm1_color_map_eval(const udm1_color_entry *entries, size_t count, double value, float rgb[3]);
+/* POV-Ray's default colour map of a pattern (bozo, marble, wood, agate have
+ * their own; the others black to white): *entries points to static storage.
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown pattern). */
+UDM1_API udm1_status udm1_pattern_default_colors(uint32_t pattern, const udm1_color_entry **entries, size_t *count);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* UDM1_NOISE_H */

@@ -1,0 +1,32 @@
+/* noise/noise_tables.h - a udm1_noise's tables (noise.c builds them; patterns.c and the vector path
+ * of noise_simd.c read them). */
+#ifndef UDM1_NOISE_TABLES_H
+#define UDM1_NOISE_TABLES_H
+
+#include "core/internal.h"
+
+/* A noise's tables (noise.c); the patterns (patterns.c) read the wave sources. */
+typedef struct udm1_pick { uint8_t iu, iv; double su, sv; } udm1_pick; /* +-c[iu] +-c[iv] */
+#define UDM1_NOISE_WAVES 10
+struct udm1_noise {
+    uint32_t kind;
+    uint32_t period[3];
+    uint8_t perm[512];        /* the permutation, twice */
+    double grad[256][3];      /* the table's unit gradients */
+    int32_t pair[512];        /* perm[k] | perm[k + 1] << 8: a corner's hashes at z and z + 1 in one load */
+    uint32_t hash4[256 * 256]; /* by x * 256 + y: the bytes perm[perm[x'] + y'] for (x', y') = (x, y),
+                                * (x, y+1), (x+1, y), (x+1, y+1), wrapped to 0..255: a cell's four
+                                * column hashes (2D: its corner hashes) in one load */
+    double g3[256][3];        /* the gradient the 3D evaluation uses, by corner hash */
+    double g2[256][2];        /* ... the 2D one */
+    double g1[256];           /* ... the 1D one */
+    udm1_pick pick3[256];     /* the improved noise's 3D gradient, as coordinates and signs */
+    udm1_pick pick2[256];     /* ... 2D */
+    double wave_source[UDM1_NOISE_WAVES][3];
+};
+
+/* The vector path of udm1_noise_points (noise_simd.c): how many leading points it computed. */
+UDM1_HIDDEN size_t udm1_noise_points_fast(const struct udm1_noise *n, uint32_t dims, const double *xyz, size_t count,
+                                          size_t stride, double *out);
+
+#endif /* UDM1_NOISE_TABLES_H */

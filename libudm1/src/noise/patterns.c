@@ -1,0 +1,338 @@
+/* patterns.c - fractal sums and POV-Ray 3.7's procedural patterns over udm1's
+ * noise, POV-Ray's wave shaping and colour maps. Definitions in udm1.h. */
+#include "noise/noise_tables.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define PI 3.14159265358979323846
+#define NUM_WAVES UDM1_NOISE_WAVES
+
+static const char *const NAMES[] = {NULL,    "noise",  "fbm",   "turbulence", "ridged",  "bozo",
+                                    "bumps", "granite", "agate", "marble",     "wood",    "wrinkles",
+                                    "leopard", "onion", "ripples", "waves"};
+#define LAST_PATTERN UDM1_PATTERN_WAVES
+
+const char *udm1_pattern_name(uint32_t pattern)
+{
+    return pattern >= 1 && pattern <= LAST_PATTERN ? NAMES[pattern] : NULL;
+}
+
+uint32_t udm1_pattern_from_name(const char *name)
+{
+    if (!name) return 0;
+    for (uint32_t p = 1; p <= LAST_PATTERN; ++p)
+        if (strcmp(NAMES[p], name) == 0) return p;
+    return 0;
+}
+
+void udm1_pattern_params_init(udm1_pattern_params *params, uint32_t pattern)
+{
+    if (!params) return;
+    memset(params, 0, sizeof *params);
+    params->struct_size = (uint32_t)sizeof *params;
+    params->pattern = pattern;
+    params->octaves = 6;
+    params->wave = UDM1_WAVE_DEFAULT;
+    params->omega = 0.5;
+    params->lambda = 2.0;
+    params->frequency = 1.0;
+    params->phase = 0.0;
+    params->exponent = 1.0;
+    params->agate_turb = 1.0;
+}
+
+static double clamp01(double v) { return v < 0 ? 0 : (v > 1 ? 1 : v); }
+static double frac(double v) { return v - floor(v); }
+static double cyc(double v) { return sin(2.0 * PI * frac(v)); }
+
+/* POV's Noise, over udm1's: in [0, 1] */
+static double N(const udm1_noise *n, double x, double y, double z) { return clamp01(0.5 + 0.5 * udm1_noise_3d(n, x, y, z)); }
+
+static void dnoise(const udm1_noise *n, double x, double y, double z, double out[3])
+{
+    out[0] = udm1_noise_3d(n, x, y, z);
+    out[1] = udm1_noise_3d(n, x + 31.416, y - 47.853, z + 12.793);
+    out[2] = udm1_noise_3d(n, x - 101.234, y + 67.125, z - 23.478);
+}
+
+static double turbulence(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
+{
+    double v = clamp01(2.0 * N(n, x, y, z) - 0.5), amp = 1.0, s = 1.0;
+    for (uint32_t i = 1; i < p->octaves; ++i) {
+        amp *= p->omega;
+        s *= p->lambda;
+        v += amp * (2.0 * N(n, x * s, y * s, z * s) - 0.5);
+    }
+    return v;
+}
+
+static void dturbulence(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z,
+                        double out[3])
+{
+    dnoise(n, x, y, z, out);
+    double amp = 1.0, s = 1.0, d[3];
+    for (uint32_t i = 1; i < p->octaves; ++i) {
+        amp *= p->omega;
+        s *= p->lambda;
+        dnoise(n, x * s, y * s, z * s, d);
+        for (int c = 0; c < 3; ++c) out[c] += amp * d[c];
+    }
+}
+
+/* the frequencies of the waves pattern (the sources are in the noise) */
+static double wave_frequency(int i)
+{
+    uint32_t r = (uint32_t)-560851967;
+    for (int k = 0; k <= i; ++k) r = r * 1812433253u + 12345u;
+    return ((r >> 16) & 0x7FFFu) * (1.0 / 32767.0) + 0.01;
+}
+
+static double raw(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
+{
+    switch (p->pattern) {
+    case UDM1_PATTERN_NOISE: return udm1_noise_3d(n, x, y, z);
+    case UDM1_PATTERN_FBM:
+    case UDM1_PATTERN_RIDGED: {
+        double v = 0.0, amp = 1.0, s = 1.0;
+        for (uint32_t i = 0; i < p->octaves; ++i) {
+            double t = udm1_noise_3d(n, x * s, y * s, z * s);
+            if (p->pattern == UDM1_PATTERN_RIDGED) t = (1.0 - fabs(t)) * (1.0 - fabs(t));
+            v += amp * t;
+            amp *= p->omega;
+            s *= p->lambda;
+        }
+        return v;
+    }
+    case UDM1_PATTERN_TURBULENCE: return turbulence(n, p, x, y, z);
+    case UDM1_PATTERN_BOZO:
+    case UDM1_PATTERN_BUMPS: return N(n, x, y, z);
+    case UDM1_PATTERN_GRANITE: {
+        double v = 0.0, s = 4.0, w = 1.0;
+        for (int i = 0; i < 6; ++i, s *= 2.0, w *= 0.5) v += fmin(fabs(1.0 - 2.0 * N(n, x * s, y * s, z * s)), 0.5) * w;
+        return v;
+    }
+    case UDM1_PATTERN_AGATE: {
+        double t = p->agate_turb * turbulence(n, p, x, y, z);
+        double v = 0.5 * (cyc(1.3 * t + 1.1 * z) + 1.0);
+        return v < 0 ? 0.0 : pow(fmin(v, 1.0), 0.77);
+    }
+    case UDM1_PATTERN_MARBLE: return x + p->turbulence[0] * turbulence(n, p, x, y, z);
+    case UDM1_PATTERN_WOOD: {
+        if (p->turbulence[0] == 0 && p->turbulence[1] == 0 && p->turbulence[2] == 0) return sqrt(x * x + y * y);
+        double d[3];
+        dturbulence(n, p, x, y, z, d);
+        double px = x + cyc((x + d[0]) * p->turbulence[0]), py = y + cyc((y + d[1]) * p->turbulence[1]);
+        return sqrt(px * px + py * py);
+    }
+    case UDM1_PATTERN_WRINKLES: {
+        double v = 0.0, s = 1.0, w = 1.0;
+        for (int i = 0; i < 10; ++i, s *= 2.0, w *= 0.5) v += w * clamp01(2.0 * N(n, x * s, y * s, z * s) - 0.5);
+        return v / 2.0;
+    }
+    case UDM1_PATTERN_LEOPARD: {
+        double v = (sin(x) + sin(y) + sin(z)) / 3.0;
+        return v * v;
+    }
+    case UDM1_PATTERN_ONION: return fmod(sqrt(x * x + y * y + z * z), 1.0);
+    case UDM1_PATTERN_RIPPLES:
+    case UDM1_PATTERN_WAVES: {
+        double sum = 0.0;
+        for (int i = 0; i < NUM_WAVES; ++i) {
+            const double *s = n->wave_source[i];
+            double dx = x - s[0], dy = y - s[1], dz = z - s[2], d = sqrt(dx * dx + dy * dy + dz * dz);
+            if (d == 0.0) d = 1.0;
+            if (p->pattern == UDM1_PATTERN_RIPPLES) {
+                sum += cyc(d * p->frequency + p->phase);
+            } else {
+                double f = wave_frequency(i);
+                sum += cyc(d * p->frequency * f + p->phase) / f;
+            }
+        }
+        return p->pattern == UDM1_PATTERN_RIPPLES ? 0.5 * (1.0 + sum / NUM_WAVES) : 0.2 * (2.5 + sum / NUM_WAVES);
+    }
+    default: return NAN;
+    }
+}
+
+static int is_pov(uint32_t pattern) { return pattern >= UDM1_PATTERN_BOZO; }
+
+static double shape(const udm1_pattern_params *p, double v)
+{
+    if (p->frequency != 0.0) v = fmod(v * p->frequency + p->phase, 1.00001);
+    if (v < 0) v -= floor(v);
+    uint32_t wave = p->wave;
+    if (wave == UDM1_WAVE_DEFAULT)
+        wave = (p->pattern == UDM1_PATTERN_MARBLE || p->pattern == UDM1_PATTERN_WOOD) ? UDM1_WAVE_TRIANGLE
+                                                                                      : UDM1_WAVE_RAMP;
+    switch (wave) {
+    case UDM1_WAVE_TRIANGLE: {
+        double t = frac(v);
+        return t >= 0.5 ? 2.0 * (1.0 - t) : 2.0 * t;
+    }
+    case UDM1_WAVE_SINE: return (1.0 + cyc(v)) / 2.0;
+    case UDM1_WAVE_SCALLOP: return fabs(cyc(v / 2.0));
+    case UDM1_WAVE_CUBIC: return v * v * (3.0 - 2.0 * v);
+    case UDM1_WAVE_POLY: return pow(v, p->exponent);
+    default: return v;
+    }
+}
+
+double udm1_pattern_eval(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
+{
+    if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return NAN;
+    int has_turb = p->turbulence[0] != 0 || p->turbulence[1] != 0 || p->turbulence[2] != 0;
+    if (is_pov(p->pattern) && has_turb && p->pattern != UDM1_PATTERN_MARBLE && p->pattern != UDM1_PATTERN_WOOD) {
+        double d[3];
+        dturbulence(n, p, x, y, z, d);
+        x += d[0] * p->turbulence[0];
+        y += d[1] * p->turbulence[1];
+        z += d[2] * p->turbulence[2];
+    }
+    double v = raw(n, p, x, y, z);
+    if (!is_pov(p->pattern)) return v;
+    return shape(p, v);
+}
+
+static udm1_status check_params(const char *fn, const udm1_noise *n, const udm1_pattern_params *p, const void *out)
+{
+    if (!n || !p || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: a pointer argument is NULL", fn);
+    if (p->struct_size < sizeof(udm1_pattern_params))
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: params.struct_size %u (call udm1_pattern_params_init)", fn,
+                         p->struct_size);
+    if (p->pattern < 1 || p->pattern > LAST_PATTERN)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: unknown pattern %u", fn, p->pattern);
+    if (p->octaves < 1 || p->octaves > 10)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: octaves %u is outside 1..10", fn, p->octaves);
+    if (p->wave > UDM1_WAVE_POLY) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: unknown wave %u", fn, p->wave);
+    const double nums[] = {p->omega,     p->lambda,        p->turbulence[0], p->turbulence[1], p->turbulence[2],
+                           p->frequency, p->phase,         p->exponent,      p->agate_turb};
+    for (size_t i = 0; i < sizeof nums / sizeof *nums; ++i)
+        if (!isfinite(nums[i]))
+            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: a pattern parameter is not finite", fn);
+    return UDM1_OK;
+}
+
+udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p, uint32_t width, uint32_t height,
+                              uint32_t row0, uint32_t rows, const double origin[3], const double step_x[3],
+                              const double step_y[3], float *out)
+{
+    static const char fn[] = "udm1_pattern_grid";
+    udm1_status st = check_params(fn, n, p, out);
+    if (st != UDM1_OK) return st;
+    if (!origin || !step_x || !step_y) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: origin or a step is NULL", fn);
+    if (width == 0 || height == 0 || width > 65536 || height > 65536)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: size %ux%u is outside 1..65536", fn, width, height);
+    if (row0 >= height || rows > height - row0)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: rows [%u, %u + %u) past the height %u", fn, row0, row0,
+                         rows, height);
+    for (int c = 0; c < 3; ++c)
+        if (!isfinite(origin[c]) || !isfinite(step_x[c]) || !isfinite(step_y[c]))
+            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: origin and steps must be finite", fn);
+    /* noise and fBm rows go through the batch call (vectorized), octave by octave; the sums are
+     * the same as udm1_pattern_eval's, term by term */
+    int batch = p->pattern == UDM1_PATTERN_NOISE || p->pattern == UDM1_PATTERN_FBM;
+    double *xyz = batch ? malloc(sizeof(double) * 4 * width) : NULL;
+    double *val = xyz ? xyz + 3 * (size_t)width : NULL;
+    double *acc = batch ? malloc(sizeof(double) * width) : NULL;
+    if (batch && (!xyz || !acc)) batch = 0;
+    for (uint32_t j = 0; j < rows; ++j) {
+        double b = row0 + j + 0.5;
+        if (batch) {
+            uint32_t octaves = p->pattern == UDM1_PATTERN_NOISE ? 1 : p->octaves;
+            double amp = 1.0, s = 1.0;
+            for (uint32_t o = 0; o < octaves; ++o) {
+                for (uint32_t i = 0; i < width; ++i) {
+                    double a = i + 0.5;
+                    for (int c = 0; c < 3; ++c) xyz[3 * (size_t)i + c] = (origin[c] + a * step_x[c] + b * step_y[c]) * s;
+                }
+                udm1_noise_points(n, 3, xyz, width, 3, val);
+                /* as the per-point sum: v = 0, v += amp t (the raw noise pattern is t itself) */
+                for (uint32_t i = 0; i < width; ++i)
+                    acc[i] = p->pattern == UDM1_PATTERN_NOISE ? val[i] : (o == 0 ? 0.0 : acc[i]) + amp * val[i];
+                amp *= p->omega;
+                s *= p->lambda;
+            }
+            for (uint32_t i = 0; i < width; ++i) out[(size_t)j * width + i] = (float)acc[i];
+            continue;
+        }
+        for (uint32_t i = 0; i < width; ++i) {
+            double a = i + 0.5, q[3];
+            for (int c = 0; c < 3; ++c) q[c] = origin[c] + a * step_x[c] + b * step_y[c];
+            out[(size_t)j * width + i] = (float)udm1_pattern_eval(n, p, q[0], q[1], q[2]);
+        }
+    }
+    free(xyz);
+    free(acc);
+    return UDM1_OK;
+}
+
+udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *p, const double *xyz, size_t count,
+                                size_t stride, double *out)
+{
+    static const char fn[] = "udm1_pattern_points";
+    udm1_status st = check_params(fn, n, p, out);
+    if (st != UDM1_OK) return st;
+    if (!xyz) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: xyz is NULL", fn);
+    if (stride < 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < 3", fn, stride);
+    for (size_t i = 0; i < count; ++i) {
+        const double *q = xyz + i * stride;
+        if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
+            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu is not finite", fn, i);
+    }
+    for (size_t i = 0; i < count; ++i) {
+        const double *q = xyz + i * stride;
+        out[i] = udm1_pattern_eval(n, p, q[0], q[1], q[2]);
+    }
+    return UDM1_OK;
+}
+
+/* ---- colour maps ---- */
+
+udm1_status udm1_color_map_eval(const udm1_color_entry *e, size_t count, double value, float rgb[3])
+{
+    if (!e || !rgb) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_color_map_eval: a pointer argument is NULL");
+    if (count == 0) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_color_map_eval: no entries");
+    for (size_t k = 1; k < count; ++k)
+        if (!(e[k].value >= e[k - 1].value))
+            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_color_map_eval: entry %zu is not sorted by value", k);
+    if (!(value < e[count - 1].value)) { /* also NaN: the last colour */
+        memcpy(rgb, e[count - 1].rgb, sizeof(float) * 3);
+        return UDM1_OK;
+    }
+    size_t k = 0;
+    while (e[k].value < value) ++k;
+    if (k == 0 || e[k].value == value) {
+        memcpy(rgb, e[k].rgb, sizeof(float) * 3);
+        return UDM1_OK;
+    }
+    double w = (e[k].value - value) / (e[k].value - e[k - 1].value);
+    for (int c = 0; c < 3; ++c) rgb[c] = (float)(w * e[k - 1].rgb[c] + (1.0 - w) * e[k].rgb[c]);
+    return UDM1_OK;
+}
+
+static const udm1_color_entry GREY[] = {{0.0, {0, 0, 0}}, {1.0, {1, 1, 1}}};
+static const udm1_color_entry BOZO[] = {{0.4, {1, 1, 1}}, {0.4, {0, 1, 0}}, {0.6, {0, 1, 0}},
+                                        {0.6, {0, 0, 1}}, {0.8, {0, 0, 1}}, {0.8, {1, 0, 0}}};
+static const udm1_color_entry MARBLE[] = {{0.0, {0.9f, 0.8f, 0.8f}}, {0.9, {0.9f, 0.08f, 0.08f}}, {0.9, {0, 0, 0}}};
+static const udm1_color_entry WOOD[] = {{0.6, {0.666f, 0.312f, 0.2f}}, {0.6, {0.4f, 0.1333f, 0.066f}}};
+static const udm1_color_entry AGATE[] = {{0.0, {1, 1, 1}},          {0.5, {0.95f, 0.75f, 0.5f}}, {0.5, {0.9f, 0.7f, 0.5f}},
+                                         {0.6, {0.9f, 0.7f, 0.4f}}, {0.6, {1, 0.7f, 0.4f}},      {1.0, {0.6f, 0.3f, 0}}};
+
+udm1_status udm1_pattern_default_colors(uint32_t pattern, const udm1_color_entry **entries, size_t *count)
+{
+    if (!entries || !count) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_pattern_default_colors: a pointer is NULL");
+    if (pattern < 1 || pattern > LAST_PATTERN)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_pattern_default_colors: unknown pattern %u", pattern);
+#define SET(T) (*entries = T, *count = sizeof T / sizeof *T)
+    switch (pattern) {
+    case UDM1_PATTERN_BOZO: SET(BOZO); break;
+    case UDM1_PATTERN_MARBLE: SET(MARBLE); break;
+    case UDM1_PATTERN_WOOD: SET(WOOD); break;
+    case UDM1_PATTERN_AGATE: SET(AGATE); break;
+    default: SET(GREY); break;
+    }
+#undef SET
+    return UDM1_OK;
+}

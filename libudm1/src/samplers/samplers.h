@@ -1,0 +1,33 @@
+/* samplers/samplers.h - the sampler kinds other than Weyl: one file each, an init that builds the
+ * kind's tables into seq->data (dims, K, seed and mode are set; freed with free()) and the kind's
+ * operations (seq/seq.h). */
+#ifndef UDM1_SAMPLERS_H
+#define UDM1_SAMPLERS_H
+
+#include "seq/seq.h"
+
+UDM1_HIDDEN udm1_status udm1_init_pcg32(udm1_seq_t *seq);      /* prng.c */
+UDM1_HIDDEN udm1_status udm1_init_drand48(udm1_seq_t *seq);    /* prng.c */
+UDM1_HIDDEN udm1_status udm1_init_halton(udm1_seq_t *seq);     /* halton.c */
+UDM1_HIDDEN udm1_status udm1_init_sobol(udm1_seq_t *seq);      /* sobol.c */
+UDM1_HIDDEN udm1_status udm1_init_hammersley(udm1_seq_t *seq); /* hammersley.c */
+UDM1_HIDDEN udm1_status udm1_init_lp(udm1_seq_t *seq);         /* hammersley.c */
+UDM1_HIDDEN udm1_status udm1_init_cmj(udm1_seq_t *seq);        /* cmj.c */
+UDM1_HIDDEN udm1_status udm1_init_grps(udm1_seq_t *seq);       /* grps.c */
+UDM1_HIDDEN udm1_status udm1_init_pmj02(udm1_seq_t *seq);      /* pmj02.c */
+
+UDM1_HIDDEN extern const udm1_kind udm1_pcg32_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_drand48_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_halton_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_sobol_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_hammersley_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_lp_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_cmj_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_grps_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_pmj02_kind;
+
+/* Base-b radical inverse of n as 0.64 (floor), exact; digits permuted per mode
+ * (r is the dimension's random word). Used by Halton and Hammersley (radical_inverse.c). */
+UDM1_HIDDEN uint64_t udm1_radical_inverse(uint64_t n, uint32_t base, uint32_t mode, uint64_t r);
+
+#endif /* UDM1_SAMPLERS_H */

@@ -1,0 +1,138 @@
+/* sobol.c - the Sobol sequence with Joe and Kuo's direction numbers
+ * (new-joe-kuo-6.21201), 64 bits.
+ *
+ * The table of primitive polynomials and initial numbers m_1..m_s is generated
+ * at build time (libudm1/gen/sobol_table.py, from scipy's copy or Joe and Kuo's
+ * file); it is not kept in the source tree. Direction numbers:
+ *   V_k = m_k 2^(64-k)                                    k = 1..s
+ *   V_k = V_{k-s} ^ (V_{k-s} >> s) ^ XOR_i a_i V_{k-i}    k > s
+ * with a_i the inner coefficients of the polynomial. Dimension 0 is the van der
+ * Corput sequence. Point n is the XOR of V_k over the set bits of the Gray code
+ * n ^ (n >> 1): the order of scipy.stats.qmc.Sobol, whose doubles with
+ * bits=53 and scramble=False equal ours with UDM1_RANDOMIZE_NONE.
+ */
+#include "samplers/samplers.h"
+#include "seq/scramble.h"
+
+#include <stdlib.h>
+
+#if defined(UDM1_HAVE_SOBOL_TABLE)
+extern const uint32_t udm1_sobol_table_dims;
+extern const uint32_t udm1_sobol_table_poly[];
+extern const uint32_t udm1_sobol_table_offset[];
+extern const uint32_t udm1_sobol_table_m[];
+#endif
+
+/* dims x 64 direction numbers; for the first TABLE_DIMS dimensions also the XOR of every subset of the
+ * first 8, indexed by the subset's bits (the Gray code's low byte), so that a point of up to 256
+ * samples is one load a dimension: a loop over the set bits mispredicts its exit about once a
+ * dimension, which cost more than the rest of the value */
+enum { TABLE_DIMS = 256 };
+typedef struct sobol {
+    uint32_t table_dims;
+    uint64_t (*low)[256];
+    uint64_t v[][64];
+} sobol;
+
+static uint64_t sobol_raw(const sobol *t, uint32_t dim, uint64_t n)
+{
+    uint64_t g = n ^ (n >> 1), x = 0;
+    const uint64_t *v = t->v[dim];
+    if (dim < t->table_dims) {
+        x = t->low[dim][g & 255u];
+        g &= ~(uint64_t)255u;
+    }
+    for (; g; g &= g - 1) x ^= v[__builtin_ctzll(g)]; /* one step per (remaining) set bit */
+    return x;
+}
+
+static uint64_t sobol_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    (void)skey;
+    return sobol_raw(seq->data, dim, index) + seq->offset[dim];
+}
+
+/* sobol_raw of dimensions dim0 .. dim0 + m - 1 at once */
+static void sobol_raw_dims(const sobol *t, uint64_t n, uint32_t dim0, uint32_t m, uint64_t *raw)
+{
+    for (uint32_t j = 0; j < m; ++j) raw[j] = sobol_raw(t, dim0 + j, n);
+}
+
+static void sobol_base2_point(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim0, uint32_t m,
+                              uint64_t *raw)
+{
+    (void)skey;
+    sobol_raw_dims(seq->data, index, dim0, m, raw);
+    for (uint32_t j = 0; j < m; ++j) raw[j] += seq->offset[dim0 + j];
+}
+
+static uint64_t sobol_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    return udm1_randomize_base2(seq->mode, sobol_base2(seq, skey, index, dim), udm1_word(seq, skey, dim));
+}
+
+/* Sequential fill: the Gray code changes one bit per step. */
+static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, size_t count, uint32_t dim0,
+                       uint32_t nd, uint64_t *raw)
+{
+    const sobol *t = seq->data;
+    uint64_t x0[64]; /* the first point's raw values, 64 dimensions at a time */
+    for (uint32_t j = 0; j < nd; ++j) {
+        uint32_t dim = dim0 + j;
+        if (j % 64 == 0) sobol_raw_dims(t, first, dim, nd - j < 64 ? nd - j : 64, x0);
+        uint64_t x = x0[j % 64], r = udm1_word(seq, skey, dim), o = seq->offset[dim];
+        const uint64_t *v = t->v[dim];
+        for (size_t i = 0; i < count; ++i) {
+            raw[i * nd + j] = udm1_randomize_base2(seq->mode, x + o, r);
+            uint64_t next = first + i + 1; /* Gray(next) = Gray(next - 1) ^ 2^ctz(next) */
+            if (next) x ^= v[__builtin_ctzll(next)];
+        }
+    }
+}
+
+udm1_status udm1_init_sobol(udm1_seq_t *seq)
+{
+#if defined(UDM1_HAVE_SOBOL_TABLE)
+    if (seq->dims > udm1_sobol_table_dims)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_create: the Sobol table has %u dimensions, %u asked",
+                         udm1_sobol_table_dims, seq->dims);
+    uint32_t td = seq->dims < TABLE_DIMS ? seq->dims : TABLE_DIMS;
+    size_t head = sizeof(sobol) + sizeof(uint64_t) * 64 * seq->dims;
+    head = (head + 63) / 64 * 64;
+    sobol *t = malloc(head + sizeof(uint64_t) * 256 * td);
+    if (!t) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u dimensions", seq->dims);
+    t->table_dims = td;
+    t->low = (uint64_t(*)[256])((char *)t + head);
+    for (uint32_t j = 0; j < seq->dims; ++j) {
+        uint64_t *v = t->v[j];
+        uint32_t poly = udm1_sobol_table_poly[j];
+        uint32_t s = 0;
+        while ((poly >> (s + 1)) != 0) ++s; /* degree */
+        const uint32_t *m = udm1_sobol_table_m + udm1_sobol_table_offset[j];
+        for (uint32_t k = 0; k < 64; ++k) {
+            if (s == 0) {
+                v[k] = 1ull << (63 - k);
+            } else if (k < s) {
+                v[k] = (uint64_t)m[k] << (63 - k);
+            } else {
+                uint64_t x = v[k - s] ^ (v[k - s] >> s);
+                for (uint32_t i = 1; i < s; ++i)
+                    if ((poly >> (s - i)) & 1u) x ^= v[k - i];
+                v[k] = x;
+            }
+        }
+    }
+    for (uint32_t j = 0; j < td; ++j) { /* the subsets of the first 8 direction numbers */
+        t->low[j][0] = 0;
+        for (uint32_t b = 1; b < 256; ++b) t->low[j][b] = t->low[j][b & (b - 1)] ^ t->v[j][__builtin_ctz(b)];
+    }
+    seq->data = t;
+    return UDM1_OK;
+#else
+    (void)seq;
+    return udm1_fail(UDM1_ERROR_UNKNOWN_PRESET,
+                     "udm1_seq_create: this libudm1 was built without the Sobol table (UDM1_SOBOL=OFF)");
+#endif
+}
+
+const udm1_kind udm1_sobol_kind = {"sobol", sobol_value, sobol_fill, sobol_base2, sobol_base2_point};

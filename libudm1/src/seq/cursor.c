@@ -1,0 +1,81 @@
+/* cursor.c - the renderer cursor (pbrt-v4's Sampler shape: start a pixel sample, then draw dimension
+ * after dimension), padded past the sequence's dimensions with independent hashed values. */
+#include "seq/value.h"
+
+udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t stream, uint64_t index,
+                              uint32_t first_dimension)
+{
+    if (!cursor || !seq)
+        return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_cursor_start: %s is NULL", cursor ? "seq" : "cursor");
+    if (seq->point_count && index >= seq->point_count)
+        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "udm1_cursor_start: index %llu of a %llu-point set",
+                         (unsigned long long)index, (unsigned long long)seq->point_count);
+    cursor->seq = seq;
+    cursor->stream = stream;
+    cursor->index = index;
+    cursor->key = udm1_seq_stream_key(seq, stream);
+    cursor->dimension = first_dimension;
+    cursor->padded = 0;
+    return UDM1_OK;
+}
+
+static inline uint64_t cursor_next(udm1_cursor *c)
+{
+    const udm1_seq *seq = c->seq;
+    uint32_t dim = c->dimension++;
+    uint64_t skey = c->key;
+    if (UDM1_LIKELY(dim < seq->dims)) return udm1_value_of(seq, skey, c->index, dim);
+    ++c->padded;
+    /* padding: an independent uniform value of (seed, stream, index, dim) */
+    return udm1_pad(udm1_shift(skey, udm1_dim_key(seq->seed_key, dim)), c->index);
+}
+
+float udm1_cursor_1d(udm1_cursor *cursor) { return udm1_to_f32(cursor_next(cursor)); }
+double udm1_cursor_1d_f64(udm1_cursor *cursor) { return udm1_to_f64(cursor_next(cursor)); }
+
+void udm1_cursor_2d(udm1_cursor *cursor, float out[2])
+{
+    out[0] = udm1_to_f32(cursor_next(cursor));
+    out[1] = udm1_to_f32(cursor_next(cursor));
+}
+
+void udm1_cursor_2d_f64(udm1_cursor *cursor, double out[2])
+{
+    out[0] = udm1_to_f64(cursor_next(cursor));
+    out[1] = udm1_to_f64(cursor_next(cursor));
+}
+
+/* The next n raw values: the sequence's own fill over the dimensions it has (one
+ * row of a sequential fill), cursor_next for the padded rest. */
+static void cursor_fill_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
+{
+    const udm1_seq *seq = c->seq;
+    uint32_t k = 0;
+    if (seq->kind->fill && c->dimension < seq->dims) {
+        uint32_t inside = seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
+        seq->kind->fill(seq, c->key, c->index, 1, c->dimension, inside, raw);
+        c->dimension += inside;
+        k = inside;
+    }
+    for (; k < n; ++k) raw[k] = cursor_next(c);
+}
+
+/* n draws converted to float (f64 = 0) or double (f64 = 1), in chunks of 32 */
+static void cursor_fill_as(udm1_cursor *cursor, uint32_t n, void *out, int f64)
+{
+    uint64_t raw[32];
+    for (uint32_t done = 0; done < n;) {
+        uint32_t m = n - done < 32 ? n - done : 32;
+        cursor_fill_raw(cursor, m, raw);
+        for (uint32_t k = 0; k < m; ++k) {
+            if (f64) ((double *)out)[done + k] = udm1_to_f64(raw[k]);
+            else ((float *)out)[done + k] = udm1_to_f32(raw[k]);
+        }
+        done += m;
+    }
+}
+
+void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out) { cursor_fill_as(cursor, n, out, 0); }
+void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out) { cursor_fill_as(cursor, n, out, 1); }
+
+uint32_t udm1_cursor_padded(const udm1_cursor *cursor) { return cursor ? cursor->padded : 0; }

@@ -1,0 +1,138 @@
+/* scramble.h - hashed permutations and scramblings shared by the samplers.
+ *
+ *  udm1_permute(i, l, p)  a pseudo-random permutation of [0, l), keyed by p:
+ *                         Kensler's "permute" (Correlated Multi-Jittered
+ *                         Sampling, Pixar TM 13-01, 2013), cycle-walking hash.
+ *  udm1_owen32(x, seed)   nested uniform (Owen) scrambling of 32 binary digits
+ *                         by hashing (Burley, "Practical Hash-based Owen
+ *                         Scrambling", JCGT 2020), with the Laine-Karras style
+ *                         hash improved by Vegdahl (2021), as pbrt-v4 and
+ *                         OpenQMC use it.
+ *  udm1_owen64(v, r)      Owen scrambling of a 0.64 value: the top 32 digits
+ *                         by udm1_owen32, the lower 32 filled uniformly from a
+ *                         hash of the scrambled top (Owen scrambling to full
+ *                         depth is uniform below the last distinct digit).
+ */
+#ifndef UDM1_SCRAMBLE_H
+#define UDM1_SCRAMBLE_H
+
+#include "core/hash.h"
+#include "seq/seq.h"
+
+#include <stdint.h>
+
+static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
+{
+    uint32_t w = l - 1;
+    w |= w >> 1;
+    w |= w >> 2;
+    w |= w >> 4;
+    w |= w >> 8;
+    w |= w >> 16;
+    do {
+        i ^= p;
+        i *= 0xe170893du;
+        i ^= p >> 16;
+        i ^= (i & w) >> 4;
+        i ^= p >> 8;
+        i *= 0x0929eb3fu;
+        i ^= p >> 23;
+        i ^= (i & w) >> 1;
+        i *= 1u | p >> 27;
+        i *= 0x6935fa69u;
+        i ^= (i & w) >> 11;
+        i *= 0x74dcb303u;
+        i ^= (i & w) >> 2;
+        i *= 0x9e501cc3u;
+        i ^= (i & w) >> 2;
+        i *= 0xc860a3dfu;
+        i &= w;
+        i ^= i >> 5;
+    } while (i >= l);
+    return (uint32_t)(((uint64_t)i + p) % l);
+}
+
+static inline uint32_t udm1_reverse32(uint32_t x)
+{
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+static inline uint64_t udm1_reverse64(uint64_t x)
+{
+    return ((uint64_t)udm1_reverse32((uint32_t)x) << 32) | udm1_reverse32((uint32_t)(x >> 32));
+}
+
+/* bits flow only from low to high: applied to reversed digits it is an Owen scramble */
+static inline uint32_t udm1_lk_hash(uint32_t x, uint32_t seed)
+{
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+
+static inline uint32_t udm1_owen32(uint32_t x, uint32_t seed)
+{
+    return udm1_reverse32(udm1_lk_hash(udm1_reverse32(x), seed));
+}
+
+static inline uint64_t udm1_owen64(uint64_t v, uint64_t r)
+{
+    uint32_t top = udm1_owen32((uint32_t)(v >> 32), (uint32_t)r);
+    uint32_t low = (uint32_t)udm1_mix64(((uint64_t)top << 32 | (uint32_t)(r >> 32)) ^ 0x4F57454E00000000ull);
+    return (uint64_t)top << 32 | low;
+}
+
+/* Randomize a value whose digits are binary (Weyl, Sobol, i/K, ...). */
+static inline uint64_t udm1_randomize_base2(uint32_t mode, uint64_t v, uint64_t r)
+{
+    switch (mode) {
+    case UDM1_MODE_SHIFT: return v + r;
+    case UDM1_MODE_PERMUTE: return v ^ r;
+    case UDM1_MODE_OWEN: return udm1_owen64(v, r);
+    default: return v;
+    }
+}
+
+/* The random word r_j of a dimension for a stream (0 without randomization). */
+static inline uint64_t udm1_word(const udm1_seq_t *seq, uint64_t stream_key, uint32_t dim)
+{
+    return seq->mode == UDM1_MODE_NONE ? 0 : udm1_shift(stream_key, seq->dim_key[dim]);
+}
+
+/* A 32-bit key of (seed, what, k): patterns and per-pair index permutations. */
+static inline uint32_t udm1_key32(uint64_t seed_key, uint64_t what, uint64_t k)
+{
+    return (uint32_t)udm1_mix64(seed_key ^ udm1_mix64(what * 0x9E3779B97F4A7C15ull + k));
+}
+
+/* The point of pair k of a "pairs" point set: pair 0 in order, pairs k >= 1
+ * through a hashed permutation of the K indices keyed by (seed, k). */
+static inline uint64_t udm1_pair_index(const udm1_seq_t *seq, uint32_t pair, uint64_t index)
+{
+    if (pair == 0) return index;
+    return udm1_permute((uint32_t)index, (uint32_t)seq->point_count, udm1_key32(seq->seed_key, 0x50414952u, pair));
+}
+
+#if !defined(__SIZEOF_INT128__)
+#  error "libudm1 needs a compiler with unsigned __int128 (GCC or Clang on a 64-bit target)"
+#endif
+__extension__ typedef unsigned __int128 udm1_u128;
+
+/* floor(num 2^64 / den) exactly, for a fraction num / den < 1 with den < 2^96:
+ * two long-division steps of 32 bits each, so nothing overflows 128 bits. */
+static inline uint64_t udm1_frac64(udm1_u128 num, udm1_u128 den)
+{
+    udm1_u128 a = num << 32;
+    udm1_u128 q1 = a / den, r1 = a % den;
+    udm1_u128 q0 = (r1 << 32) / den;
+    return (uint64_t)((q1 << 32) | q0);
+}
+
+#endif /* UDM1_SCRAMBLE_H */

@@ -1,0 +1,93 @@
+/* seq/seq.h - the udm1_seq object and the sampler-kind interface.
+ *
+ * A sequence is made from a preset (seq/presets.c) or from user generators. The preset's init fills
+ * the kind's tables (seq->gen for Weyl sets, seq->data for the others); seq->kind then answers every
+ * value through one const operations table per sampler kind:
+ *
+ *   value        required: the raw 0.64 value of (stream key, index, dimension), randomized
+ *   fill         optional: rows [first, first + count) x dims [dim0, dim0 + nd), row-major (the
+ *                generic code calls value() per entry without it)
+ *   base2        optional: for kinds whose value is udm1_randomize_base2(mode, base2(...), word),
+ *                the value before randomization (fills of many points find a stream's words once)
+ *   base2_point  optional, with base2: base2 of dimensions dim0 .. dim0 + m - 1 of one point at once
+ *
+ * The Weyl kind (weyl/weyl.c) is the one the generic code also knows inline: its values and bulk fills
+ * are the integer arithmetic of weyl/weyl.h, with no call through the table. Transforms of a kind (the
+ * tent, seq/tent.c) are kinds of their own that wrap seq->inner.
+ *
+ * Adding a sampler: a file in samplers/ with an init (tables into seq->data, freed with free()) and a
+ * `const udm1_kind`, both declared in samplers/samplers.h, and a row in the preset table. */
+#ifndef UDM1_SEQ_INTERNAL_H
+#define UDM1_SEQ_INTERNAL_H
+
+#include "core/internal.h"
+#include "weyl/generators.h"
+
+/* The randomization a sequence applies, with UDM1_RANDOMIZE_DEFAULT resolved. */
+enum udm1_mode {
+    UDM1_MODE_NONE = 0,
+    UDM1_MODE_SHIFT = 1,   /* add r_j modulo 1 (Cranley-Patterson) */
+    UDM1_MODE_PERMUTE = 2, /* base 2: XOR with r_j; base b: a random permutation per digit */
+    UDM1_MODE_OWEN = 3,    /* nested uniform (Owen) scrambling by hashing */
+    UDM1_MODE_STREAMS = 4, /* PRNGs: an independent stream per stream id, no transform */
+    UDM1_MODE_SCREEN = 5   /* Weyl: a shift from the pixel's Morton index (screen_shift.h) */
+};
+
+typedef struct udm1_seq udm1_seq_t;
+/* Raw 0.64 value of (stream key, index, dimension < D), randomization applied. */
+typedef uint64_t (*udm1_value_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim);
+/* Raw values of rows [first, first+count) x dims [dim0, dim0+nd), row-major. */
+typedef void (*udm1_fill_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t first, size_t count, uint32_t dim0,
+                             uint32_t nd, uint64_t *raw);
+/* Values of dimensions dim0 .. dim0 + m - 1 (all < dims) of one point into raw[0 .. m). */
+typedef void (*udm1_point_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim0, uint32_t m,
+                              uint64_t *raw);
+
+/* The operations of one sampler kind (see the top of this file). */
+typedef struct udm1_kind {
+    const char *name;          /* for messages and debugging: "weyl", "sobol", ... */
+    udm1_value_fn value;       /* required */
+    udm1_fill_fn fill;         /* optional */
+    udm1_value_fn base2;       /* optional */
+    udm1_point_fn base2_point; /* optional, with base2 */
+} udm1_kind;
+
+struct udm1_seq {
+    uint32_t dims;
+    uint32_t randomize;    /* as asked (udm1_randomize) */
+    uint32_t mode;         /* effective (enum udm1_mode) */
+    uint64_t seed;
+    uint64_t point_count;  /* 0: sequence */
+    uint64_t seed_key;     /* derived from seed, see core/hash.h */
+    const char *name;      /* static storage, or owned_name */
+    const udm1_kind *kind; /* how values are made */
+    const udm1_kind *inner;/* a transform's wrapped kind (the tent); NULL otherwise */
+    udm1_generator *gen;   /* Weyl: dims generators */
+    uint64_t *offset;      /* dims base offsets o_j (0.64) */
+    uint64_t *dim_key;     /* dims per-dimension hash keys K_j */
+    void *data;            /* other kinds: their tables (freed with free()) */
+    uint64_t screen_spp;   /* UDM1_MODE_SCREEN: samples per pixel N (weyl/weyl.h) */
+    char *owned_name;      /* with tent: "NAME+tent" (name points here) */
+};
+
+/* ---- presets (presets.c) ---- */
+typedef udm1_status (*udm1_init_fn)(udm1_seq_t *seq);
+typedef struct udm1_preset {
+    const char *name;
+    const char *description;
+    uint32_t max_dimensions;
+    uint32_t flags;
+    uint32_t default_mode;  /* enum udm1_mode of UDM1_RANDOMIZE_DEFAULT */
+    udm1_init_fn init;      /* fills gen (Weyl) or data; dims, K, seed, mode are set */
+    const udm1_kind *kind;  /* the operations of its values */
+} udm1_preset;
+UDM1_HIDDEN const udm1_preset *udm1_preset_lookup(const char *name);
+UDM1_HIDDEN int udm1_preset_is_tent(const char *name);
+
+/* ---- transforms of a kind (tent.c) ---- */
+/* The tent (baker's) transform 1 - |2x - 1| on a raw 0.64 value, exact: 2x below 1/2, 2 - 2x above. */
+static inline uint64_t udm1_tent(uint64_t x) { return (x >> 63) ? (0 - x) << 1 : x << 1; }
+/* The kind of "NAME+tent": the tent of seq->inner's every value. */
+UDM1_HIDDEN extern const udm1_kind udm1_tent_kind;
+
+#endif /* UDM1_SEQ_INTERNAL_H */
