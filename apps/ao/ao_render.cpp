@@ -1,6 +1,8 @@
 // ao_render.cpp - see ao_render.h.
 #include "ao_render.h"
 
+#include "udm1app/sampler.h"
+
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
@@ -117,24 +119,7 @@ Vec3 cosine_direction(Vec3 n, double u1, double u2)
 
 udm1_seq *make_sampler(const Options &opt)
 {
-    udm1_preset_info info;
-    if (udm1_preset_find(opt.sampler.c_str(), &info) != UDM1_OK)
-        throw std::runtime_error("unknown sampler '" + opt.sampler + "' (udm1-seq list shows them)");
-    uint32_t dims = opt.jitter ? 4 : 2;
-    if (info.max_dimensions < dims)
-        throw std::runtime_error("sampler '" + opt.sampler + "' has " + std::to_string(info.max_dimensions) +
-                                 " dimension(s); AO needs " + std::to_string(dims));
-    udm1_seq_desc d;
-    udm1_seq_desc_init(&d);
-    d.preset = opt.sampler.c_str();
-    d.dimensions = dims;
-    d.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? opt.spp : 0;
-    d.seed = opt.seed;
-    d.randomize = opt.randomize;
-    if (opt.randomize == UDM1_RANDOMIZE_SCREEN) d.screen_spp = opt.spp;  // a pixel's segment of one sequence
-    udm1_seq *s = nullptr;
-    if (udm1_seq_create_desc(&d, &s) != UDM1_OK) throw std::runtime_error(udm1_last_error());
-    return s;
+    return udm1app::create_render_sampler(opt.sampler, opt.jitter ? 4 : 2, false, opt.spp, opt.seed, opt.randomize, "AO");
 }
 
 double ao_at(const udm1scene::EmbreeScene &rt, Vec3 p, Vec3 n, const udm1_seq *seq, uint64_t stream, uint32_t spp,

@@ -30,7 +30,7 @@ using udm1app::Error;
 namespace {
 
 const char *USAGE =
-    "usage: udm1-noise [options] -o FILE.png|.exr|.tif [--pov NAME]\n"
+    "usage: udm1-noise [options] [-o FILE.png|.exr|.tif] [--pov NAME]   (no -o: writes noise.png)\n"
     "       udm1-noise figures -o DIR\n"
     "options:\n"
     "  --pattern P     noise, fbm, turbulence, ridged, bozo, bumps, granite, agate, marble, wood,\n"
@@ -77,7 +77,7 @@ Options parse(int argc, char **argv)
     std::vector<std::string> args(argv + 1, argv + argc);
     size_t i = 0;
     if (!args.empty() && args[0] == "figures") o.figures = true, i = 1;
-    if (!args.empty() && (args[0] == "help" || args[0] == "--help")) {
+    if (i < args.size() && (args[i] == "help" || args[i] == "--help")) {  // also "figures --help"
         std::fputs(USAGE, stdout);
         std::exit(0);
     }
@@ -94,7 +94,10 @@ Options parse(int argc, char **argv)
     for (; i < args.size(); ++i) {
         const std::string &a = args[i];
         if (a == "--pattern") value(a);
-        else if (a == "-o") o.output = value(a);
+        else if (a == "-o") {
+            o.output = value(a);
+            if (o.output.empty()) throw Error("-o needs a file name");
+        }
         else if (a == "--table") o.table = value(a);
         else if (a == "--seed") o.seed = udm1app::parse_u64(value(a), "--seed", 0, UINT64_MAX);
         else if (a == "--kind") {
@@ -136,7 +139,8 @@ Options parse(int argc, char **argv)
         else if (a == "--pov") o.pov = value(a);
         else throw Error("unknown option '" + a + "'");
     }
-    if (o.output.empty()) throw Error(o.figures ? "figures needs an output folder: -o DIR" : "no output file: -o FILE");
+    if (o.output.empty() && o.figures) throw Error("figures needs an output folder: -o DIR");
+    if (o.output.empty()) o.output = "noise.png";  // the built-in default, as udm1-ao and udm1-pt write theirs
     if (!o.figures) {  // the formats of the usage line, and only those
         std::string ext = o.output.substr(o.output.find_last_of('.') == std::string::npos ? o.output.size()
                                                                                          : o.output.find_last_of('.'));

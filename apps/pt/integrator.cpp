@@ -1,6 +1,8 @@
 // integrator.cpp - see integrator.h.
 #include "integrator.h"
 
+#include "udm1app/sampler.h"
+
 #include "wavefront.h"
 
 #include <tbb/blocked_range2d.h>
@@ -158,20 +160,10 @@ struct Tracer {
 
 Sequence make_sequence(const Options &opt, uint32_t path_dims)
 {
-    udm1_preset_info info;
-    if (udm1_preset_find(opt.sampler.c_str(), &info) != UDM1_OK)
-        throw std::runtime_error("unknown sampler '" + opt.sampler + "' (udm1-seq list shows them)");
-    udm1_seq_desc desc;
-    udm1_seq_desc_init(&desc);
-    desc.preset = opt.sampler.c_str();
-    desc.dimensions = std::max(2u, std::min(path_dims, info.max_dimensions));
-    desc.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? opt.spp : 0;
-    desc.seed = opt.seed;
-    desc.randomize = opt.randomize;
-    if (opt.randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = opt.spp;  // the whole render's spp: ranges merge
-    udm1_seq *seq = nullptr;
-    if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
-    return Sequence(seq, udm1_seq_destroy);
+    // at least 2 dimensions, at most the preset's own (the rest of a path is padded)
+    return Sequence(udm1app::create_render_sampler(opt.sampler, path_dims, true, opt.spp, opt.seed,
+                                                   opt.randomize, "udm1-pt"),
+                    udm1_seq_destroy);
 }
 
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)

@@ -32,7 +32,7 @@ using udm1app::Error;
 namespace {
 
 const char *USAGE =
-    "usage: udm1-seq COMMAND [SAMPLER] [options]\n"
+    "usage: udm1-seq COMMAND [SAMPLER] [options]   (no arguments: plot wr -o seq.png)\n"
     "commands:\n"
     "  list                         the samplers (presets) and what they are\n"
     "  dump SAMPLER                 points as CSV (default, to stdout) or .npy (-o)\n"
@@ -62,8 +62,13 @@ Options parse(int argc, char **argv)
 {
     Options o;
     std::vector<std::string> args(argv + 1, argv + argc);
-    if (args.empty()) throw Error("no command given (udm1-seq help lists them)");
+    if (args.empty()) args = {"plot", "wr", "-o", "seq.png"};  // the built-in default: WR's first 256 points
     o.command = args[0];
+    for (const std::string &a : args)  // "udm1-seq COMMAND ... --help"
+        if (a == "--help") {
+            o.command = "help";
+            return o;
+        }
     size_t i = 1;
     if (o.command != "list" && o.command != "help" && o.command != "--help") {
         if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("'" + o.command + "' needs a SAMPLER name");

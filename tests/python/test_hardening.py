@@ -102,3 +102,33 @@ def test_point_sets_at_the_largest_point_count():
         seq = udm1.Sequence(name, 2, point_count=k, seed=3)
         v = np.array([seq.sample(i, j) for i in (0, 1, k // 3, k - 1) for j in (0, 1)])
         assert np.all((v >= 0) & (v < 1)), name
+
+
+# What every tool does with no arguments: its built-in default, written to a default image in the
+# current folder (udm1-seq plots WR's points; udm1-noise a noise texture; the renderers the Cornell box).
+DEFAULT_IMAGES = {"seq": "seq.png", "noise": "noise.png", "ao": "ao.png", "pt": "pt.png"}
+
+
+@pytest.mark.parametrize("tool", sorted(DEFAULT_IMAGES))
+def test_no_arguments_write_the_default_image(tool, tmp_path):
+    r = subprocess.run([TOOLS[tool]], capture_output=True, text=True, cwd=tmp_path, timeout=900)
+    assert r.returncode == 0, r.stderr
+    assert [p.name for p in tmp_path.iterdir()] == [DEFAULT_IMAGES[tool]]
+    assert (tmp_path / DEFAULT_IMAGES[tool]).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+# --help after every subcommand prints the usage and exits 0, writing nothing.
+SUBCOMMANDS = {"seq": ["list", "dump", "metrics", "plot", "spectrum", "zoneplate", "check"],
+               "noise": ["figures"],
+               "ao": ["reference", "merge", "compare", "sweep"],
+               "pt": ["reference", "merge", "compare", "sweep", "export"]}
+
+
+@pytest.mark.parametrize("tool,command", [(t, c) for t in sorted(SUBCOMMANDS) for c in [None] + SUBCOMMANDS[t]])
+def test_help_on_every_subcommand(tool, command, tmp_path):
+    argv = [TOOLS[tool]] + ([command] if command else []) + ["--help"]
+    r = subprocess.run(argv, capture_output=True, text=True, cwd=tmp_path, timeout=60)
+    assert r.returncode == 0 and r.stdout.startswith("usage: "), (argv, r.stdout, r.stderr)
+    if command:
+        assert command in r.stdout, (argv, r.stdout)
+    assert list(tmp_path.iterdir()) == []

@@ -574,7 +574,9 @@ def test_embree_share_benchmark_replays_the_render(tmp_path):
     assert rays == int(m.group(1))
     share = re.search(r"Embree's share of udm1-pt's render time: ([0-9.]+) % \(single queries\), ([0-9.]+) % \(as "
                       r"streams\); without robust traversal ([0-9.]+) % \(single\), ([0-9.]+) %", r.stdout)
-    assert share and all(0 < float(share.group(k)) < 100 for k in range(1, 5)), r.stdout
+    # the shares are timings of a tiny render: that they are printed, not how large (a loaded machine can
+    # stretch one replay past the render's own time)
+    assert share and all(float(share.group(k)) > 0 for k in range(1, 5)), r.stdout
     hits = re.search(r"hits: (\d+) of (\d+) queries \(robust\), (\d+) \(not robust\)", r.stdout)
     assert hits and 0 < int(hits.group(1)) <= int(hits.group(2)) and 0 < int(hits.group(3)) <= int(hits.group(2)), r.stdout
     for args, words in ((["--sampler", "nope", "--size", "16x16"], "unknown sampler 'nope'"),

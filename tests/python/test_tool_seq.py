@@ -69,7 +69,6 @@ def test_images_and_metrics(tmp_path):
         (["spectrum", "wr", "--size", "33", "-o", "x.png"], 2, "--size 33"),
         (["spectrum", "golden", "-o", "x.png"], 2, "'golden'"),
         (["frob"], 2, "'frob'"),
-        ([], 2, "no command"),
         (["check", "sobol", "-d", "2"], 2, "not a Weyl"),
     ],
 )

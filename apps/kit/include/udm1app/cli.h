@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstdio>
 #include <exception>
+#include <initializer_list>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -30,6 +32,20 @@ std::vector<std::string> parse_list(const std::string &text, const std::string &
 // "WxH", each side in 1..max_side and W x H at most max_pixels; otherwise an Error naming `flag`.
 void parse_size(const std::string &text, const std::string &flag, int max_side, uint64_t max_pixels, int *width,
                 int *height);
+
+// One of a few named choices: the value of the name `text`, else an Error "FLAG 'text' is not a, b or c".
+template <class T>
+T parse_choice(const std::string &text, const std::string &flag, std::initializer_list<std::pair<const char *, T>> choices)
+{
+    std::string names;
+    size_t k = 0;
+    for (const auto &c : choices) {
+        if (text == c.first) return c.second;
+        names += (k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ") + std::string(c.first);
+        ++k;
+    }
+    throw Error(flag + " '" + text + "' is not " + names);
+}
 
 // A tool's main: run `body` (returning the exit code); an Error prints "<tool>: <message>" and exits
 // with its code, any other exception prints the same and exits 1.

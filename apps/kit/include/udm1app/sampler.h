@@ -1,0 +1,19 @@
+// sampler.h - a render's sampler from its command-line name: the one set-up both renderers use.
+#pragma once
+
+#include <udm1/seq.h>
+
+#include <cstdint>
+#include <string>
+
+namespace udm1app {
+
+// Preset `name` with `dims` dimensions, K = spp for point sets, seed and randomization as given (the
+// screen randomization spread over the whole render's spp, so that sample ranges merge). A preset with
+// fewer dimensions gets its own count (but at least 2, a pixel's) when `clip` (the rest is padded), else std::runtime_error saying
+// that `who` needs `dims`. An unknown name or a bad combination: std::runtime_error with udm1's message.
+// Release with udm1_seq_destroy.
+udm1_seq *create_render_sampler(const std::string &name, uint32_t dims, bool clip, uint32_t spp, uint64_t seed,
+                                uint32_t randomize, const std::string &who);
+
+}  // namespace udm1app

@@ -1,0 +1,31 @@
+// sampler.cpp - a render's sampler from its command-line name (sampler.h).
+#include "udm1app/sampler.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace udm1app {
+
+udm1_seq *create_render_sampler(const std::string &name, uint32_t dims, bool clip, uint32_t spp, uint64_t seed,
+                                uint32_t randomize, const std::string &who)
+{
+    udm1_preset_info info;
+    if (udm1_preset_find(name.c_str(), &info) != UDM1_OK)
+        throw std::runtime_error("unknown sampler '" + name + "' (udm1-seq list shows them)");
+    if (!clip && info.max_dimensions < dims)
+        throw std::runtime_error("sampler '" + name + "' has " + std::to_string(info.max_dimensions) +
+                                 " dimension(s); " + who + " needs " + std::to_string(dims));
+    udm1_seq_desc desc;
+    udm1_seq_desc_init(&desc);
+    desc.preset = name.c_str();
+    desc.dimensions = clip ? std::max(2u, std::min(dims, info.max_dimensions)) : dims;  // a pixel takes 2
+    desc.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? spp : 0;
+    desc.seed = seed;
+    desc.randomize = randomize;
+    if (randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = spp;  // the whole render's spp: ranges merge
+    udm1_seq *seq = nullptr;
+    if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
+    return seq;
+}
+
+}  // namespace udm1app
