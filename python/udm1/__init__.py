@@ -19,7 +19,8 @@ from .metrics import (
     star_discrepancy,
 )
 from .noise import Noise, patterns
-from .sequence import Fixed, Preset, Sequence, Sqrt, UDM1Error, check_alphas, presets, version
+from .errors import UDM1Error
+from .sequence import Fixed, Preset, Sequence, Sqrt, check_alphas, presets, version
 
 __all__ = [
     "ExactSum",

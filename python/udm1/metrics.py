@@ -7,7 +7,7 @@ import ctypes
 import numpy as np
 
 from ._native import lib
-from .sequence import check
+from .errors import check
 
 METHODS = {"L2-star": 1, "CD": 2, "WD": 3, "MD": 4}
 

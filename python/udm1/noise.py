@@ -15,7 +15,7 @@ import numpy as np
 
 from . import _native
 from ._native import lib
-from .sequence import check
+from .errors import check
 
 KINDS = {"improved": 0, "classic": 1}
 WAVES = {"default": 0, "ramp": 1, "triangle": 2, "sine": 3, "scallop": 4, "cubic": 5, "poly": 6}

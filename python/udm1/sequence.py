@@ -10,28 +10,11 @@ import numpy as np
 
 from . import _native
 from ._native import lib
+from .errors import UDM1Error, check
+from .metrics import _integrand_code
 
 ALPHA_SQRT, ALPHA_FIXED, ALPHA_DOUBLE = 1, 2, 3
 RANDOMIZE = {"none": 0, "default": 1, "shift": 2, "permute": 3, "owen": 4, "screen": 5}
-
-
-class UDM1Error(ValueError):
-    """A udm1 call failed. ``status`` is the C status code, ``status_name``
-    its enum name, and the message is the library's one-line description."""
-
-    def __init__(self, status: int, message: str):
-        self.status = status
-        self.status_name = _native.STATUS_NAMES.get(status, f"status {status}")
-        super().__init__(message)
-
-
-def check(status: int) -> None:
-    """Raise UDM1Error for a failing status code."""
-    if status != 0:
-        detail = lib.udm1_last_error().decode("utf-8", "replace")
-        if status == 8:
-            raise MemoryError(detail)
-        raise UDM1Error(status, detail or lib.udm1_status_string(status).decode())
 
 
 @dataclass(frozen=True)
@@ -265,7 +248,6 @@ class Sequence:
     def integration_error(self, integrand, d: int, n: int, randomizations: int = 32) -> tuple[float, float]:
         """(rmse, bias) of the mean of a test integrand over points [0, n) of streams
         0..R-1 against its exact integral (udm1_integration_error)."""
-        from .metrics import _integrand_code
 
         rmse, bias = ctypes.c_double(), ctypes.c_double()
         check(lib.udm1_integration_error(self.handle, _integrand_code(integrand), int(d), int(n), int(randomizations),
