@@ -305,218 +305,395 @@ private:
         throw SceneError(p->where + ": " + what + ": '" + name + "' must be rgb, blackbody or spectrum");
     }
 
+    // The directives, one handler each. A handler reads its arguments from c.lex; c.here is the
+    // directive's "file:line", c.dir the scene file's folder, c.depth the Include depth.
+    struct Call {
+        Lexer &lex;
+        const Token &t;
+        const std::string &here, &dir;
+        int depth;
+    };
+    using Handler = void (Parser::*)(const Call &);
+
     void directive(Lexer &lex, const Token &t, const std::string &dir, int depth)
     {
-        const std::string &d = t.text;
+        static const std::map<std::string, Handler> HANDLERS = {
+            {"LookAt", &Parser::on_LookAt},
+            {"Translate", &Parser::on_Translate},
+            {"Scale", &Parser::on_Scale},
+            {"Rotate", &Parser::on_Rotate},
+            {"Transform", &Parser::on_Transform},
+            {"ConcatTransform", &Parser::on_Transform},
+            {"Identity", &Parser::on_Identity},
+            {"Camera", &Parser::on_Camera},
+            {"Film", &Parser::on_Film},
+            {"Sampler", &Parser::on_Sampler},
+            {"Accelerator", &Parser::on_Accelerator},
+            {"Integrator", &Parser::on_Integrator},
+            {"PixelFilter", &Parser::on_PixelFilter},
+            {"WorldBegin", &Parser::on_WorldBegin},
+            {"AttributeBegin", &Parser::on_AttributeBegin},
+            {"TransformBegin", &Parser::on_AttributeBegin},
+            {"AttributeEnd", &Parser::on_AttributeEnd},
+            {"TransformEnd", &Parser::on_AttributeEnd},
+            {"ReverseOrientation", &Parser::on_ReverseOrientation},
+            {"Material", &Parser::on_Material},
+            {"MakeNamedMaterial", &Parser::on_MakeNamedMaterial},
+            {"NamedMaterial", &Parser::on_NamedMaterial},
+            {"AreaLightSource", &Parser::on_AreaLightSource},
+            {"LightSource", &Parser::on_LightSource},
+            {"Shape", &Parser::on_Shape},
+            {"Include", &Parser::on_Include},
+            {"Import", &Parser::on_Include},
+            {"Texture", &Parser::on_Texture},
+            {"MakeNamedMedium", &Parser::on_MakeNamedMedium},
+            {"MediumInterface", &Parser::on_MediumInterface}};
+        // what a geometry-only load (udm1-ao) skips: appearance, lights, media
+        static const std::set<std::string> APPEARANCE = {"AreaLightSource", "LightSource", "Texture",   "MakeNamedMedium",
+                                                         "MediumInterface", "ColorSpace",  "Option", "Attribute"};
         const std::string here = lex.where(t.line);
-        if (d == "LookAt") {
-            std::vector<double> v;
-            for (int k = 0; k < 9; ++k) v.push_back(number(lex));
-            bool ok;
-            Mat4 m = Mat4::look_at(Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), Vec3(v[6], v[7], v[8]), &ok);
-            if (!ok) throw SceneError(here + ": LookAt: degenerate eye, target and up");
-            transform(m);
-        } else if (d == "Translate") {
-            std::vector<double> v = numbers_in_brackets_or_n(lex, 3, "Translate");
-            transform(Mat4::translate(Vec3(v[0], v[1], v[2])));
-        } else if (d == "Scale") {
-            std::vector<double> v = numbers_in_brackets_or_n(lex, 3, "Scale");
-            transform(Mat4::scale(Vec3(v[0], v[1], v[2])));
-        } else if (d == "Rotate") {
-            std::vector<double> v = numbers_in_brackets_or_n(lex, 4, "Rotate");
-            if (v[1] == 0 && v[2] == 0 && v[3] == 0) throw SceneError(here + ": Rotate: zero axis");
-            transform(Mat4::rotate(v[0], Vec3(v[1], v[2], v[3])));
-        } else if (d == "Transform" || d == "ConcatTransform") {
-            std::vector<double> v = numbers_in_brackets_or_n(lex, 16, d);
-            Mat4 m;  // pbrt lists the matrix column by column
-            for (int i = 0; i < 4; ++i)
-                for (int j = 0; j < 4; ++j) m.m[i][j] = v[j * 4 + i];
-            if (d == "Transform") st_.ctm = m;
-            else transform(m);
-        } else if (d == "Identity") {
-            st_.ctm = Mat4();
-        } else if (d == "Camera") {
-            std::string type = string_arg(lex, "Camera");
-            ParamSet ps = params(lex, t.line);
-            if (type != "perspective") throw SceneError(here + ": Camera \"" + type + "\" is not supported (perspective only)");
-            only(ps, {"fov", "lensradius", "focaldistance"}, "Camera", true);
-            scene_.camera.fov = ps.get_float("fov", 90);
-            scene_.camera.lens_radius = ps.get_float("lensradius", 0);
-            scene_.camera.focal_distance = ps.get_float("focaldistance", 1e6);
-            if (!(scene_.camera.fov > 0 && scene_.camera.fov < 180)) throw SceneError(here + ": Camera fov outside (0, 180)");
-            if (!st_.ctm.inverse(&scene_.camera.world_from_camera)) throw SceneError(here + ": Camera: singular transform");
-            camera_set_ = true;
-        } else if (d == "Film") {
-            std::string type = string_arg(lex, "Film");
-            ParamSet ps = params(lex, t.line);
-            if (type != "rgb") throw SceneError(here + ": Film \"" + type + "\" is not supported (rgb only)");
-            only(ps, {"xresolution", "yresolution", "filename", "iso", "exposuretime", "sensor", "whitebalance"}, "Film",
-                 true);
-            // pbrt-v4's imaging ratio (exposure time x ISO / 100) scales the image; the sensor's spectral
-            // response and white balance have no RGB counterpart: the film is a plain RGB sensor
-            scene_.film_scale = ps.get_float("exposuretime", 1.0) * ps.get_float("iso", 100.0) / 100;
-            scene_.film_sensor = ps.get_string("sensor", "cie1931");
-            if (!(scene_.film_scale > 0 && scene_.film_scale < 1e6))
-                throw SceneError(here + ": Film: exposuretime x iso / 100 must be positive");
-            scene_.width = ps.get_int("xresolution", 1280);
-            scene_.height = ps.get_int("yresolution", 720);
-            scene_.film_filename = ps.get_string("filename", "");
-            if (scene_.width < 1 || scene_.height < 1 || scene_.width > 65536 || scene_.height > 65536)
-                throw SceneError(here + ": Film resolution outside 1..65536");
-        } else if (d == "Sampler") {
-            scene_.sampler = string_arg(lex, "Sampler");
-            ParamSet ps = params(lex, t.line);
-            scene_.sampler_where = here;
-            scene_.pixel_samples = ps.get_int("pixelsamples", 16);
-            if (scene_.pixel_samples < 1 || scene_.pixel_samples > (1 << 24))
-                throw SceneError(here + ": Sampler: pixelsamples " + std::to_string(scene_.pixel_samples) + " outside 1..2^24");
-        } else if (d == "Accelerator") {
-            std::string type = string_arg(lex, "Accelerator");
-            params(lex, t.line);
-            scene_.notes.push_back(here + ": Accelerator \"" + type + "\" ignored: rays are traced by Embree (the image does not depend on it)");
-        } else if (d == "Integrator") {
-            scene_.integrator = string_arg(lex, "Integrator");
-            ParamSet ps = params(lex, t.line);
-            if (geometry_only_) {
-                ignore(here, "Integrator");
-            } else {  // udm1-pt is a unidirectional path tracer; volpath without media is the same
-                const std::string &in = scene_.integrator;
-                if (in != "path" && in != "volpath" && in != "simplepath" && in != "randomwalk")
-                    throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath without media; "
-                                            "simplepath and randomwalk render as path)");
-                only(ps, {"maxdepth", "lightsampler", "samplelights", "samplebsdf", "regularize"}, "Integrator");
-                if (ps.get_bool("regularize", false))
-                    throw SceneError(ps.find("regularize")->where + ": Integrator: regularize (a biased image) is not supported");
-                if (in == "simplepath" || in == "randomwalk") {  // the same image in the limit, found another way
-                    scene_.notes.push_back(here + ": Integrator \"" + in + "\" renders as \"path\" (the same image it "
-                                                  "converges to; noise differs)");
-                    scene_.integrator = "path";
-                }
-                if (ps.find("lightsampler") || ps.find("samplelights") || ps.find("samplebsdf"))
-                    scene_.notes.push_back(here + ": Integrator: lightsampler, samplelights and samplebsdf ignored (they "
-                                                  "change the noise, not the image; udm1-pt chooses lights by power, with MIS)");
+        if (geometry_only_ && APPEARANCE.count(t.text)) return skip(lex, t);  // the emitters' shapes stay geometry
+        auto it = HANDLERS.find(t.text);
+        if (it == HANDLERS.end()) throw SceneError(here + ": unsupported directive '" + t.text + "'");
+        (this->*it->second)(Call{lex, t, here, dir, depth});
+    }
+
+    void on_LookAt(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const std::string &here = c.here;
+        std::vector<double> v;
+        for (int k = 0; k < 9; ++k) v.push_back(number(lex));
+        bool ok;
+        Mat4 m = Mat4::look_at(Vec3(v[0], v[1], v[2]), Vec3(v[3], v[4], v[5]), Vec3(v[6], v[7], v[8]), &ok);
+        if (!ok) throw SceneError(here + ": LookAt: degenerate eye, target and up");
+        transform(m);
+    }
+
+    void on_Translate(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        std::vector<double> v = numbers_in_brackets_or_n(lex, 3, "Translate");
+        transform(Mat4::translate(Vec3(v[0], v[1], v[2])));
+    }
+
+    void on_Scale(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        std::vector<double> v = numbers_in_brackets_or_n(lex, 3, "Scale");
+        transform(Mat4::scale(Vec3(v[0], v[1], v[2])));
+    }
+
+    void on_Rotate(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const std::string &here = c.here;
+        std::vector<double> v = numbers_in_brackets_or_n(lex, 4, "Rotate");
+        if (v[1] == 0 && v[2] == 0 && v[3] == 0) throw SceneError(here + ": Rotate: zero axis");
+        transform(Mat4::rotate(v[0], Vec3(v[1], v[2], v[3])));
+    }
+
+    void on_Transform(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const std::string &d = c.t.text;
+        std::vector<double> v = numbers_in_brackets_or_n(lex, 16, d);
+        Mat4 m;  // pbrt lists the matrix column by column
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) m.m[i][j] = v[j * 4 + i];
+        if (d == "Transform") st_.ctm = m;
+        else transform(m);
+    }
+
+    void on_Identity(const Call &)
+    {
+        st_.ctm = Mat4();
+    }
+
+    void on_Camera(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &here = c.here;
+        std::string type = string_arg(lex, "Camera");
+        ParamSet ps = params(lex, t.line);
+        if (type != "perspective") throw SceneError(here + ": Camera \"" + type + "\" is not supported (perspective only)");
+        only(ps, {"fov", "lensradius", "focaldistance"}, "Camera", true);
+        scene_.camera.fov = ps.get_float("fov", 90);
+        scene_.camera.lens_radius = ps.get_float("lensradius", 0);
+        scene_.camera.focal_distance = ps.get_float("focaldistance", 1e6);
+        if (!(scene_.camera.fov > 0 && scene_.camera.fov < 180)) throw SceneError(here + ": Camera fov outside (0, 180)");
+        if (!st_.ctm.inverse(&scene_.camera.world_from_camera)) throw SceneError(here + ": Camera: singular transform");
+        camera_set_ = true;
+    }
+
+    void on_Film(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &here = c.here;
+        std::string type = string_arg(lex, "Film");
+        ParamSet ps = params(lex, t.line);
+        if (type != "rgb") throw SceneError(here + ": Film \"" + type + "\" is not supported (rgb only)");
+        only(ps, {"xresolution", "yresolution", "filename", "iso", "exposuretime", "sensor", "whitebalance"}, "Film",
+             true);
+        // pbrt-v4's imaging ratio (exposure time x ISO / 100) scales the image; the sensor's spectral
+        // response and white balance have no RGB counterpart: the film is a plain RGB sensor
+        scene_.film_scale = ps.get_float("exposuretime", 1.0) * ps.get_float("iso", 100.0) / 100;
+        scene_.film_sensor = ps.get_string("sensor", "cie1931");
+        if (!(scene_.film_scale > 0 && scene_.film_scale < 1e6))
+            throw SceneError(here + ": Film: exposuretime x iso / 100 must be positive");
+        scene_.width = ps.get_int("xresolution", 1280);
+        scene_.height = ps.get_int("yresolution", 720);
+        scene_.film_filename = ps.get_string("filename", "");
+        if (scene_.width < 1 || scene_.height < 1 || scene_.width > 65536 || scene_.height > 65536)
+            throw SceneError(here + ": Film resolution outside 1..65536");
+    }
+
+    void on_Sampler(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &here = c.here;
+        scene_.sampler = string_arg(lex, "Sampler");
+        ParamSet ps = params(lex, t.line);
+        scene_.sampler_where = here;
+        scene_.pixel_samples = ps.get_int("pixelsamples", 16);
+        if (scene_.pixel_samples < 1 || scene_.pixel_samples > (1 << 24))
+            throw SceneError(here + ": Sampler: pixelsamples " + std::to_string(scene_.pixel_samples) + " outside 1..2^24");
+    }
+
+    void on_Accelerator(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &here = c.here;
+        std::string type = string_arg(lex, "Accelerator");
+        params(lex, t.line);
+        scene_.notes.push_back(here + ": Accelerator \"" + type + "\" ignored: rays are traced by Embree (the image does not depend on it)");
+    }
+
+    void on_Integrator(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &here = c.here;
+        scene_.integrator = string_arg(lex, "Integrator");
+        ParamSet ps = params(lex, t.line);
+        if (geometry_only_) {
+            ignore(here, "Integrator");
+        } else {  // udm1-pt is a unidirectional path tracer; volpath without media is the same
+            const std::string &in = scene_.integrator;
+            if (in != "path" && in != "volpath" && in != "simplepath" && in != "randomwalk")
+                throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath without media; "
+                                        "simplepath and randomwalk render as path)");
+            only(ps, {"maxdepth", "lightsampler", "samplelights", "samplebsdf", "regularize"}, "Integrator");
+            if (ps.get_bool("regularize", false))
+                throw SceneError(ps.find("regularize")->where + ": Integrator: regularize (a biased image) is not supported");
+            if (in == "simplepath" || in == "randomwalk") {  // the same image in the limit, found another way
+                scene_.notes.push_back(here + ": Integrator \"" + in + "\" renders as \"path\" (the same image it "
+                                              "converges to; noise differs)");
+                scene_.integrator = "path";
             }
-            scene_.max_depth = ps.get_int("maxdepth", 5);
-            if (scene_.max_depth < 0 || scene_.max_depth > 1000)
-                throw SceneError(here + ": Integrator: maxdepth " + std::to_string(scene_.max_depth) + " outside 0..1000");
-        } else if (d == "PixelFilter") {
-            string_arg(lex, "PixelFilter");
-            params(lex, t.line);  // the renderers use their own box filter
-        } else if (d == "WorldBegin") {
-            st_ = State();
-            in_world_ = true;
-        } else if (d == "AttributeBegin" || d == "TransformBegin") {
-            stack_.push_back(st_);
-        } else if (d == "AttributeEnd" || d == "TransformEnd") {
-            if (stack_.empty()) throw SceneError(here + ": " + d + " without a matching begin");
-            State s = stack_.back();
-            stack_.pop_back();
-            if (d == "TransformEnd") s.material = st_.material, s.light_template = st_.light_template, s.reverse = st_.reverse;
-            st_ = s;
-        } else if (d == "ReverseOrientation") {
-            st_.reverse = !st_.reverse;
-        } else if (d == "Material") {
-            Material m;
-            m.type = string_arg(lex, "Material");
-            m.params = params(lex, t.line);
-            scene_.materials.push_back(m);
-            st_.material = (int)scene_.materials.size() - 1;
-        } else if (d == "MakeNamedMaterial") {
-            std::string name = string_arg(lex, "MakeNamedMaterial");
-            Material m;
-            m.params = params(lex, t.line);
-            m.name = name;
-            m.type = m.params.get_string("type", "");
-            if (m.type.empty()) throw SceneError(here + ": MakeNamedMaterial \"" + name + "\" has no \"string type\"");
-            scene_.materials.push_back(m);
-            named_[name] = (int)scene_.materials.size() - 1;
-        } else if (d == "NamedMaterial") {
-            std::string name = string_arg(lex, "NamedMaterial");
-            auto it = named_.find(name);
-            if (it == named_.end()) throw SceneError(here + ": NamedMaterial \"" + name + "\" was not made");
-            st_.material = it->second;
-        } else if (d == "AreaLightSource" && geometry_only_) {
-            skip(lex, t);  // the emitter's shapes are kept as geometry
-        } else if (d == "AreaLightSource") {
-            std::string type = string_arg(lex, "AreaLightSource");
-            ParamSet ps = params(lex, t.line);
-            if (type != "diffuse") throw SceneError(here + ": AreaLightSource \"" + type + "\" is not supported (diffuse only)");
-            only(ps, {"L", "scale", "twosided"}, "AreaLightSource");
-            AreaLight l;
-            if (ps.find("L")) l.L = emission(ps, "L", "AreaLightSource");
-            l.scale = ps.get_float("scale", 1.0);
-            l.twosided = ps.get_bool("twosided", false);
-            l.where = here;
-            if (!(l.scale >= 0) || l.L.x < 0 || l.L.y < 0 || l.L.z < 0)
-                throw SceneError(here + ": AreaLightSource: negative emission");
-            templates_.push_back(l);
-            st_.light_template = (int)templates_.size() - 1;
-        } else if (d == "LightSource" && !geometry_only_) {
-            light_source(lex, t, dir);
-        } else if (d == "Shape") {
-            shape(lex, t, dir);
-        } else if (d == "Include" || d == "Import") {
-            std::string file = string_arg(lex, d);
-            std::string full = file.size() && file[0] == '/' ? file : dir + file;
-            if (!std::ifstream(full, std::ios::binary)) throw SceneError(here + ": " + d + ": " + full + ": cannot open the scene file");
-            parse_file(full, depth + 1);
-        } else if (d == "Texture" && !geometry_only_) {
-            Texture tx;
-            tx.name = string_arg(lex, d), tx.kind = string_arg(lex, d), tx.type = string_arg(lex, d);
-            ParamSet ps = params(lex, t.line);
-            tx.where = here;
-            if (tx.kind != "float" && tx.kind != "spectrum")
-                throw SceneError(here + ": Texture \"" + tx.name + "\": kind \"" + tx.kind + "\" is not float or spectrum");
-            if (tx.type == "imagemap") {
-                only(ps, {"filename", "encoding", "invert", "scale", "wrap", "filter"}, "Texture imagemap");
-                std::string file = ps.get_string("filename", "");
-                if (file.empty()) throw SceneError(here + ": Texture imagemap needs \"string filename\"");
-                tx.filename = file[0] == '/' ? file : dir + file;
-                std::string enc = ps.get_string("encoding", "sRGB");
-                if (enc != "sRGB" && enc != "linear")
-                    throw SceneError(here + ": Texture imagemap: encoding \"" + enc + "\" is not supported (sRGB, linear)");
-                tx.srgb = enc == "sRGB";
-                tx.invert = ps.get_bool("invert", false);
-                tx.scale = ps.get_float("scale", 1.0);
-                if (ps.get_string("wrap", "repeat") != "repeat")
-                    throw SceneError(here + ": Texture imagemap: only \"repeat\" wrapping is supported");
-                std::string filter = ps.get_string("filter", "bilinear");
-                if (filter != "bilinear" && filter != "point")
-                    throw SceneError(here + ": Texture imagemap: filter \"" + filter + "\" is not supported (bilinear)");
-            } else if (tx.type == "scale") {
-                only(ps, {"tex", "scale"}, "Texture scale");
-                const Param *p = ps.find("tex");
-                if (!p || p->type != "texture" || p->strings.size() != 1)
-                    throw SceneError(here + ": Texture scale needs \"texture tex\"");
-                auto it = textures_.find(p->strings[0]);
-                if (it == textures_.end()) throw SceneError(p->where + ": texture \"" + p->strings[0] + "\" was not made");
-                tx.tex = it->second;
-                tx.scale = ps.get_float("scale", 1.0);
-            } else {
-                throw SceneError(here + ": Texture \"" + tx.type + "\" is not supported (imagemap, scale)");
-            }
-            scene_.textures.push_back(tx);
-            textures_[tx.name] = (int)scene_.textures.size() - 1;
-        } else if (d == "MakeNamedMedium" && !geometry_only_) {
-            std::string name = string_arg(lex, d);
-            ParamSet ps = params(lex, t.line);
-            std::string type = ps.get_string("type", "");
-            if (type != "homogeneous")
-                throw SceneError(here + ": MakeNamedMedium \"" + name + "\": type \"" + type + "\" is not supported (homogeneous)");
-            only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "preset"}, "MakeNamedMedium");
-            media_.insert(name);
-            if (scene_.media_where.empty()) scene_.media_where = here;
-        } else if (d == "MediumInterface" && !geometry_only_) {
-            std::string inside = string_arg(lex, d), outside = inside;
-            if (lex.peek().kind == Token::String) outside = string_arg(lex, d);
-            for (const std::string &m : {inside, outside})
-                if (!m.empty() && !media_.count(m)) throw SceneError(here + ": MediumInterface: medium \"" + m + "\" was not made");
-        } else if (geometry_only_ && (d == "Texture" || d == "MakeNamedMedium" || d == "MediumInterface" ||
-                                      d == "LightSource" || d == "ColorSpace" || d == "Option" || d == "Attribute")) {
-            skip(lex, t);
-        } else {
-            throw SceneError(here + ": unsupported directive '" + d + "'");
+            if (ps.find("lightsampler") || ps.find("samplelights") || ps.find("samplebsdf"))
+                scene_.notes.push_back(here + ": Integrator: lightsampler, samplelights and samplebsdf ignored (they "
+                                              "change the noise, not the image; udm1-pt chooses lights by power, with MIS)");
         }
+        scene_.max_depth = ps.get_int("maxdepth", 5);
+        if (scene_.max_depth < 0 || scene_.max_depth > 1000)
+            throw SceneError(here + ": Integrator: maxdepth " + std::to_string(scene_.max_depth) + " outside 0..1000");
+    }
+
+    void on_PixelFilter(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        string_arg(lex, "PixelFilter");
+        params(lex, t.line);  // the renderers use their own box filter
+    }
+
+    void on_WorldBegin(const Call &)
+    {
+        st_ = State();
+        in_world_ = true;
+    }
+
+    void on_AttributeBegin(const Call &)
+    {
+        stack_.push_back(st_);
+    }
+
+    void on_AttributeEnd(const Call &c)
+    {
+        const std::string &d = c.t.text;
+        const std::string &here = c.here;
+        if (stack_.empty()) throw SceneError(here + ": " + d + " without a matching begin");
+        State s = stack_.back();
+        stack_.pop_back();
+        if (d == "TransformEnd") s.material = st_.material, s.light_template = st_.light_template, s.reverse = st_.reverse;
+        st_ = s;
+    }
+
+    void on_ReverseOrientation(const Call &)
+    {
+        st_.reverse = !st_.reverse;
+    }
+
+    void on_Material(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        Material m;
+        m.type = string_arg(lex, "Material");
+        m.params = params(lex, t.line);
+        scene_.materials.push_back(m);
+        st_.material = (int)scene_.materials.size() - 1;
+    }
+
+    void on_MakeNamedMaterial(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &here = c.here;
+        std::string name = string_arg(lex, "MakeNamedMaterial");
+        Material m;
+        m.params = params(lex, t.line);
+        m.name = name;
+        m.type = m.params.get_string("type", "");
+        if (m.type.empty()) throw SceneError(here + ": MakeNamedMaterial \"" + name + "\" has no \"string type\"");
+        scene_.materials.push_back(m);
+        named_[name] = (int)scene_.materials.size() - 1;
+    }
+
+    void on_NamedMaterial(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const std::string &here = c.here;
+        std::string name = string_arg(lex, "NamedMaterial");
+        auto it = named_.find(name);
+        if (it == named_.end()) throw SceneError(here + ": NamedMaterial \"" + name + "\" was not made");
+        st_.material = it->second;
+    }
+
+    void on_AreaLightSource(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &here = c.here;
+        std::string type = string_arg(lex, "AreaLightSource");
+        ParamSet ps = params(lex, t.line);
+        if (type != "diffuse") throw SceneError(here + ": AreaLightSource \"" + type + "\" is not supported (diffuse only)");
+        only(ps, {"L", "scale", "twosided"}, "AreaLightSource");
+        AreaLight l;
+        if (ps.find("L")) l.L = emission(ps, "L", "AreaLightSource");
+        l.scale = ps.get_float("scale", 1.0);
+        l.twosided = ps.get_bool("twosided", false);
+        l.where = here;
+        if (!(l.scale >= 0) || l.L.x < 0 || l.L.y < 0 || l.L.z < 0)
+            throw SceneError(here + ": AreaLightSource: negative emission");
+        templates_.push_back(l);
+        st_.light_template = (int)templates_.size() - 1;
+    }
+
+    void on_LightSource(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &dir = c.dir;
+        light_source(lex, t, dir);
+    }
+
+    void on_Shape(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &dir = c.dir;
+        shape(lex, t, dir);
+    }
+
+    void on_Include(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const std::string &d = c.t.text;
+        const std::string &here = c.here;
+        const std::string &dir = c.dir;
+        int depth = c.depth;
+        std::string file = string_arg(lex, d);
+        std::string full = file.size() && file[0] == '/' ? file : dir + file;
+        if (!std::ifstream(full, std::ios::binary)) throw SceneError(here + ": " + d + ": " + full + ": cannot open the scene file");
+        parse_file(full, depth + 1);
+    }
+
+    void on_Texture(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &d = c.t.text;
+        const std::string &here = c.here;
+        const std::string &dir = c.dir;
+        Texture tx;
+        tx.name = string_arg(lex, d), tx.kind = string_arg(lex, d), tx.type = string_arg(lex, d);
+        ParamSet ps = params(lex, t.line);
+        tx.where = here;
+        if (tx.kind != "float" && tx.kind != "spectrum")
+            throw SceneError(here + ": Texture \"" + tx.name + "\": kind \"" + tx.kind + "\" is not float or spectrum");
+        if (tx.type == "imagemap") {
+            only(ps, {"filename", "encoding", "invert", "scale", "wrap", "filter"}, "Texture imagemap");
+            std::string file = ps.get_string("filename", "");
+            if (file.empty()) throw SceneError(here + ": Texture imagemap needs \"string filename\"");
+            tx.filename = file[0] == '/' ? file : dir + file;
+            std::string enc = ps.get_string("encoding", "sRGB");
+            if (enc != "sRGB" && enc != "linear")
+                throw SceneError(here + ": Texture imagemap: encoding \"" + enc + "\" is not supported (sRGB, linear)");
+            tx.srgb = enc == "sRGB";
+            tx.invert = ps.get_bool("invert", false);
+            tx.scale = ps.get_float("scale", 1.0);
+            if (ps.get_string("wrap", "repeat") != "repeat")
+                throw SceneError(here + ": Texture imagemap: only \"repeat\" wrapping is supported");
+            std::string filter = ps.get_string("filter", "bilinear");
+            if (filter != "bilinear" && filter != "point")
+                throw SceneError(here + ": Texture imagemap: filter \"" + filter + "\" is not supported (bilinear)");
+        } else if (tx.type == "scale") {
+            only(ps, {"tex", "scale"}, "Texture scale");
+            const Param *p = ps.find("tex");
+            if (!p || p->type != "texture" || p->strings.size() != 1)
+                throw SceneError(here + ": Texture scale needs \"texture tex\"");
+            auto it = textures_.find(p->strings[0]);
+            if (it == textures_.end()) throw SceneError(p->where + ": texture \"" + p->strings[0] + "\" was not made");
+            tx.tex = it->second;
+            tx.scale = ps.get_float("scale", 1.0);
+        } else {
+            throw SceneError(here + ": Texture \"" + tx.type + "\" is not supported (imagemap, scale)");
+        }
+        scene_.textures.push_back(tx);
+        textures_[tx.name] = (int)scene_.textures.size() - 1;
+    }
+
+    void on_MakeNamedMedium(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const Token &t = c.t;
+        const std::string &d = c.t.text;
+        const std::string &here = c.here;
+        std::string name = string_arg(lex, d);
+        ParamSet ps = params(lex, t.line);
+        std::string type = ps.get_string("type", "");
+        if (type != "homogeneous")
+            throw SceneError(here + ": MakeNamedMedium \"" + name + "\": type \"" + type + "\" is not supported (homogeneous)");
+        only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "preset"}, "MakeNamedMedium");
+        media_.insert(name);
+        if (scene_.media_where.empty()) scene_.media_where = here;
+    }
+
+    void on_MediumInterface(const Call &c)
+    {
+        Lexer &lex = c.lex;
+        const std::string &d = c.t.text;
+        const std::string &here = c.here;
+        std::string inside = string_arg(lex, d), outside = inside;
+        if (lex.peek().kind == Token::String) outside = string_arg(lex, d);
+        for (const std::string &m : {inside, outside})
+            if (!m.empty() && !media_.count(m)) throw SceneError(here + ": MediumInterface: medium \"" + m + "\" was not made");
     }
 
     // LightSource "point" | "spot" | "distant" | "infinite", placed by the current transform, with pbrt-v4's
