@@ -166,18 +166,14 @@ int run_sweep(Renderer &r, const RenderSettings &s)
         throw Error("'" + s.against + "' is " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
                         ", the renders " + std::to_string(s.width) + "x" + std::to_string(s.height),
                     2);
-    std::vector<std::string> samplers = s.samplers;
-    if (samplers.size() == 1 && samplers[0] == "all") samplers = presets_with_dimensions(2);
+    const bool all = s.samplers.size() == 1 && s.samplers[0] == "all";
     std::vector<std::string> usable;
-    for (const std::string &name : samplers) {  // every name before the first render
-        if (s.samplers.size() == 1 && s.samplers[0] == "all") {
-            try {
-                r.check_sampler(name);
-            } catch (const Error &) {
-                continue;  // "all": the presets this renderer can use
-            }
-        } else {
+    for (const std::string &name : all ? presets_with_dimensions(2) : s.samplers) {  // every name before rendering
+        try {
             r.check_sampler(name);
+        } catch (const Error &) {
+            if (!all) throw;
+            continue;  // "all": the presets this renderer can use
         }
         usable.push_back(name);
     }
