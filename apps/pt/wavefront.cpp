@@ -331,191 +331,275 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
     }
 }
 
+// One thread's batch of paths through the stages of a bounce. render() runs, per batch: camera(), then
+// per vertex trace() (closest hits), gather() (emission; ended paths retired; the rest compacted),
+// sample() (the sampler's values, the light choice, solid-angle light samples in double), shade_all()
+// (the vectorized shading) and shadows() (occlusion, the light samples that arrive; ended paths retired).
+class Wavefront::Batch {
+public:
+    Batch(const Wavefront &w, const udm1_seq *seq, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
+          double film_scale, Accumulator *acc, Counts *counts)
+        : w_(w), seq_(seq), x0_(x0), x1_(x1), y0_(y0), W_(x1 - x0), first_(first), count_(count),
+          film_scale_(film_scale), acc_(acc), counts_(counts), b_(buffers())
+    {
+    }
+    // The camera rays of paths [start, start + n) of the tile (path k: pixel k / count, sample
+    // first + k % count); n of them are now live.
+    void camera(const udm1scene::CameraRays &camera, uint64_t start, size_t n);
+    // Closest hits of the n live paths.
+    void trace(int depth);
+    // Emission found by the hits (MIS against the BSDF sample that found it); paths that left the scene
+    // or reached the maximum depth retired, the others compacted with their vertex.
+    void gather(int depth);
+    // This vertex's sampler values, light choice and near-light samples.
+    void sample(int depth);
+    // Light sample, BSDF sample, roulette and the next ray (vectorized), then the near-light samples in.
+    void shade_all(int depth);
+    // The shadow rays; the light samples that arrive added, ended paths retired, the rest compacted.
+    void shadows();
+    size_t live() const { return n_; }
+
+private:
+    static Buffers &buffers()  // one set per thread, reused from batch to batch
+    {
+        thread_local Buffers b;
+        if (b.paths.ox.size() < BATCH) {
+            b.paths.resize(BATCH), b.vertices.resize(BATCH), b.hits.resize(BATCH);
+            b.u.resize(BATCH * DIMS_PER_VERTEX);
+        }
+        return b;
+    }
+    void finish(size_t j);
+
+    const Wavefront &w_;
+    const udm1_seq *seq_;
+    int x0_, x1_, y0_, W_;
+    uint64_t first_, count_;
+    double film_scale_;
+    Accumulator *acc_;
+    Counts *counts_;
+    Buffers &b_;
+    size_t n_ = 0;  // live paths
+    RTCIntersectContext ctx_;
+};
+
+void Wavefront::Batch::finish(size_t j)  // path j ends: its radiance into its pixel's fixed-point sums
+{
+    const Paths &P = b_.paths;
+    int p = P.pixel[j];
+    int64_t *px = &acc_->sum[3 * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
+    const float L[3] = {P.lr[j], P.lg[j], P.lb[j]};
+    for (int c = 0; c < 3; ++c) {
+        double v = (double)L[c] * film_scale_;
+        if (!std::isfinite(v)) {
+            ++counts_->nonfinite;
+            continue;
+        }
+        if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++counts_->clamped;
+        px[c] += (int64_t)std::llround(v * SAMPLE_SCALE);
+    }
+}
+
+void Wavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64_t start, size_t n)
+{
+    Paths &P = b_.paths;
+    n_ = n;
+    {
+        uint64_t s = start % count_;
+        int p = (int)(start / count_), x = x0_ + p % W_, y = y0_ + p / W_;
+        for (size_t k = 0; k < n; ++k) {
+            P.stream[k] = ((uint64_t)y << 32) | (uint32_t)x, P.index[k] = first_ + s, P.pixel[k] = p;
+            if (++s == count_) {  // the next pixel
+                s = 0, ++p;
+                if (++x == x1_) x = x0_, ++y;
+            }
+        }
+    }
+    // dimensions 0, 1 of every path's point: one call per batch (a pixel's paths are consecutive, so its
+    // randomization is computed once)
+    fill(seq_, n, P.stream.data(), P.index.data(), 0, 2, b_.u.data());
+    Vec3 co, ca, cb, cc;
+    camera.pinhole(&co, &ca, &cb, &cc);
+    const double *uv = b_.u.data();
+    const int *pixel = P.pixel.data();
+    float *dx = P.dx.data(), *dy = P.dy.data(), *dz = P.dz.data();
+    const int x0 = x0_, y0 = y0_, W = W_;
+#pragma omp simd
+    for (size_t k = 0; k < n; ++k) {  // normalize(a + px b + py c)
+        double px = x0 + pixel[k] % W + uv[2 * k], py = y0 + pixel[k] / W + uv[2 * k + 1];
+        double ex = ca.x + px * cb.x + py * cc.x, ey = ca.y + px * cb.y + py * cc.y, ez = ca.z + px * cb.z + py * cc.z;
+        double inv = 1 / std::sqrt(ex * ex + ey * ey + ez * ez);
+        dx[k] = (float)(ex * inv), dy[k] = (float)(ey * inv), dz[k] = (float)(ez * inv);
+    }
+    for (size_t k = 0; k < n; ++k) {
+        P.ox[k] = (float)co.x, P.oy[k] = (float)co.y, P.oz[k] = (float)co.z;
+        P.br[k] = P.bg[k] = P.bb[k] = 1, P.lr[k] = P.lg[k] = P.lb[k] = 0;
+    }
+}
+
+void Wavefront::Batch::trace(int depth)
+{
+    Paths &P = b_.paths;
+    Stream &S = b_.hits;
+    const size_t n = n_;
+    std::fill_n(S.tfar.begin(), n, INFINITY);
+    std::fill_n(S.geom.begin(), n, RTC_INVALID_GEOMETRY_ID);
+    std::fill_n(S.inst.begin(), n, RTC_INVALID_GEOMETRY_ID);
+    RTCRayHitNp q{{P.ox.data(), P.oy.data(), P.oz.data(), S.tnear.data(), P.dx.data(), P.dy.data(), P.dz.data(),
+                   S.time.data(), S.tfar.data(), S.mask.data(), S.id.data(), S.flags.data()},
+                  {S.ngx.data(), S.ngy.data(), S.ngz.data(), S.u.data(), S.v.data(), S.prim.data(), S.geom.data(),
+                   {S.inst.data()}}};
+    rtcInitIntersectContext(&ctx_);
+    if (depth == 0) ctx_.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera rays of neighbouring pixels
+    rtcIntersectNp(w_.rt_.handle(), &ctx_, &q, (unsigned)n);
+    counts_->rays += n;
+}
+
+void Wavefront::Batch::gather(int depth)
+{
+    Paths &P = b_.paths;
+    Vertices &V = b_.vertices;
+    const Stream &S = b_.hits;
+    const Triangles &T = w_.tri_;
+    const LightArrays &F = w_.lights_f_;
+    size_t m = 0;
+    for (size_t j = 0; j < n_; ++j) {
+        if (S.geom[j] == RTC_INVALID_GEOMETRY_ID) {
+            finish(j);
+            continue;
+        }
+        size_t tri = T.first[S.geom[j]] + S.prim[j];
+        float t = S.tfar[j], hx = P.ox[j] + P.dx[j] * t, hy = P.oy[j] + P.dy[j] * t, hz = P.oz[j] + P.dz[j] * t;
+        float nx = T.nx[tri], ny = T.ny[tri], nz = T.nz[tri];
+        if (int li = T.light[tri]; li >= 0 && (F.twosided[li] || nx * P.dx[j] + ny * P.dy[j] + nz * P.dz[j] < 0)) {
+            float w = 1;
+            if (depth > 0) {  // the density with which light sampling at the last vertex finds this point
+                Hit h;
+                h.shape = w_.rt_.shape_of_geometry(S.geom[j]), h.prim = S.prim[j], h.t = t;
+                h.p = Vec3(hx, hy, hz), h.ng = Vec3(nx, ny, nz);
+                float pl = (float)w_.lights_.pdf(Vec3(P.qx[j], P.qy[j], P.qz[j]), h), pb = P.pb[j];
+                w = pb * pb / (pb * pb + pl * pl);
+            }
+            P.lr[j] += P.br[j] * F.er[li] * w, P.lg[j] += P.bg[j] * F.eg[li] * w, P.lb[j] += P.bb[j] * F.eb[li] * w;
+        }
+        if (depth == w_.max_depth_) {
+            finish(j);
+            continue;
+        }
+        // compact into slot m (m <= j): the path's state and this vertex
+        if (m != j) P.move(m, j);
+        V.px[m] = hx, V.py[m] = hy, V.pz[m] = hz, V.nx[m] = nx, V.ny[m] = ny, V.nz[m] = nz, V.t[m] = t;
+        V.ra[m] = T.rr[tri], V.ga[m] = T.rg[tri], V.ba[m] = T.rb[tri];
+        ++m;
+    }
+    n_ = m;
+}
+
+void Wavefront::Batch::sample(int depth)
+{
+    Paths &P = b_.paths;
+    Vertices &V = b_.vertices;
+    std::vector<double> &u = b_.u;
+    const Lights &lights = w_.lights_;
+    const size_t n = n_;
+    // this vertex's 6 dimensions for every live path (the layout of integrator.h), one call
+    fill(seq_, n, P.stream.data(), P.index.data(), 2 + DIMS_PER_VERTEX * (uint32_t)depth, DIMS_PER_VERTEX, u.data());
+    if (w_.choice_.cdf.size() <= 16) {
+        choose_lights(n, u.data(), V, w_.choice_);
+    } else {  // many lights: Lights::choose's binary search, path by path
+        for (size_t m = 0; m < n; ++m) {
+            const double *um = &u[DIMS_PER_VERTEX * m];
+            for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(um[d]);
+            double reuse;
+            V.light[m] = (int)lights.choose(um[0], &reuse);
+            V.u[0][m] = unit_float(reuse);
+            V.maybe_near[m] = 1;
+        }
+    }
+    b_.near.clear();
+    for (size_t m = 0; m < n; ++m) {
+        if (!V.maybe_near[m]) continue;
+        const double *um = &u[DIMS_PER_VERTEX * m];
+        size_t l = (size_t)V.light[m];
+        Vec3 p(V.px[m], V.py[m], V.pz[m]);
+        if (lights.by_area(l, p)) continue;
+        // near the light: by solid angle, in double, as the scalar loop
+        NearSample ns{m, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
+        LightSample ls;
+        Vec3 ng(V.nx[m], V.ny[m], V.nz[m]), wo(-P.dx[m], -P.dy[m], -P.dz[m]);
+        bool ok = lights.sample(p, um[0], um[1], &ls);
+        double cos_i = ok ? udm1scene::dot(ng, ls.wi) : 0, cos_o = udm1scene::dot(ng, wo);
+        if (ok && cos_i * cos_o > 0) {
+            double pdf_b = std::fabs(cos_i) / M_PI;
+            double k = std::fabs(cos_i) * ls.pdf / (ls.pdf * ls.pdf + pdf_b * pdf_b);  // |cos| w / pdf
+            udm1scene::Segment sg = udm1scene::shadow_segment(p, ng, V.t[m], ls.q, ls.n);
+            ns.sx = (float)sg.o.x, ns.sy = (float)sg.o.y, ns.sz = (float)sg.o.z;
+            ns.dx = (float)sg.d.x, ns.dy = (float)sg.d.y, ns.dz = (float)sg.d.z;
+            ns.len = (float)sg.len;
+            ns.cr = (float)(P.br[m] * V.ra[m] * ls.L.x * k);
+            ns.cg = (float)(P.bg[m] * V.ga[m] * ls.L.y * k);
+            ns.cb = (float)(P.bb[m] * V.ba[m] * ls.L.z * k);
+        }
+        b_.near.push_back(ns);
+    }
+}
+
+void Wavefront::Batch::shade_all(int depth)
+{
+    Vertices &V = b_.vertices;
+    shade(n_, b_.paths, V, w_.lights_f_, Shading{depth, w_.rr_depth_, w_.roulette_});
+    for (const NearSample &s : b_.near) {
+        V.sx[s.j] = s.sx, V.sy[s.j] = s.sy, V.sz[s.j] = s.sz, V.sdx[s.j] = s.dx, V.sdy[s.j] = s.dy, V.sdz[s.j] = s.dz;
+        V.slen[s.j] = s.len, V.cr[s.j] = s.cr, V.cg[s.j] = s.cg, V.cb[s.j] = s.cb;
+    }
+}
+
+void Wavefront::Batch::shadows()
+{
+    Paths &P = b_.paths;
+    Vertices &V = b_.vertices;  // Embree's stream takes non-const arrays
+    Stream &S = b_.hits;
+    const size_t n = n_;
+    // shadow rays of the paths whose light sample contributes; the others inactive (tfar < tnear)
+    size_t active_rays = 0;
+    float *stfar = S.tfar.data();
+    for (size_t j = 0; j < n; ++j) {
+        bool active = ((V.cr[j] > 0) | (V.cg[j] > 0) | (V.cb[j] > 0)) & (V.slen[j] > 0);
+        stfar[j] = active ? V.slen[j] : -1.0f;
+        active_rays += active;
+    }
+    RTCRayNp sh{V.sx.data(), V.sy.data(), V.sz.data(), S.tnear.data(), V.sdx.data(), V.sdy.data(), V.sdz.data(),
+                S.time.data(), stfar, S.mask.data(), S.id.data(), S.flags.data()};
+    rtcInitIntersectContext(&ctx_);
+    rtcOccludedNp(w_.rt_.handle(), &ctx_, &sh, (unsigned)n);
+    counts_->rays += active_rays;
+    // the light samples that reached their light, then the paths that ended at this vertex
+    size_t keep = 0;
+    for (size_t j = 0; j < n; ++j) {
+        if (stfar[j] >= 0) P.lr[j] += V.cr[j], P.lg[j] += V.cg[j], P.lb[j] += V.cb[j];
+        if (!V.alive[j]) {
+            finish(j);
+            continue;
+        }
+        if (keep != j) P.move(keep, j);
+        ++keep;
+    }
+    n_ = keep;
+}
+
 void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
                        uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const
 {
-    // one set of buffers per thread, reused from batch to batch (addressed once here, not through the
-    // thread pointer at every use)
-    thread_local Buffers buffers;
-    Buffers &b = buffers;
-    Paths &P = b.paths;
-    Vertices &V = b.vertices;
-    Stream &S = b.hits;
-    std::vector<NearSample> &near = b.near;
-    std::vector<double> &u = b.u;
-    if (P.ox.size() < BATCH) {
-        P.resize(BATCH), V.resize(BATCH), S.resize(BATCH);
-        u.resize(BATCH * DIMS_PER_VERTEX);
-    }
-    const int W = x1 - x0;
-    const uint64_t total = (uint64_t)W * (uint64_t)(y1 - y0) * count;
-    auto finish = [&](size_t j) {  // path j ends: its radiance into its pixel's fixed-point sums
-        int p = P.pixel[j];
-        int64_t *px = &acc->sum[3 * ((size_t)(y0 + p / W - acc->y0) * acc->width + (x0 + p % W - acc->x0))];
-        const float L[3] = {P.lr[j], P.lg[j], P.lb[j]};
-        for (int c = 0; c < 3; ++c) {
-            double v = (double)L[c] * film_scale;
-            if (!std::isfinite(v)) {
-                ++counts->nonfinite;
-                continue;
-            }
-            if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++counts->clamped;
-            px[c] += (int64_t)std::llround(v * SAMPLE_SCALE);
-        }
-    };
-    const Triangles &T = tri_;
-    Vec3 co, ca, cb, cc;
-    camera.pinhole(&co, &ca, &cb, &cc);
-    RTCIntersectContext ctx;
+    Batch batch(*this, seq, x0, x1, y0, y1, first, count, film_scale, acc, counts);
+    const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
-        size_t n = (size_t)std::min<uint64_t>(BATCH, total - start);
-        // camera rays: path k of the batch is pixel (start + k) / count, sample first + (start + k) % count
-        {
-            uint64_t g = start, s = g % count;
-            int p = (int)(g / count), x = x0 + p % W, y = y0 + p / W;
-            for (size_t k = 0; k < n; ++k) {
-                P.stream[k] = ((uint64_t)y << 32) | (uint32_t)x, P.index[k] = first + s, P.pixel[k] = p;
-                if (++s == count) {  // the next pixel
-                    s = 0, ++p;
-                    if (++x == x1) x = x0, ++y;
-                }
-            }
-        }
-        // dimensions 0, 1 of every path's point: one call per batch (a pixel's paths are consecutive,
-        // so its randomization is computed once)
-        fill(seq, n, P.stream.data(), P.index.data(), 0, 2, u.data());
-        const double *uv = u.data();
-        const int *pixel = P.pixel.data();
-        float *dx = P.dx.data(), *dy = P.dy.data(), *dz = P.dz.data();
-#pragma omp simd
-        for (size_t k = 0; k < n; ++k) {  // camera rays: normalize(a + px b + py c)
-            double px = x0 + pixel[k] % W + uv[2 * k], py = y0 + pixel[k] / W + uv[2 * k + 1];
-            double ex = ca.x + px * cb.x + py * cc.x, ey = ca.y + px * cb.y + py * cc.y, ez = ca.z + px * cb.z + py * cc.z;
-            double inv = 1 / std::sqrt(ex * ex + ey * ey + ez * ez);
-            dx[k] = (float)(ex * inv), dy[k] = (float)(ey * inv), dz[k] = (float)(ez * inv);
-        }
-        for (size_t k = 0; k < n; ++k) {
-            P.ox[k] = (float)co.x, P.oy[k] = (float)co.y, P.oz[k] = (float)co.z;
-            P.br[k] = P.bg[k] = P.bb[k] = 1, P.lr[k] = P.lg[k] = P.lb[k] = 0;
-        }
-        for (int depth = 0; n > 0; ++depth) {
-            std::fill_n(S.tfar.begin(), n, INFINITY);
-            std::fill_n(S.geom.begin(), n, RTC_INVALID_GEOMETRY_ID);
-            std::fill_n(S.inst.begin(), n, RTC_INVALID_GEOMETRY_ID);
-            RTCRayHitNp q{{P.ox.data(), P.oy.data(), P.oz.data(), S.tnear.data(), P.dx.data(), P.dy.data(), P.dz.data(),
-                           S.time.data(), S.tfar.data(), S.mask.data(), S.id.data(), S.flags.data()},
-                          {S.ngx.data(), S.ngy.data(), S.ngz.data(), S.u.data(), S.v.data(), S.prim.data(), S.geom.data(),
-                           {S.inst.data()}}};
-            rtcInitIntersectContext(&ctx);
-            if (depth == 0) ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;  // camera rays of neighbouring pixels
-            rtcIntersectNp(rt_.handle(), &ctx, &q, (unsigned)n);
-            counts->rays += n;
-            // the hits: emission (MIS against the BSDF sample that found it), then the paths that go on
-            size_t m = 0;
-            near.clear();
-            for (size_t j = 0; j < n; ++j) {
-                if (S.geom[j] == RTC_INVALID_GEOMETRY_ID) {
-                    finish(j);
-                    continue;
-                }
-                size_t tri = T.first[S.geom[j]] + S.prim[j];
-                float t = S.tfar[j], hx = P.ox[j] + P.dx[j] * t, hy = P.oy[j] + P.dy[j] * t, hz = P.oz[j] + P.dz[j] * t;
-                float nx = T.nx[tri], ny = T.ny[tri], nz = T.nz[tri];
-                if (int li = T.light[tri]; li >= 0) {
-                    const LightArrays &F = lights_f_;
-                    if (F.twosided[li] || nx * P.dx[j] + ny * P.dy[j] + nz * P.dz[j] < 0) {
-                        float w = 1;
-                        if (depth > 0) {  // the density with which light sampling at the last vertex finds this point
-                            Hit h;
-                            h.shape = rt_.shape_of_geometry(S.geom[j]), h.prim = S.prim[j], h.t = t;
-                            h.p = Vec3(hx, hy, hz), h.ng = Vec3(nx, ny, nz);
-                            float pl = (float)lights_.pdf(Vec3(P.qx[j], P.qy[j], P.qz[j]), h), pb = P.pb[j];
-                            w = pb * pb / (pb * pb + pl * pl);
-                        }
-                        P.lr[j] += P.br[j] * F.er[li] * w, P.lg[j] += P.bg[j] * F.eg[li] * w, P.lb[j] += P.bb[j] * F.eb[li] * w;
-                    }
-                }
-                if (depth == max_depth_) {
-                    finish(j);
-                    continue;
-                }
-                // compact into slot m (m <= j): the path's state and this vertex
-                if (m != j) P.move(m, j);
-                V.px[m] = hx, V.py[m] = hy, V.pz[m] = hz, V.nx[m] = nx, V.ny[m] = ny, V.nz[m] = nz, V.t[m] = t;
-                V.ra[m] = T.rr[tri], V.ga[m] = T.rg[tri], V.ba[m] = T.rb[tri];
-                ++m;
-            }
-            n = m;
-            // this vertex's 6 dimensions for every live path (the layout of integrator.h), one call
-            fill(seq, n, P.stream.data(), P.index.data(), 2 + DIMS_PER_VERTEX * (uint32_t)depth, DIMS_PER_VERTEX, u.data());
-            if (choice_.cdf.size() <= 16) {
-                choose_lights(n, u.data(), V, choice_);
-            } else {  // many lights: Lights::choose's binary search, path by path
-                for (m = 0; m < n; ++m) {
-                    const double *um = &u[DIMS_PER_VERTEX * m];
-                    for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(um[d]);
-                    double reuse;
-                    V.light[m] = (int)lights_.choose(um[0], &reuse);
-                    V.u[0][m] = unit_float(reuse);
-                    V.maybe_near[m] = 1;
-                }
-            }
-            for (m = 0; m < n; ++m) {
-                if (!V.maybe_near[m]) continue;
-                const double *um = &u[DIMS_PER_VERTEX * m];
-                size_t l = (size_t)V.light[m];
-                float hx = V.px[m], hy = V.py[m], hz = V.pz[m], nx = V.nx[m], ny = V.ny[m], nz = V.nz[m], t = V.t[m];
-                Vec3 p(hx, hy, hz);
-                if (!lights_.by_area(l, p)) {  // near the light: by solid angle, in double, as the scalar loop
-                    NearSample ns{m, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-                    LightSample ls;
-                    Vec3 ng(nx, ny, nz), wo(-P.dx[m], -P.dy[m], -P.dz[m]);
-                    bool ok = lights_.sample(p, um[0], um[1], &ls);
-                    double cos_i = ok ? udm1scene::dot(ng, ls.wi) : 0, cos_o = udm1scene::dot(ng, wo);
-                    if (ok && cos_i * cos_o > 0) {
-                        double pdf_b = std::fabs(cos_i) / M_PI;
-                        double k = std::fabs(cos_i) * ls.pdf / (ls.pdf * ls.pdf + pdf_b * pdf_b);  // |cos| w / pdf
-                        udm1scene::Segment sg = udm1scene::shadow_segment(p, ng, t, ls.q, ls.n);
-                        ns.sx = (float)sg.o.x, ns.sy = (float)sg.o.y, ns.sz = (float)sg.o.z;
-                        ns.dx = (float)sg.d.x, ns.dy = (float)sg.d.y, ns.dz = (float)sg.d.z;
-                        ns.len = (float)sg.len;
-                        ns.cr = (float)(P.br[m] * V.ra[m] * ls.L.x * k);
-                        ns.cg = (float)(P.bg[m] * V.ga[m] * ls.L.y * k);
-                        ns.cb = (float)(P.bb[m] * V.ba[m] * ls.L.z * k);
-                    }
-                    near.push_back(ns);
-                }
-            }
-            shade(n, P, V, lights_f_, Shading{depth, rr_depth_, roulette_});
-            for (const NearSample &s : near) {
-                V.sx[s.j] = s.sx, V.sy[s.j] = s.sy, V.sz[s.j] = s.sz, V.sdx[s.j] = s.dx, V.sdy[s.j] = s.dy, V.sdz[s.j] = s.dz;
-                V.slen[s.j] = s.len, V.cr[s.j] = s.cr, V.cg[s.j] = s.cg, V.cb[s.j] = s.cb;
-            }
-            // shadow rays of the paths whose light sample contributes; the others inactive (tfar < tnear)
-            size_t ns = 0;
-            float *stfar = S.tfar.data();
-            for (size_t j = 0; j < n; ++j) {
-                bool active = ((V.cr[j] > 0) | (V.cg[j] > 0) | (V.cb[j] > 0)) & (V.slen[j] > 0);
-                stfar[j] = active ? V.slen[j] : -1.0f;
-                ns += active;
-            }
-            RTCRayNp sh{V.sx.data(), V.sy.data(), V.sz.data(), S.tnear.data(), V.sdx.data(), V.sdy.data(), V.sdz.data(),
-                        S.time.data(), stfar, S.mask.data(), S.id.data(), S.flags.data()};
-            rtcInitIntersectContext(&ctx);
-            rtcOccludedNp(rt_.handle(), &ctx, &sh, (unsigned)n);
-            counts->rays += ns;
-            // the light samples that reached their light, then the paths that ended at this vertex
-            size_t keep = 0;
-            for (size_t j = 0; j < n; ++j) {
-                if (stfar[j] >= 0) P.lr[j] += V.cr[j], P.lg[j] += V.cg[j], P.lb[j] += V.cb[j];
-                if (!V.alive[j]) {
-                    finish(j);
-                    continue;
-                }
-                if (keep != j) P.move(keep, j);
-                ++keep;
-            }
-            n = keep;
+        batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));
+        for (int depth = 0; batch.live() > 0; ++depth) {
+            batch.trace(depth);
+            batch.gather(depth);
+            batch.sample(depth);
+            batch.shade_all(depth);
+            batch.shadows();
         }
     }
 }

@@ -65,6 +65,7 @@ public:
     };
 
 private:
+    class Batch;  // a thread's batch of paths through the stages of a bounce (wavefront.cpp)
     const udm1scene::Scene &scene_;
     const udm1scene::EmbreeScene &rt_;
     const Lights &lights_;
