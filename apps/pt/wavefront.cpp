@@ -337,7 +337,7 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
 // (the vectorized shading) and shadows() (occlusion, the light samples that arrive; ended paths retired).
 class Wavefront::Batch {
 public:
-    Batch(const Wavefront &w, const udm1_seq *seq, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
+    Batch(const Wavefront &w, const udm1_seq *seq, int x0, int x1, int y0, uint64_t first, uint64_t count,
           double film_scale, Accumulator *acc, Counts *counts)
         : w_(w), seq_(seq), x0_(x0), x1_(x1), y0_(y0), W_(x1 - x0), first_(first), count_(count),
           film_scale_(film_scale), acc_(acc), counts_(counts), b_(buffers())
@@ -590,7 +590,7 @@ void Wavefront::Batch::shadows()
 void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
                        uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const
 {
-    Batch batch(*this, seq, x0, x1, y0, y1, first, count, film_scale, acc, counts);
+    Batch batch(*this, seq, x0, x1, y0, first, count, film_scale, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
         batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));

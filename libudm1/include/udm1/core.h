@@ -49,6 +49,15 @@ typedef enum udm1_status {
     UDM1_ERROR_OUT_OF_MEMORY = 8
 } udm1_status;
 
+/*
+ * Functions without a status (queries, the cursor's draws, the scalar noise and pattern calls, the
+ * initializers and destroyers) follow one rule for inputs they cannot use, a NULL handle or pointer
+ * first: they never crash, they do nothing or return a neutral value - 0, NULL, or NaN where the
+ * result is a number - and, except the destroyers and initializers (for which NULL is a no-op), set
+ * udm1_last_error() to a line naming the function and the input. Where a number is drawn or
+ * evaluated (the cursor, noise, patterns) the neutral value is NaN, which no valid call returns.
+ */
+
 /* Version of the library actually loaded: UDM1_VERSION of its build. */
 UDM1_API uint32_t udm1_version(void);
 /* "1.0.0". Static storage; never NULL. */

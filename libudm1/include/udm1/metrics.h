@@ -25,13 +25,16 @@ typedef enum udm1_discrepancy_kind {
 
 /* Discrepancy of n points in [0,1]^d, point i at points[i * stride + j].
  * The definitions and normalisations are those of scipy.stats.qmc.discrepancy.
- * O(n^2 d) time, no allocation. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n == 0,
+ * O(n^2 d) time, no allocation. At any d the value is the true one rounded to a
+ * double, +inf where it exceeds the double range (the constant and product terms
+ * grow like 1.5^d and are carried with a separate exponent past d = 512), never NaN. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n == 0,
  * d == 0, stride < d, unknown kind, a coordinate outside [0,1] or NaN). */
 UDM1_API udm1_status udm1_discrepancy(const double *points, size_t n, uint32_t d, size_t stride,
                                       uint32_t kind, double *out);
 
 /* The discrepancy of n independent uniform points in d dimensions, the
- * "random" line: E[D^2] for the squared kinds, sqrt(E[D^2]) for L2-star.
+ * "random" line: E[D^2] for the squared kinds, sqrt(E[D^2]) for L2-star
+ * (+inf where it exceeds the double range, never NaN).
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n or d 0, unknown kind). */
 UDM1_API udm1_status udm1_discrepancy_random(size_t n, uint32_t d, uint32_t kind, double *out);
 
@@ -86,18 +89,29 @@ typedef enum udm1_integrand {
 UDM1_API const char *udm1_integrand_name(uint32_t integrand);
 /* Values of the integrand at n points (point i at points[i * stride]) into out[i].
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown integrand, d not allowed for
- * it, stride < d). (1.1) */
+ * it, stride < d, a coordinate not finite: the message names the point). (1.1) */
 UDM1_API udm1_status udm1_integrand_eval(uint32_t integrand, uint32_t d, const double *points, size_t n,
                                          size_t stride, double *out);
 /* Its exact integral over [0,1]^d. Errors: INVALID_ARGUMENT, NULL_ARGUMENT. (1.1) */
 UDM1_API udm1_status udm1_integrand_exact(uint32_t integrand, uint32_t d, double *out);
 
+/* Work limits. The metrics below whose cost grows with their parameters rather than with an input
+ * already in memory refuse (INVALID_ARGUMENT, the message naming the limit) a call above about a
+ * minute of work on one core (2026 x86-64), as udm1_seq_check does:
+ *   UDM1_WORK_LIMIT_INTEGRATION  n x randomizations x d values (udm1_integration_error)
+ *   UDM1_WORK_LIMIT_SPECTRUM     n x randomizations x size^2 terms (udm1_spectrum_2d)
+ *   UDM1_WORK_LIMIT_ZONEPLATE    width x height x spp samples (udm1_zoneplate)
+ * (1.6) */
+#define UDM1_WORK_LIMIT_INTEGRATION (1ull << 35)
+#define UDM1_WORK_LIMIT_SPECTRUM (1ull << 37)
+#define UDM1_WORK_LIMIT_ZONEPLATE (1ull << 32)
+
 /* Integration error of a sampler: for streams r = 0..R-1 the estimate is the
  * mean of the integrand over points [0, n) of stream r, dimensions [0, d);
  * rmse = sqrt(mean over r of (estimate - exact)^2), bias = the mean error.
  * A point set uses its first n points (give it K = n). Errors: NULL_ARGUMENT
- * (seq, rmse), DIMENSION (d > D), INVALID_ARGUMENT (n or R 0, integrand/d),
- * INDEX_RANGE (n > K). bias may be NULL. (1.1) */
+ * (seq, rmse), DIMENSION (d > D), INVALID_ARGUMENT (n or R 0, integrand/d, the
+ * work limit), INDEX_RANGE (n > K). bias may be NULL. (1.1) */
 UDM1_API udm1_status udm1_integration_error(const udm1_seq *seq, uint32_t integrand, uint32_t d, uint64_t n,
                                             uint32_t randomizations, double *rmse, double *bias);
 
@@ -106,7 +120,7 @@ UDM1_API udm1_status udm1_integration_error(const udm1_seq *seq, uint32_t integr
  * the integer frequencies k in [-size/2, size/2)^2, written row by row with
  * k = (0, 0) at (size/2, size/2). Random points give P ~ 1. O(R n size^2).
  * Errors: NULL_ARGUMENT, DIMENSION, INVALID_ARGUMENT (n or R 0, size 0, odd or
- * above 1024), INDEX_RANGE. (1.1) */
+ * above 1024, the work limit), INDEX_RANGE. (1.1) */
 UDM1_API udm1_status udm1_spectrum_2d(const udm1_seq *seq, uint32_t dim0, uint64_t n, uint32_t randomizations,
                                       uint32_t size, double *out);
 
@@ -116,7 +130,7 @@ UDM1_API udm1_status udm1_spectrum_2d(const udm1_seq *seq, uint32_t dim0, uint64
  * at distance `width`), each pixel estimated with spp points of stream
  * ((uint64_t)y << 32 | x), dimensions (dim0, dim0+1) as the offset in the
  * pixel. Aliasing shows as false rings. Errors: NULL_ARGUMENT, DIMENSION,
- * INVALID_ARGUMENT (0 or above 16384 sizes, spp 0), INDEX_RANGE. (1.1) */
+ * INVALID_ARGUMENT (0 or above 16384 sizes, spp 0, the work limit), INDEX_RANGE. (1.1) */
 UDM1_API udm1_status udm1_zoneplate(const udm1_seq *seq, uint32_t dim0, uint32_t width, uint32_t height,
                                     uint32_t spp, float *out);
 

@@ -74,7 +74,8 @@ UDM1_API void udm1_noise_destroy(udm1_noise *noise);
  * Either pointer may be NULL. Errors: NULL_ARGUMENT (noise). */
 UDM1_API udm1_status udm1_noise_tables(const udm1_noise *noise, uint8_t *perm, double *gradients);
 
-/* Noise values, about in [-1, 1] (not bounded by 1: |n| up to ~1.04). */
+/* Noise values, about in [-1, 1] (not bounded by 1: |n| up to ~1.04). NaN for a NaN or infinite
+ * coordinate, and for a NULL noise (with a message; core.h). */
 UDM1_API double udm1_noise_1d(const udm1_noise *noise, double x);
 UDM1_API double udm1_noise_2d(const udm1_noise *noise, double x, double y);
 UDM1_API double udm1_noise_3d(const udm1_noise *noise, double x, double y, double z);
@@ -162,8 +163,8 @@ UDM1_API void udm1_pattern_params_init(udm1_pattern_params *params, uint32_t pat
 /* The name ("marble") of a pattern, NULL if unknown; and the pattern of a name, 0 if unknown. */
 UDM1_API const char *udm1_pattern_name(uint32_t pattern);
 UDM1_API uint32_t udm1_pattern_from_name(const char *name);
-/* The value of a pattern at (x, y, z). params is not checked here (see
- * udm1_pattern_grid); non-finite coordinates give NaN. */
+/* The value of a pattern at (x, y, z). NaN for non-finite coordinates, and for a NULL noise or
+ * params or a params that udm1_pattern_grid would refuse (with the same message; core.h). */
 UDM1_API double udm1_pattern_eval(const udm1_noise *noise, const udm1_pattern_params *params, double x, double y,
                                   double z);
 /* Rows [row0, row0 + rows) of a width x height grid into out (row-major, the
@@ -172,12 +173,14 @@ UDM1_API double udm1_pattern_eval(const udm1_noise *noise, const udm1_pattern_pa
  * computed by different threads into their own part of an image.
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (sizes 0 or above 65536, rows past
  * height, a bad params field: struct_size, pattern, octaves outside 1..10,
- * non-finite numbers, origin/steps not finite). */
+ * non-finite numbers, origin/steps not finite; a pattern that is not a number
+ * at some pixel because an octave's scale or sum overflows a double: the
+ * message names the pixel, out's values are then unspecified). */
 UDM1_API udm1_status udm1_pattern_grid(const udm1_noise *noise, const udm1_pattern_params *params, uint32_t width,
                                        uint32_t height, uint32_t row0, uint32_t rows, const double origin[3],
                                        const double step_x[3], const double step_y[3], float *out);
 /* The pattern at n points (point i at xyz[i * stride], 3 coordinates).
- * Errors: as udm1_pattern_grid, and INVALID_ARGUMENT for a non-finite point. */
+ * Errors: as udm1_pattern_grid (naming the point), and INVALID_ARGUMENT for a non-finite point. */
 UDM1_API udm1_status udm1_pattern_points(const udm1_noise *noise, const udm1_pattern_params *params,
                                          const double *xyz, size_t n, size_t stride, double *out);
 
@@ -188,7 +191,7 @@ typedef struct udm1_color_entry {
     double value;
     float rgb[3];
 } udm1_color_entry;
-/* Errors: NULL_ARGUMENT, INVALID_ARGUMENT (count 0, entries not sorted). */
+/* Errors: NULL_ARGUMENT, INVALID_ARGUMENT (count 0, entries not sorted, a NaN value). */
 UDM1_API udm1_status udm1_color_map_eval(const udm1_color_entry *entries, size_t count, double value, float rgb[3]);
 /* POV-Ray's default colour map of a pattern (bozo, marble, wood, agate have
  * their own; the others black to white): *entries points to static storage.

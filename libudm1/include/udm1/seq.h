@@ -54,6 +54,12 @@
  * 65536 primes; R_d: d up to this). Presets with a fixed list have fewer. */
 #define UDM1_MAX_DIMENSIONS 65536u
 
+/* Dimension indices are below this limit, 2^32 - 1, everywhere: the fills, the many-points call and
+ * the cursor (which hands out dimensions up to UDM1_DIMENSION_INDEX_LIMIT - 1 and is then exhausted).
+ * A range of dimensions that would reach it is refused (UDM1_ERROR_DIMENSION); no counter wraps to
+ * dimension 0. (1.6) */
+#define UDM1_DIMENSION_INDEX_LIMIT 4294967295u
+
 /* The largest point count K of a point set: 2^32 - 1 (pmj02: 2^20). */
 #define UDM1_MAX_POINT_COUNT 4294967295u
 
@@ -317,6 +323,12 @@ UDM1_API udm1_status udm1_seq_fill_f32(const udm1_seq *seq, uint64_t stream, uin
  * path may be longer than the set without reusing its dimensions. Such draws
  * are random, not low-discrepancy; choose D to cover the dimensions that
  * matter. udm1_cursor_padded() tells how many draws were padded.
+ *
+ * The draws return no status. A draw they cannot make gives NaN (never a value
+ * in [0, 1) that would be wrong) and sets udm1_last_error(): a NULL cursor, one
+ * never started (zeroed), and every draw after dimension
+ * UDM1_DIMENSION_INDEX_LIMIT - 1 (the cursor is then exhausted; dimension
+ * counters do not wrap). A NULL output array is ignored.
  */
 typedef struct udm1_cursor {
     const udm1_seq *seq;
@@ -328,7 +340,8 @@ typedef struct udm1_cursor {
 } udm1_cursor;
 
 /* Start a cursor at (stream, index), next dimension first_dimension.
- * Errors: NULL_ARGUMENT, INDEX_RANGE (index >= K for a point set).
+ * Errors: NULL_ARGUMENT, INDEX_RANGE (index >= K for a point set), DIMENSION
+ * (first_dimension >= UDM1_DIMENSION_INDEX_LIMIT).
  * On error the cursor is left unchanged. */
 UDM1_API udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t stream,
                                        uint64_t index, uint32_t first_dimension);
@@ -352,7 +365,8 @@ UDM1_API uint32_t udm1_cursor_padded(const udm1_cursor *cursor);
  * (streams[k], indices[k], first_dimension) and filled with n_dims values (padding included).
  * Consecutive points of one stream share its per-stream randomization: keep them together
  * (sorted by stream) and a Weyl sequence's shifts are computed once per stream, not per point.
- * Errors: NULL arguments with n > 0, an index outside a point set (naming k). Since 1.5. */
+ * Errors: NULL arguments with n > 0, an index outside a point set (naming k), DIMENSION (n_dims 0, or
+ * first_dimension + n_dims past UDM1_DIMENSION_INDEX_LIMIT; checked also when n is 0). Since 1.5. */
 UDM1_API udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64_t *streams,
                                               const uint64_t *indices, uint32_t first_dimension,
                                               uint32_t n_dims, double *out);

@@ -35,6 +35,13 @@ UDM1_HIDDEN udm1_status udm1_fail(udm1_status status, const char *fmt, ...)
 UDM1_HIDDEN udm1_status udm1_read_struct(const char *fn, const char *what, const char *init_fn, const void *src,
                                          size_t v1_size, void *dst, size_t dst_size);
 
+/* ---- work limits of the metrics (metrics.h) ---- */
+/* Whether a x b x c (each up to 2^64; the product in double, so it cannot overflow) is above limit. */
+static inline int udm1_work_above(uint64_t a, uint64_t b, uint64_t c, uint64_t limit)
+{
+    return (double)a * (double)b * (double)c > (double)limit;
+}
+
 /* ---- 64x64 -> 128 multiply ---- */
 static inline void udm1_mul64(uint64_t a, uint64_t b, uint64_t *hi, uint64_t *lo)
 {

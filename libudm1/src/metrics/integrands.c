@@ -133,6 +133,10 @@ udm1_status udm1_integrand_eval(uint32_t integrand, uint32_t d, const double *po
     udm1_status st = check_kind(fn, integrand, d);
     if (st != UDM1_OK) return st;
     if (stride < d) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < d %u", fn, stride, d);
+    for (size_t i = 0; i < n; ++i)
+        for (uint32_t k = 0; k < d; ++k)
+            if (!isfinite(points[i * stride + k]))
+                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, k);
     for (size_t i = 0; i < n; ++i) out[i] = eval1(integrand, d, points + i * stride);
     return UDM1_OK;
 }
@@ -212,6 +216,10 @@ udm1_status udm1_integration_error(const udm1_seq *seq, uint32_t integrand, uint
         return udm1_fail(UDM1_ERROR_DIMENSION, "%s: d = %u but the sequence has %u dimensions", fn, d, udm1_seq_dimensions(seq));
     if (n == 0 || randomizations == 0)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: n and randomizations must be at least 1", fn);
+    if (udm1_work_above(n, randomizations, d, UDM1_WORK_LIMIT_INTEGRATION))
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                         "%s: n %llu x randomizations %u x d %u values is above the work limit 2^35 "
+                         "(UDM1_WORK_LIMIT_INTEGRATION, about a minute)", fn, (unsigned long long)n, randomizations, d);
     if (udm1_seq_point_count(seq) && n > udm1_seq_point_count(seq))
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: n = %llu of a %llu-point set", fn, (unsigned long long)n,
                          (unsigned long long)udm1_seq_point_count(seq));

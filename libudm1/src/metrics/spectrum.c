@@ -21,6 +21,10 @@ udm1_status udm1_spectrum_2d(const udm1_seq *seq, uint32_t dim0, uint64_t n, uin
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
                          "%s: needs n, randomizations >= 1 and an even size in 2..1024 (n %llu, R %u, size %u)", fn,
                          (unsigned long long)n, randomizations, size);
+    if (udm1_work_above(n, randomizations, (uint64_t)size * size, UDM1_WORK_LIMIT_SPECTRUM))
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                         "%s: n %llu x randomizations %u x size^2 %u^2 is above the work limit 2^37 "
+                         "(UDM1_WORK_LIMIT_SPECTRUM, about a minute)", fn, (unsigned long long)n, randomizations, size);
     if (udm1_seq_point_count(seq) && n > udm1_seq_point_count(seq))
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: n = %llu of a %llu-point set", fn, (unsigned long long)n,
                          (unsigned long long)udm1_seq_point_count(seq));

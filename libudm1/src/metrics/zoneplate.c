@@ -19,6 +19,10 @@ udm1_status udm1_zoneplate(const udm1_seq *seq, uint32_t dim0, uint32_t width, u
     if (width == 0 || height == 0 || width > 16384 || height > 16384 || spp == 0)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: size %ux%u or spp %u out of range (1..16384, spp >= 1)",
                          fn, width, height, spp);
+    if (udm1_work_above(width, height, spp, UDM1_WORK_LIMIT_ZONEPLATE))
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                         "%s: width %u x height %u x spp %u samples is above the work limit 2^32 "
+                         "(UDM1_WORK_LIMIT_ZONEPLATE, about a minute)", fn, width, height, spp);
     if (udm1_seq_point_count(seq) && spp > udm1_seq_point_count(seq))
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: spp = %u of a %llu-point set", fn, spp,
                          (unsigned long long)udm1_seq_point_count(seq));

@@ -274,6 +274,7 @@ static inline double dot3(const udm1_noise *n, int h, double x, double y, double
 double udm1_noise_3d(const udm1_noise *n, double x, double y, double z)
 {
     /* NaN or infinite; each on its own: a sum of huge finite coordinates would overflow (found by fuzzing) */
+    if (UDM1_UNLIKELY(!n)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_noise_3d: noise is NULL"), NAN;
     if (UDM1_UNLIKELY(!(fabs(x) < INFINITY && fabs(y) < INFINITY && fabs(z) < INFINITY))) return NAN;
     int X0, X1, Y0, Y1, Z0, Z1;
     cell(x, n->period[0], &X0, &X1, &x);
@@ -313,6 +314,7 @@ static inline double dot2(const udm1_noise *n, int h, double x, double y)
 
 double udm1_noise_2d(const udm1_noise *n, double x, double y)
 {
+    if (UDM1_UNLIKELY(!n)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_noise_2d: noise is NULL"), NAN;
     if (UDM1_UNLIKELY(!(fabs(x) < INFINITY && fabs(y) < INFINITY))) return NAN;
     int X0, X1, Y0, Y1;
     cell(x, n->period[0], &X0, &X1, &x);
@@ -327,6 +329,7 @@ double udm1_noise_2d(const udm1_noise *n, double x, double y)
 
 double udm1_noise_1d(const udm1_noise *n, double x)
 {
+    if (UDM1_UNLIKELY(!n)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_noise_1d: noise is NULL"), NAN;
     if (UDM1_UNLIKELY(!(fabs(x) < INFINITY))) return NAN;
     int X0, X1;
     cell(x, n->period[0], &X0, &X1, &x);

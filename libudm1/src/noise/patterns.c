@@ -179,22 +179,6 @@ static double shape(const udm1_pattern_params *p, double v)
     }
 }
 
-double udm1_pattern_eval(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
-{
-    if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return NAN;
-    int has_turb = p->turbulence[0] != 0 || p->turbulence[1] != 0 || p->turbulence[2] != 0;
-    if (is_pov(p->pattern) && has_turb && p->pattern != UDM1_PATTERN_MARBLE && p->pattern != UDM1_PATTERN_WOOD) {
-        double d[3];
-        dturbulence(n, p, x, y, z, d);
-        x += d[0] * p->turbulence[0];
-        y += d[1] * p->turbulence[1];
-        z += d[2] * p->turbulence[2];
-    }
-    double v = raw(n, p, x, y, z);
-    if (!is_pov(p->pattern)) return v;
-    return shape(p, v);
-}
-
 static udm1_status check_params(const char *fn, const udm1_noise *n, const udm1_pattern_params *p, const void *out)
 {
     if (!n || !p || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: a pointer argument is NULL", fn);
@@ -212,6 +196,36 @@ static udm1_status check_params(const char *fn, const udm1_noise *n, const udm1_
         if (!isfinite(nums[i]))
             return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: a pattern parameter is not finite", fn);
     return UDM1_OK;
+}
+
+double udm1_pattern_eval(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
+{
+    if (UDM1_UNLIKELY(check_params("udm1_pattern_eval", n, p, &x) != UDM1_OK)) return NAN;
+    if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return NAN;
+    int has_turb = p->turbulence[0] != 0 || p->turbulence[1] != 0 || p->turbulence[2] != 0;
+    if (is_pov(p->pattern) && has_turb && p->pattern != UDM1_PATTERN_MARBLE && p->pattern != UDM1_PATTERN_WOOD) {
+        double d[3];
+        dturbulence(n, p, x, y, z, d);
+        x += d[0] * p->turbulence[0];
+        y += d[1] * p->turbulence[1];
+        z += d[2] * p->turbulence[2];
+    }
+    double v = raw(n, p, x, y, z);
+    if (!is_pov(p->pattern)) return v;
+    return shape(p, v);
+}
+
+/* A pattern that is not a number at a finite point: an octave's scale (lambda^i P) or its sum
+ * (omega^i) left the range of a double. Refused rather than written as NaN. */
+static udm1_status not_a_number(const char *fn, const char *what, size_t a, size_t b)
+{
+    if (what[1] == 'i') /* "pixel": (column, row) */
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                         "%s: the pattern is not a number at pixel (%zu, %zu): an octave's scale or sum overflows a "
+                         "double (omega, lambda, octaves, coordinates)", fn, b, a);
+    return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
+                     "%s: the pattern is not a number at point %zu: an octave's scale or sum overflows a double "
+                     "(omega, lambda, octaves, coordinates)", fn, a);
 }
 
 udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p, uint32_t width, uint32_t height,
@@ -247,7 +261,11 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p,
                     double a = i + 0.5;
                     for (int c = 0; c < 3; ++c) xyz[3 * (size_t)i + c] = (origin[c] + a * step_x[c] + b * step_y[c]) * s;
                 }
-                udm1_noise_points(n, 3, xyz, width, 3, val);
+                if (udm1_noise_points(n, 3, xyz, width, 3, val) != UDM1_OK) { /* a scaled coordinate overflowed */
+                    free(xyz);
+                    free(acc);
+                    return not_a_number(fn, "pixel", row0 + j, 0);
+                }
                 /* as the per-point sum: v = 0, v += amp t (the raw noise pattern is t itself) */
                 for (uint32_t i = 0; i < width; ++i)
                     acc[i] = p->pattern == UDM1_PATTERN_NOISE ? val[i] : (o == 0 ? 0.0 : acc[i]) + amp * val[i];
@@ -255,13 +273,19 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p,
                 s *= p->lambda;
             }
             for (uint32_t i = 0; i < width; ++i) out[(size_t)j * width + i] = (float)acc[i];
-            continue;
+        } else {
+            for (uint32_t i = 0; i < width; ++i) {
+                double a = i + 0.5, q[3];
+                for (int c = 0; c < 3; ++c) q[c] = origin[c] + a * step_x[c] + b * step_y[c];
+                out[(size_t)j * width + i] = (float)udm1_pattern_eval(n, p, q[0], q[1], q[2]);
+            }
         }
-        for (uint32_t i = 0; i < width; ++i) {
-            double a = i + 0.5, q[3];
-            for (int c = 0; c < 3; ++c) q[c] = origin[c] + a * step_x[c] + b * step_y[c];
-            out[(size_t)j * width + i] = (float)udm1_pattern_eval(n, p, q[0], q[1], q[2]);
-        }
+        for (uint32_t i = 0; i < width; ++i)
+            if (isnan(out[(size_t)j * width + i])) {
+                free(xyz);
+                free(acc);
+                return not_a_number(fn, "pixel", row0 + j, i);
+            }
     }
     free(xyz);
     free(acc);
@@ -284,6 +308,7 @@ udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *
     for (size_t i = 0; i < count; ++i) {
         const double *q = xyz + i * stride;
         out[i] = udm1_pattern_eval(n, p, q[0], q[1], q[2]);
+        if (isnan(out[i])) return not_a_number(fn, "point", i, 0);
     }
     return UDM1_OK;
 }
@@ -297,7 +322,8 @@ udm1_status udm1_color_map_eval(const udm1_color_entry *e, size_t count, double 
     for (size_t k = 1; k < count; ++k)
         if (!(e[k].value >= e[k - 1].value))
             return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_color_map_eval: entry %zu is not sorted by value", k);
-    if (!(value < e[count - 1].value)) { /* also NaN: the last colour */
+    if (isnan(value)) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_color_map_eval: the value is not a number");
+    if (!(value < e[count - 1].value)) {
         memcpy(rgb, e[count - 1].rgb, sizeof(float) * 3);
         return UDM1_OK;
     }

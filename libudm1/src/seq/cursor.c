@@ -1,6 +1,9 @@
 /* cursor.c - the renderer cursor (pbrt-v4's Sampler shape: start a pixel sample, then draw dimension
- * after dimension), padded past the sequence's dimensions with independent hashed values. */
+ * after dimension), padded past the sequence's dimensions with independent hashed values. A draw the
+ * cursor cannot make (NULL, never started, exhausted at the dimension index limit) is NaN. */
 #include "seq/value.h"
+
+#include <math.h>
 
 udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t stream, uint64_t index,
                               uint32_t first_dimension)
@@ -10,6 +13,9 @@ udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t
     if (seq->point_count && index >= seq->point_count)
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "udm1_cursor_start: index %llu of a %llu-point set",
                          (unsigned long long)index, (unsigned long long)seq->point_count);
+    if (first_dimension >= UDM1_DIMENSION_INDEX_LIMIT)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_cursor_start: first_dimension %u is not below the dimension index "
+                         "limit 2^32 - 1", first_dimension);
     cursor->seq = seq;
     cursor->stream = stream;
     cursor->index = index;
@@ -30,19 +36,38 @@ static inline uint64_t cursor_next(udm1_cursor *c)
     return udm1_pad(udm1_shift(skey, udm1_dim_key(seq->seed_key, dim)), c->index);
 }
 
-float udm1_cursor_1d(udm1_cursor *cursor) { return udm1_to_f32(cursor_next(cursor)); }
-double udm1_cursor_1d_f64(udm1_cursor *cursor) { return udm1_to_f64(cursor_next(cursor)); }
+/* Whether the cursor can draw (else the message for udm1_last_error) */
+static int can_draw(const udm1_cursor *c, const char *fn)
+{
+    if (UDM1_LIKELY(c && c->seq && c->dimension < UDM1_DIMENSION_INDEX_LIMIT)) return 1;
+    if (!c) udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: cursor is NULL", fn);
+    else if (!c->seq) udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: the cursor was not started (udm1_cursor_start)", fn);
+    else udm1_fail(UDM1_ERROR_DIMENSION, "%s: the cursor is exhausted (dimension index limit 2^32 - 1)", fn);
+    return 0;
+}
+
+float udm1_cursor_1d(udm1_cursor *cursor)
+{
+    return can_draw(cursor, "udm1_cursor_1d") ? udm1_to_f32(cursor_next(cursor)) : NAN;
+}
+
+double udm1_cursor_1d_f64(udm1_cursor *cursor)
+{
+    return can_draw(cursor, "udm1_cursor_1d_f64") ? udm1_to_f64(cursor_next(cursor)) : NAN;
+}
 
 void udm1_cursor_2d(udm1_cursor *cursor, float out[2])
 {
-    out[0] = udm1_to_f32(cursor_next(cursor));
-    out[1] = udm1_to_f32(cursor_next(cursor));
+    if (!out) return;
+    out[0] = can_draw(cursor, "udm1_cursor_2d") ? udm1_to_f32(cursor_next(cursor)) : NAN;
+    out[1] = can_draw(cursor, "udm1_cursor_2d") ? udm1_to_f32(cursor_next(cursor)) : NAN;
 }
 
 void udm1_cursor_2d_f64(udm1_cursor *cursor, double out[2])
 {
-    out[0] = udm1_to_f64(cursor_next(cursor));
-    out[1] = udm1_to_f64(cursor_next(cursor));
+    if (!out) return;
+    out[0] = can_draw(cursor, "udm1_cursor_2d_f64") ? udm1_to_f64(cursor_next(cursor)) : NAN;
+    out[1] = can_draw(cursor, "udm1_cursor_2d_f64") ? udm1_to_f64(cursor_next(cursor)) : NAN;
 }
 
 /* The next n raw values: the sequence's own fill over the dimensions it has (one
@@ -60,22 +85,31 @@ static void cursor_fill_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
     for (; k < n; ++k) raw[k] = cursor_next(c);
 }
 
-/* n draws converted to float (f64 = 0) or double (f64 = 1), in chunks of 32 */
-static void cursor_fill_as(udm1_cursor *cursor, uint32_t n, void *out, int f64)
+/* n draws converted to float (f64 = 0) or double (f64 = 1), in chunks of 32; NaN for the draws past
+ * the dimension index limit, or all n if the cursor cannot draw */
+static void cursor_fill_as(const char *fn, udm1_cursor *cursor, uint32_t n, void *out, int f64)
 {
+    if (!out) return;
     uint64_t raw[32];
     for (uint32_t done = 0; done < n;) {
-        uint32_t m = n - done < 32 ? n - done : 32;
-        cursor_fill_raw(cursor, m, raw);
+        uint32_t m = n - done < 32 ? n - done : 32, ok = 0;
+        if (can_draw(cursor, fn)) {
+            ok = UDM1_DIMENSION_INDEX_LIMIT - cursor->dimension < m ? UDM1_DIMENSION_INDEX_LIMIT - cursor->dimension : m;
+            cursor_fill_raw(cursor, ok, raw);
+            if (ok < m) can_draw(cursor, fn); /* the message: exhausted */
+        }
         for (uint32_t k = 0; k < m; ++k) {
-            if (f64) ((double *)out)[done + k] = udm1_to_f64(raw[k]);
-            else ((float *)out)[done + k] = udm1_to_f32(raw[k]);
+            if (f64) ((double *)out)[done + k] = k < ok ? udm1_to_f64(raw[k]) : NAN;
+            else ((float *)out)[done + k] = k < ok ? udm1_to_f32(raw[k]) : NAN;
         }
         done += m;
     }
 }
 
-void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out) { cursor_fill_as(cursor, n, out, 0); }
-void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out) { cursor_fill_as(cursor, n, out, 1); }
+void udm1_cursor_fill(udm1_cursor *cursor, uint32_t n, float *out) { cursor_fill_as("udm1_cursor_fill", cursor, n, out, 0); }
+void udm1_cursor_fill_f64(udm1_cursor *cursor, uint32_t n, double *out)
+{
+    cursor_fill_as("udm1_cursor_fill_f64", cursor, n, out, 1);
+}
 
 uint32_t udm1_cursor_padded(const udm1_cursor *cursor) { return cursor ? cursor->padded : 0; }

@@ -9,7 +9,11 @@ udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64
 {
     static const char fn[] = "udm1_seq_fill_points_f64";
     if (!seq) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: seq is NULL", fn);
-    if (n == 0 || n_dims == 0) return UDM1_OK;
+    if (n_dims == 0) return udm1_fail(UDM1_ERROR_DIMENSION, "%s: n_dims is 0", fn);
+    if (first_dimension >= UDM1_DIMENSION_INDEX_LIMIT || n_dims > UDM1_DIMENSION_INDEX_LIMIT - first_dimension)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: first_dimension %u + n_dims %u passes the dimension index limit 2^32 - 1",
+                         fn, first_dimension, n_dims);
+    if (n == 0) return UDM1_OK;
     if (!streams || !indices || !out)
         return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, !streams ? "streams" : !indices ? "indices" : "out");
     if (seq->point_count)

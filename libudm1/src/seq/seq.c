@@ -216,22 +216,25 @@ void udm1_seq_destroy(udm1_seq *seq)
     free(seq);
 }
 
-uint32_t udm1_seq_dimensions(const udm1_seq *seq) { return seq ? seq->dims : 0; }
-const char *udm1_seq_name(const udm1_seq *seq) { return seq ? seq->name : NULL; }
-uint64_t udm1_seq_point_count(const udm1_seq *seq) { return seq ? seq->point_count : 0; }
-uint64_t udm1_seq_seed(const udm1_seq *seq) { return seq ? seq->seed : 0; }
-uint32_t udm1_seq_randomize(const udm1_seq *seq) { return seq ? seq->randomize : 0; }
+/* The queries: 0 or NULL for a NULL handle, with a message (core.h's rule for status-less functions). */
+#define QUERY(fn, value, neutral) (seq ? (value) : (udm1_fail(UDM1_ERROR_NULL_ARGUMENT, fn ": seq is NULL"), (neutral)))
+uint32_t udm1_seq_dimensions(const udm1_seq *seq) { return QUERY("udm1_seq_dimensions", seq->dims, 0u); }
+const char *udm1_seq_name(const udm1_seq *seq) { return QUERY("udm1_seq_name", seq->name, (const char *)NULL); }
+uint64_t udm1_seq_point_count(const udm1_seq *seq) { return QUERY("udm1_seq_point_count", seq->point_count, 0u); }
+uint64_t udm1_seq_seed(const udm1_seq *seq) { return QUERY("udm1_seq_seed", seq->seed, 0u); }
+uint32_t udm1_seq_randomize(const udm1_seq *seq) { return QUERY("udm1_seq_randomize", seq->randomize, 0u); }
 
 uint32_t udm1_seq_randomization(const udm1_seq *seq)
 {
     static const uint32_t asked[] = {UDM1_RANDOMIZE_NONE, UDM1_RANDOMIZE_SHIFT, UDM1_RANDOMIZE_PERMUTE,
                                      UDM1_RANDOMIZE_OWEN, UDM1_RANDOMIZE_DEFAULT, UDM1_RANDOMIZE_SCREEN};
-    return seq ? asked[seq->mode] : 0;
+    return QUERY("udm1_seq_randomization", asked[seq->mode], 0u);
 }
 
 uint32_t udm1_seq_flags(const udm1_seq *seq)
 {
-    if (!seq || !seq->name) return 0;
+    if (!seq) return QUERY("udm1_seq_flags", 0u, 0u);
+    if (!seq->name) return 0;
     const udm1_preset *p = udm1_preset_lookup(seq->name);
     return p ? p->flags : 0;
 }
