@@ -44,7 +44,7 @@ test)
     udm1_log "running every test (ctest in build/; the report tests run once, below, against the sanitized tools)"
     ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_(reports|main_report)$'
     udm1_log "building and running the C and C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
-    build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON -DUDM1_MULTIVERSION=OFF
+    build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         ctest --test-dir build-asan -j "$JOBS" -L "^(c|cpp)$" --output-on-failure
     udm1_log "the Python tests of the package against the sanitized library (libasan and libubsan preloaded;"

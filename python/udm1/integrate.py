@@ -13,6 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._convert import integer, u32, u64
 from .exact_sum import ExactSum
 from .sequence import Preset, Sequence, presets
 
@@ -107,8 +108,7 @@ def integrate(f, sampler: str, d: int, n: int, *, seed: int = 0, randomize=True,
               chunk: int = 1 << 16) -> Integral:
     """The estimate of the integral of f over [0, 1)^d from samples [0, n) of `sampler`, in one
     process. udm1.distributed.integrate gives the same Integral bit for bit from a cluster."""
-    if int(n) < 1:
-        raise ValueError(f"udm1.integrate: n = {n} must be at least 1")
-    spec = IntegralSpec(str(sampler), int(d), int(n), int(seed), randomize, int(stream))
+    n = integer(n, "n", 1)
+    spec = IntegralSpec(str(sampler), u32(d, "d"), n, u64(seed, "seed"), randomize, u64(stream, "stream"))
     _preset(spec.sampler)
     return integrate_range(f, spec, 0, spec.n, chunk)

@@ -6,6 +6,7 @@ import ctypes
 
 import numpy as np
 
+from ._convert import u32, u64
 from ._native import lib
 from .errors import check
 
@@ -30,7 +31,7 @@ def discrepancy_random(n: int, d: int, method: str = "CD") -> float:
     if method not in METHODS:
         raise ValueError(f"udm1.discrepancy_random: method {method!r} is not one of {sorted(METHODS)}")
     out = ctypes.c_double()
-    check(lib.udm1_discrepancy_random(int(n), int(d), METHODS[method], ctypes.byref(out)))
+    check(lib.udm1_discrepancy_random(u64(n, "n"), u32(d, "d"), METHODS[method], ctypes.byref(out)))
     return out.value
 
 
@@ -73,7 +74,7 @@ def _integrand_code(integrand) -> int:
         if integrand not in table:
             raise ValueError(f"udm1: unknown integrand {integrand!r}; known: {sorted(table)}")
         return table[integrand]
-    return int(integrand)
+    return u32(integrand, "integrand")
 
 
 def integrand(name, sample) -> np.ndarray:
@@ -88,5 +89,5 @@ def integrand(name, sample) -> np.ndarray:
 def integrand_exact(name, d: int) -> float:
     """The exact integral of a test integrand over [0,1]^d."""
     out = ctypes.c_double()
-    check(lib.udm1_integrand_exact(_integrand_code(name), int(d), ctypes.byref(out)))
+    check(lib.udm1_integrand_exact(_integrand_code(name), u32(d, "d"), ctypes.byref(out)))
     return out.value

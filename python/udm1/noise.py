@@ -14,6 +14,7 @@ import ctypes
 import numpy as np
 
 from . import _native
+from ._convert import u32, u64
 from ._native import lib
 from .errors import check
 
@@ -39,16 +40,17 @@ class Noise:
         self._handle = None
         if kind not in KINDS:
             raise ValueError(f"udm1.Noise: kind {kind!r} is not one of {sorted(KINDS)}")
-        periods = [int(period)] * 3 if np.isscalar(period) else [int(p) for p in period]
-        if len(periods) != 3 or min(periods) < 0:
+        periods = [period] * 3 if np.isscalar(period) else list(period)
+        if len(periods) != 3:
             raise ValueError("udm1.Noise: period must be a non-negative int or 3 of them")
+        periods = [u32(p, "period") for p in periods]
         desc = _native.NoiseDesc()
         lib.udm1_noise_desc_init(ctypes.byref(desc))
         desc.kind = KINDS[kind]
         desc.table = table.encode() if table else None
-        desc.seed = int(seed) % 2**64
+        desc.seed = u64(seed, "seed")
         for i, p in enumerate(periods):
-            desc.period[i] = p if p < 2**32 else 2**32 - 1
+            desc.period[i] = p
         handle = ctypes.c_void_p()
         check(lib.udm1_noise_create(ctypes.byref(desc), ctypes.byref(handle)))
         self._handle = handle
@@ -88,7 +90,7 @@ class Noise:
         p = _native.PatternParams()
         lib.udm1_pattern_params_init(ctypes.byref(p), code)
         if octaves is not None:
-            p.octaves = int(octaves)
+            p.octaves = u32(octaves, "octaves")
         if omega is not None:
             p.omega = float(omega)
         if lacunarity is not None:
@@ -125,10 +127,12 @@ class Noise:
                      **params) -> np.ndarray:
         """A (height, width) float32 image of a pattern over the rectangle origin + [0, size) in x, y."""
         p = self._params(name, **params)
-        out = np.empty((int(height), int(width)), dtype=np.float32)
+        width, height = u32(width, "width"), u32(height, "height")
+        fits = 0 < width <= 65536 and 0 < height <= 65536  # otherwise the library's own check speaks
+        out = np.empty((height, width) if fits else 0, dtype=np.float32)
         o = (ctypes.c_double * 3)(*[float(v) for v in origin])
-        sx = (ctypes.c_double * 3)(float(size[0]) / width, 0.0, 0.0)
-        sy = (ctypes.c_double * 3)(0.0, float(size[1]) / height, 0.0)
-        check(lib.udm1_pattern_grid(self._handle, ctypes.byref(p), int(width), int(height), 0, int(height), o, sx, sy,
+        sx = (ctypes.c_double * 3)(float(size[0]) / width if width else 0.0, 0.0, 0.0)
+        sy = (ctypes.c_double * 3)(0.0, float(size[1]) / height if height else 0.0, 0.0)
+        check(lib.udm1_pattern_grid(self._handle, ctypes.byref(p), width, height, 0, height, o, sx, sy,
                                     out.ctypes.data))
         return out

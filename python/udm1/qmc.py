@@ -18,7 +18,15 @@ from __future__ import annotations
 import numpy as np
 from scipy.stats import qmc
 
+from ._convert import u32, u64
 from .sequence import Sequence
+
+
+def _random_key(rng) -> int:
+    """A 64-bit key from a numpy Generator or a legacy RandomState."""
+    if isinstance(rng, np.random.RandomState):
+        return int(rng.randint(0, 2**64, dtype=np.uint64))
+    return int(rng.integers(0, 2**64, dtype=np.uint64))
 
 
 class Weyl(qmc.QMCEngine):
@@ -29,14 +37,16 @@ class Weyl(qmc.QMCEngine):
 
     def __init__(self, d: int, *, preset: str = "wr", scramble: bool = True, point_count: int = 0,
                  optimization=None, rng=None, seed=None):
-        if seed is not None:
-            if rng is not None:
-                raise ValueError("udm1.qmc: give rng or seed, not both")
-            rng = seed
-        super().__init__(d=d, optimization=optimization, rng=rng)
+        d = u32(d, "d")
+        if seed is not None and rng is not None:
+            raise ValueError("udm1.qmc: give rng or seed, not both")
+        if isinstance(seed, np.random.RandomState):  # scipy's legacy keyword, as its own engines take it
+            super().__init__(d=d, optimization=optimization, seed=seed)
+        else:  # an int or Generator given as seed= is taken as rng= (the same points for both)
+            super().__init__(d=d, optimization=optimization, rng=seed if seed is not None else rng)
         self.preset = self._preset or preset
         self.scramble = bool(scramble)
-        key = int(self.rng.integers(0, 2**64, dtype=np.uint64)) if scramble else 0
+        key = _random_key(self.rng) if scramble else 0
         self._seq = Sequence(self.preset, d, point_count=point_count, seed=key, randomize=self.scramble)
         self._init_quad = self._quad_args(d, point_count, optimization)
 
@@ -52,7 +62,7 @@ class Weyl(qmc.QMCEngine):
 
     def fast_forward(self, n: int) -> "Weyl":
         """Skip n points in O(1)."""
-        self.num_generated += int(n)
+        self.num_generated += u64(n, "n")
         return self
 
     @property
@@ -84,7 +94,7 @@ class EPISWR(Weyl):
     _preset = "episwr"
 
     def __init__(self, d: int = 2, *, n: int, scramble: bool = True, optimization=None, rng=None, seed=None):
-        self.n = int(n)
+        self.n = u64(n, "n")
         Weyl.__init__(self, d, point_count=self.n, scramble=scramble, optimization=optimization, rng=rng, seed=seed)
 
     def _quad_args(self, d, point_count, optimization) -> dict:

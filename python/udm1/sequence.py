@@ -9,8 +9,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _native
+from ._convert import U128, integer, u32, u64
 from ._native import lib
-from .errors import UDM1Error, check
+from .errors import check
 from .metrics import _integrand_code
 
 ALPHA_SQRT, ALPHA_FIXED, ALPHA_DOUBLE = 1, 2, 3
@@ -34,9 +35,9 @@ class Fixed:
 def _alpha_struct(a) -> _native.Alpha:
     s = _native.Alpha()
     if isinstance(a, Sqrt):
-        s.kind, s.k = ALPHA_SQRT, int(a.k)
+        s.kind, s.k = ALPHA_SQRT, u64(a.k, "Sqrt.k")
     elif isinstance(a, Fixed):
-        v = int(a.value) % (1 << 128)
+        v = integer(a.value, "Fixed.value", 0, U128)
         s.kind, s.fixed_hi, s.fixed_lo = ALPHA_FIXED, v >> 64, v & ((1 << 64) - 1)
     elif isinstance(a, numbers.Real):
         s.kind, s.value = ALPHA_DOUBLE, float(a)
@@ -77,6 +78,24 @@ _DTYPES = {
 }
 
 
+def _dtype(dtype) -> np.dtype:
+    try:
+        dt = np.dtype(dtype)
+    except TypeError as exc:
+        raise ValueError(f"udm1: dtype {dtype!r} is not a dtype ({exc})") from None
+    if dt not in _DTYPES:
+        raise ValueError(f"udm1: dtype {dt} is not supported; use float64, float32 or uint64 (raw 0.64 fixed point)")
+    return dt
+
+
+def _offsets(offsets, d: int) -> np.ndarray:
+    """offsets as d uint64 values, each checked (numpy would wrap a negative or a too large one)."""
+    values = [u64(v, f"offsets[{j}]") for j, v in enumerate(np.asarray(offsets, dtype=object).ravel())]
+    if len(values) != d:
+        raise ValueError(f"udm1.Sequence: offsets must have {d} entries")
+    return np.array(values, dtype=np.uint64)
+
+
 class Sequence:
     """A udm1 sequence or point set.
 
@@ -107,17 +126,14 @@ class Sequence:
                 raise ValueError(f"udm1.Sequence: d = {d} but {len(alphas)} alphas")
         if d is None:
             raise ValueError("udm1.Sequence: d (the number of dimensions) is required with a preset")
-        if not (0 <= int(d) < 1 << 32):
-            raise UDM1Error(3, f"udm1.Sequence: dimensions {d} out of range")
+        d = u32(d, "d")
         desc = _native.SeqDesc()
         lib.udm1_seq_desc_init(ctypes.byref(desc))
-        desc.dimensions = int(d)
-        desc.point_count = int(point_count)
-        desc.seed = int(seed) % (1 << 64)
+        desc.dimensions = d
+        desc.point_count = u64(point_count, "point_count")
+        desc.seed = u64(seed, "seed")
         desc.randomize = _randomize_code(randomize)
-        if not (0 <= int(screen_spp) < 1 << 32):
-            raise UDM1Error(3, f"udm1.Sequence: screen_spp {screen_spp} out of range")
-        desc.screen_spp = int(screen_spp)
+        desc.screen_spp = u32(screen_spp, "screen_spp")
         keep = []
         if preset is not None:
             desc.preset = str(preset).encode()
@@ -126,9 +142,7 @@ class Sequence:
             keep.append(arr)
             desc.alphas = ctypes.cast(arr, ctypes.c_void_p)
         if offsets is not None:
-            off = np.ascontiguousarray(np.asarray(offsets, dtype=np.uint64))
-            if off.shape != (int(d),):
-                raise ValueError(f"udm1.Sequence: offsets must have {d} entries")
+            off = _offsets(offsets, d)
             keep.append(off)
             desc.offsets = off.ctypes.data_as(_native.u64p)
         handle = ctypes.c_void_p()
@@ -185,21 +199,23 @@ class Sequence:
     def alpha(self, dim: int) -> int:
         """Generator of dimension dim: its fractional part times 2^128, as an int."""
         hi, lo = ctypes.c_uint64(), ctypes.c_uint64()
-        check(lib.udm1_seq_alpha(self.handle, _u32(dim), ctypes.byref(hi), ctypes.byref(lo)))
+        check(lib.udm1_seq_alpha(self.handle, u32(dim, "dim"), ctypes.byref(hi), ctypes.byref(lo)))
         return (hi.value << 64) | lo.value
 
     def offset(self, dim: int, stream: int = 0) -> int:
         """Total offset of dimension dim for a stream, times 2^64: the raw value of point 0."""
         out = ctypes.c_uint64()
-        check(lib.udm1_seq_offset(self.handle, _u64(stream), _u32(dim), ctypes.byref(out)))
+        check(lib.udm1_seq_offset(self.handle, u64(stream, "stream"), u32(dim, "dim"), ctypes.byref(out)))
         return out.value
 
     def sample(self, index: int, dim: int, stream: int = 0, dtype=np.float64):
         """One value by random access; dtype float64, float32 or uint64 (raw 0.64)."""
-        _, name, ctype = _DTYPES[np.dtype(dtype)]
+        dt = _dtype(dtype)
+        _, name, ctype = _DTYPES[dt]
         out = ctype()
-        check(getattr(lib, name)(self.handle, _u64(stream), _u64(index), _u32(dim), ctypes.byref(out)))
-        return np.dtype(dtype).type(out.value)
+        check(getattr(lib, name)(self.handle, u64(stream, "stream"), u64(index, "index"), u32(dim, "dim"),
+                                 ctypes.byref(out)))
+        return dt.type(out.value)
 
     def points(self, n: int, first: int = 0, *, stream: int = 0, dims=None, dtype=np.float64,
                out: np.ndarray | None = None) -> np.ndarray:
@@ -212,18 +228,16 @@ class Sequence:
             r = range(d)[dims] if isinstance(dims, slice) else dims
             if not isinstance(r, range) or r.step != 1 or len(r) == 0:
                 raise ValueError("udm1.Sequence.points: dims must be a non-empty contiguous range")
-            d0, nd = r.start, len(r)
-        dt = np.dtype(dtype)
+            d0, nd = u32(r.start, "dims"), u32(len(r), "dims")
+        dt = _dtype(dtype)
         fill_name = _DTYPES[dt][0]
-        n = int(n)
-        if n < 0:
-            raise ValueError(f"udm1.Sequence.points: n = {n} is negative")
+        n = u64(n, "n")
+        first, stream = u64(first, "first"), u64(stream, "stream")
         if out is None:
             out = np.empty((n, nd), dtype=dt)
         elif out.dtype != dt or out.shape != (n, nd) or not out.flags.c_contiguous:
             raise ValueError(f"udm1.Sequence.points: out must be a C-contiguous {dt} array of shape ({n}, {nd})")
-        check(getattr(lib, fill_name)(self.handle, _u64(stream), _u64(first), n, _u32(d0), _u32(nd),
-                                      out.ctypes.data if n else None, nd))
+        check(getattr(lib, fill_name)(self.handle, stream, first, n, d0, nd, out.ctypes.data if n else None, nd))
         return out
 
     def points_at(self, streams, indices, *, dims=None) -> np.ndarray:
@@ -238,11 +252,10 @@ class Sequence:
         r = range(self.d) if dims is None else dims
         if not isinstance(r, range) or r.step != 1 or len(r) == 0 or r.start < 0:
             raise ValueError("udm1.Sequence.points_at: dims must be a non-empty contiguous range")
-        out = np.empty((len(s), len(r)))
-        u64 = ctypes.POINTER(ctypes.c_uint64)
-        check(lib.udm1_seq_fill_points_f64(self.handle, len(s), s.ctypes.data_as(u64), i.ctypes.data_as(u64),
-                                           _u32(r.start), _u32(len(r)),
-                                           out.ctypes.data_as(ctypes.POINTER(ctypes.c_double))))
+        d0, nd = u32(r.start, "dims"), u32(len(r), "dims")
+        out = np.empty((len(s), nd))
+        check(lib.udm1_seq_fill_points_f64(self.handle, len(s), s.ctypes.data_as(_native.u64p),
+                                           i.ctypes.data_as(_native.u64p), d0, nd, out.ctypes.data_as(_native.f64p)))
         return out
 
     def integration_error(self, integrand, d: int, n: int, randomizations: int = 32) -> tuple[float, float]:
@@ -250,26 +263,31 @@ class Sequence:
         0..R-1 against its exact integral (udm1_integration_error)."""
 
         rmse, bias = ctypes.c_double(), ctypes.c_double()
-        check(lib.udm1_integration_error(self.handle, _integrand_code(integrand), int(d), int(n), int(randomizations),
-                                         ctypes.byref(rmse), ctypes.byref(bias)))
+        check(lib.udm1_integration_error(self.handle, _integrand_code(integrand), u32(d, "d"), u64(n, "n"),
+                                         u32(randomizations, "randomizations"), ctypes.byref(rmse), ctypes.byref(bias)))
         return rmse.value, bias.value
 
     def spectrum(self, n: int, size: int = 128, randomizations: int = 16, dim0: int = 0) -> np.ndarray:
         """Periodogram of dimensions (dim0, dim0+1), (size, size), zero frequency at the centre."""
-        out = np.empty((int(size), int(size)))
-        check(lib.udm1_spectrum_2d(self.handle, _u32(dim0), int(n), int(randomizations), int(size), out.ctypes.data))
+        size = u32(size, "size")
+        args = (u32(dim0, "dim0"), u64(n, "n"), u32(randomizations, "randomizations"), size)
+        out = np.empty((size, size)) if size <= 1024 else np.empty(0)  # a larger size: the library refuses it
+        check(lib.udm1_spectrum_2d(self.handle, *args, out.ctypes.data))
         return out
 
     def zoneplate(self, width: int, height: int, spp: int, dim0: int = 0) -> np.ndarray:
         """The zone plate test image (height, width), float32."""
-        out = np.empty((int(height), int(width)), dtype=np.float32)
-        check(lib.udm1_zoneplate(self.handle, _u32(dim0), int(width), int(height), int(spp), out.ctypes.data))
+        width, height = u32(width, "width"), u32(height, "height")
+        args = (u32(dim0, "dim0"), width, height, u32(spp, "spp"))
+        fits = width <= 16384 and height <= 16384  # larger: the library refuses it
+        out = np.empty((height, width) if fits else 0, dtype=np.float32)
+        check(lib.udm1_zoneplate(self.handle, *args, out.ctypes.data))
         return out
 
     def check(self, n: int = 256) -> dict:
         """udm1_seq_check: rationality, dependence and the worst 2D projection at n points."""
         rep = _native.AlphaReport()
-        check(lib.udm1_seq_check(self.handle, int(n), ctypes.byref(rep)))
+        check(lib.udm1_seq_check(self.handle, u64(n, "n"), ctypes.byref(rep)))
         return _report_dict(rep)
 
 
@@ -278,7 +296,8 @@ def check_alphas(alphas, n: int = 256) -> dict:
     alphas = list(alphas)
     arr = _alpha_array(alphas)
     rep = _native.AlphaReport()
-    check(lib.udm1_alpha_check(ctypes.cast(arr, ctypes.c_void_p), len(alphas), int(n), ctypes.byref(rep)))
+    check(lib.udm1_alpha_check(ctypes.cast(arr, ctypes.c_void_p), u32(len(alphas), "len(alphas)"), u64(n, "n"),
+                               ctypes.byref(rep)))
     return _report_dict(rep)
 
 
@@ -306,20 +325,6 @@ def _randomize_code(randomize) -> int:
     if isinstance(randomize, str) and randomize in RANDOMIZE:
         return RANDOMIZE[randomize]
     raise ValueError(f"udm1.Sequence: randomize {randomize!r} is not True, False or one of {sorted(RANDOMIZE)}")
-
-
-def _u64(v) -> int:
-    v = int(v)
-    if not 0 <= v < 1 << 64:
-        raise UDM1Error(2, f"udm1: {v} does not fit in 64 unsigned bits")
-    return v
-
-
-def _u32(v) -> int:
-    v = int(v)
-    if not 0 <= v < 1 << 32:
-        raise UDM1Error(3, f"udm1: dimension {v} does not fit in 32 unsigned bits")
-    return v
 
 
 def version() -> str:

@@ -415,9 +415,9 @@ static void test_color_maps(void)
 static void test_batch_equals_per_call(void)
 {
     /* the batch call (vectorized where the processor allows) equals the scalar one bit for bit, with
-     * every kernel: also around groups with far coordinates that go to the scalar code, at -0.0 (a
-     * zero's sign), for counts that leave a block part full or a tail, packed (stride = dims) and
-     * strided */
+     * the kernel in use (udm1_isa(); CTest runs this test under each UDM1_ISA): also around groups with
+     * far coordinates that go to the scalar code, at -0.0 (a zero's sign), for counts that leave a block
+     * part full or a tail, packed (stride = dims) and strided */
     enum { N = 4099 };
     static double xyz[3 * N], a[N], b[N];
     for (int i = 0; i < 3 * N; ++i) {
@@ -426,13 +426,11 @@ static void test_batch_equals_per_call(void)
     }
     for (int i = 0; i < 12; ++i) xyz[3 * (N - 13 + i) + i % 3] = i < 6 ? -0.0 : 0.0; /* in the last block */
     static const char *tables[] = {NULL, "wr", "drand48"};
-    static const char *isa[] = {"scalar", "avx2", "avx512"}; /* caps: the last one is every kernel there is */
     static const size_t counts[] = {N, 70, 37, 5};           /* 64 full blocks and a tail; part-full blocks */
-    for (int c = 0; c < 3 * 3 * 2; ++c) {                    /* instruction set, table, kind */
-        int s = c / 6, t = c / 2 % 3;
+    for (int c = 0; c < 3 * 2; ++c) {                        /* table, kind */
+        int t = c / 2;
         uint32_t kind = (uint32_t)(c % 2);
         udm1_noise *n = make(tables[t], 9, kind, 0, 0, 0);
-        setenv("UDM1_NOISE_ISA", isa[s], 1);
         for (uint32_t dims = 1; dims <= 3; ++dims)
             for (size_t stride = dims; stride <= 3; stride += 3 - dims > 0 ? 3 - dims : 1)
                 for (size_t k = 0; k < sizeof counts / sizeof counts[0]; ++k) {
@@ -446,17 +444,16 @@ static void test_batch_equals_per_call(void)
                                            : udm1_noise_1d(n, q[0]);
                     }
                     CHECKF(memcmp(a, b, m * sizeof a[0]) == 0,
-                           "%s: table %d kind %u dims %u stride %zu count %zu: batch differs from per call", isa[s], t,
-                           kind, dims, stride, m);
+                           "%s: table %d kind %u dims %u stride %zu count %zu: batch differs from per call", udm1_isa(),
+                           t, kind, dims, stride, m);
                 }
-        unsetenv("UDM1_NOISE_ISA");
         udm1_noise_destroy(n);
     }
 }
 
 static void test_batch_refuses_non_finite(void)
 {
-    /* a NaN or infinity anywhere is refused and the first one named, with every kernel, packed
+    /* a NaN or infinity anywhere is refused and the first one named, with the kernel in use, packed
      * (stride = dims) and strided, in every coordinate: in the first group, across a block's edge,
      * in the tail (N is not a multiple of 4), after a far coordinate in the same block (a group the
      * scalar code takes) and before a second bad point */
@@ -466,9 +463,7 @@ static void test_batch_refuses_non_finite(void)
     udm1_noise *n = make("wr", 1, 0, 0, 0, 0);
     static const size_t at[] = {0, 63, 64, 1023, 1024, 3001, N - 2};
     static const double bad[] = {NAN, INFINITY, -INFINITY};
-    static const char *isa[] = {"scalar", "avx2", "avx512"};
-    for (int s = 0; s < 3; ++s) {
-        setenv("UDM1_NOISE_ISA", isa[s], 1);
+    {
         for (uint32_t dims = 1; dims <= 3; ++dims)
             for (size_t stride = dims; stride <= 4; stride += 4 - dims > 0 ? 4 - dims : 1)
                 for (size_t k = 0; k < sizeof at / sizeof at[0]; ++k)
@@ -483,7 +478,7 @@ static void test_batch_refuses_non_finite(void)
                         CHECK_STATUS(udm1_noise_points(n, dims, xyz, N, stride, out), UDM1_ERROR_INVALID_ARGUMENT);
                         char want[64];
                         snprintf(want, sizeof want, "point %zu coordinate %u is not finite", at[k], c);
-                        CHECKF(strstr(udm1_last_error(), want) != NULL, "%s dims %u stride %zu: '%s' lacks '%s'", isa[s],
+                        CHECKF(strstr(udm1_last_error(), want) != NULL, "%s dims %u stride %zu: '%s' lacks '%s'", udm1_isa(),
                                dims, stride, udm1_last_error(), want);
                         *v = keep;
                         if (far) *far = keep_far;
@@ -491,7 +486,6 @@ static void test_batch_refuses_non_finite(void)
                     }
         CHECK_STATUS(udm1_noise_points(n, 3, xyz, N, 3, out), UDM1_OK);
     }
-    unsetenv("UDM1_NOISE_ISA");
     udm1_noise_destroy(n);
 }
 

@@ -118,12 +118,6 @@ def test_engines_take_a_legacy_random_state_as_scipy_does():
         b = engine(2, seed=np.random.RandomState(3)).random(8)
         c = engine(2, seed=np.random.RandomState(4)).random(8)
         assert np.array_equal(a, b) and not np.array_equal(a, c)
-        assert np.array_equal(engine(2, rng=np.random.RandomState(3)).random(8), a)
-    # scipy's own engines accept the same argument: the convention followed
+    # scipy's own engines accept the same argument (seed=, not rng=): the convention followed
     qmc.Sobol(2, seed=np.random.RandomState(3)).random(8)
-    # and qmc_quad's rebuild of the engine with seed= still works
-    from scipy.integrate import qmc_quad
-
-    res = qmc_quad(lambda x: np.prod(x, axis=0), [0, 0], [1, 1], n_estimates=4, n_points=256,
-                   qrng=udm1.qmc.WR(2, seed=np.random.RandomState(5)))
-    assert abs(res.integral - 0.25) < 5e-3
+    # (scipy's qmc_quad itself needs an engine seeded by a Generator: it spawns from it)

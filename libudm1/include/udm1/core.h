@@ -10,8 +10,8 @@
 #include <stdint.h>
 
 #define UDM1_VERSION_MAJOR 1
-#define UDM1_VERSION_MINOR 5
-#define UDM1_VERSION_PATCH 1
+#define UDM1_VERSION_MINOR 6
+#define UDM1_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, as returned by udm1_version(). */
 #define UDM1_VERSION (UDM1_VERSION_MAJOR * 10000 + UDM1_VERSION_MINOR * 100 + UDM1_VERSION_PATCH)
 
@@ -65,6 +65,12 @@ UDM1_API const char *udm1_version_string(void);
 /* A short fixed English text for a status ("invalid argument"). Static
  * storage; never NULL, also for unknown codes. */
 UDM1_API const char *udm1_status_string(udm1_status status);
+/* The instruction set of the library's kernels in this process - the Weyl bulk fills and the noise
+ * batches: "avx512", "avx2" or "baseline". The best the processor has (x86-64; "baseline" elsewhere),
+ * capped by the environment variable UDM1_ISA=avx512|avx2|baseline, read once, when a kernel is first
+ * needed. Every kernel gives the same values bit for bit; the cap lets tests run each one and
+ * benchmarks compare them. Static storage. (1.6) */
+UDM1_API const char *udm1_isa(void);
 /* The one-line message of the last failing udm1 call on this thread, such as
  * "udm1_seq_create: unknown preset 'wrr'". Empty if none failed yet.
  * Valid until the next failing udm1 call on this thread. */

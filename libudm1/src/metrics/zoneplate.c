@@ -17,8 +17,8 @@ udm1_status udm1_zoneplate(const udm1_seq *seq, uint32_t dim0, uint32_t width, u
         return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimensions (%u, %u) of a %u-dimensional sequence", fn, dim0,
                          dim0 + 1, udm1_seq_dimensions(seq));
     if (width == 0 || height == 0 || width > 16384 || height > 16384 || spp == 0)
-        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: size %ux%u or spp %u out of range (1..16384, spp >= 1)",
-                         fn, width, height, spp);
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: width %u, height %u (each in 1..16384) or spp %u (>= 1) out "
+                         "of range", fn, width, height, spp);
     if (udm1_work_above(width, height, spp, UDM1_WORK_LIMIT_ZONEPLATE))
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
                          "%s: width %u x height %u x spp %u samples is above the work limit 2^32 "

@@ -7,15 +7,16 @@
  * per 3D point instead of 14, 1 per 2D point instead of 6, as scalar loads
  * (AVX2 gathers measured slower here). Groups of four with a coordinate
  * at or past 2^31 go to the scalar code, and so do periodic and classic
- * noise. Chosen at run time: AVX-512VL where the processor has it, else AVX2
- * (UDM1_NOISE_ISA=avx2 or scalar caps the choice). */
+ * noise. Chosen at run time by core/isa.h: AVX-512VL where the processor has it, else AVX2
+ * (UDM1_ISA=avx2 or baseline caps the choice). */
+#include "core/isa.h"
 #include "noise/noise_tables.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__x86_64__) && defined(__GNUC__)
+#if defined(UDM1_HAVE_ISA_KERNELS)
 #include <immintrin.h>
 
 #define AVX2 __attribute__((target("avx2")))
@@ -151,15 +152,13 @@ size_t udm1_noise_points_fast(const udm1_noise *n, uint32_t dims, const double *
     if (dims < 2 || dims > 3) return 0;
     /* an AVX-512 version with 8 lanes (gathers) measured 0.7x the AVX2 one on the benchmark machine:
      * the AVX-512 kernels keep 4 lanes */
-    /* UDM1_NOISE_ISA=avx2 or scalar caps the instruction set (for tests and benchmarks; the values
-     * are the same bit for bit whatever runs) */
-    const char *cap = getenv("UDM1_NOISE_ISA");
-    int avx512 = !cap || (strcmp(cap, "avx2") != 0 && strcmp(cap, "scalar") != 0);
-    int avx2 = !cap || strcmp(cap, "scalar") != 0;
-    if (avx512 && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512dq"))
+    switch (udm1_isa_level()) {
+    case UDM1_ISA_AVX512:
         return dims == 3 ? noise3_avx512(n, xyz, count, stride, out) : noise2_avx512(n, xyz, count, stride, out);
-    if (avx2 && __builtin_cpu_supports("avx2"))
+    case UDM1_ISA_AVX2:
         return dims == 3 ? noise3_avx2(n, xyz, count, stride, out) : noise2_avx2(n, xyz, count, stride, out);
+    default: break;
+    }
     return 0;
 }
 

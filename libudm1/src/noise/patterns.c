@@ -237,7 +237,8 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p,
     if (st != UDM1_OK) return st;
     if (!origin || !step_x || !step_y) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: origin or a step is NULL", fn);
     if (width == 0 || height == 0 || width > 65536 || height > 65536)
-        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: size %ux%u is outside 1..65536", fn, width, height);
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: width %u x height %u: each must be in 1..65536", fn, width,
+                         height);
     if (row0 >= height || rows > height - row0)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: rows [%u, %u + %u) past the height %u", fn, row0, row0,
                          rows, height);

@@ -5,10 +5,12 @@
  * modulo 2^128, so the result equals udm1_weyl_raw() of every (n, j) bit for
  * bit: bulk and per-sample calls, and any split of a range, agree. The inner
  * loop is a plain loop over arrays that compilers vectorize; on x86-64 it is
- * compiled for AVX-512, AVX2 and baseline and picked at load time.
+ * compiled for AVX-512, AVX2 and baseline, and core/isa.h picks one (UDM1_ISA
+ * caps it, so that the tests run each).
  */
 #include "weyl/weyl.h"
 
+#include "core/isa.h"
 #include "seq/scramble.h"
 
 #include <string.h>
@@ -22,21 +24,17 @@
  * the states of a group stay in registers, then the next group. */
 #define TILE 16u
 
-#if defined(UDM1_HAVE_TARGET_CLONES)
-#  define UDM1_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#  define UDM1_CLONES
-#endif
 
 #define CONV_U64(h) (h)
 #define CONV_F64(h) ((double)(int64_t)((h) >> 11) * 0x1p-53)
 #define CONV_F32(h) ((float)(int32_t)((h) >> 40) * 0x1p-24f)
 
 /* Write len values from the states and advance each state by its increment. */
-#define DEFINE_KERNEL(NAME, T, CONV)                                                                   \
-    UDM1_CLONES static void NAME(T *restrict out, size_t len, uint64_t *restrict lo, uint64_t *restrict hi, \
-                                 const uint64_t *restrict inc_lo, const uint64_t *restrict inc_hi)        \
+#define DEFINE_KERNEL(NAME, T, CONV, ATTR)                                                             \
+    ATTR static void NAME(void *out_, size_t len, uint64_t *restrict lo, uint64_t *restrict hi,           \
+                          const uint64_t *restrict inc_lo, const uint64_t *restrict inc_hi)               \
     {                                                                                                  \
+        T *restrict out = out_;                                                                        \
         for (size_t e = 0; e < len; ++e) {                                                             \
             uint64_t h = hi[e];                                                                        \
             out[e] = CONV(h);                                                                          \
@@ -60,11 +58,12 @@ typedef double f64x8 __attribute__((vector_size(64)));
 #  define VCONV_U64(h) (h)
 #  define VCONV_F64(h) (__builtin_convertvector((i64x8)((h) >> 11), f64x8) * 0x1p-53)
 #  define VCONV_F32(h) (__builtin_convertvector(__builtin_convertvector((h) >> 40, i32x8), f32x8) * 0x1p-24f)
-#  define DEFINE_FLAT_KERNEL(NAME, T, VT, VCONV, CONV)                                                \
-    UDM1_CLONES static void NAME(T *restrict out, size_t total, size_t L, uint64_t *restrict lo0,         \
-                                 uint64_t *restrict hi0, const uint64_t *restrict ilo0,                   \
-                                 const uint64_t *restrict ihi0)                                           \
+#  define DEFINE_FLAT_KERNEL(NAME, T, VT, VCONV, CONV, ATTR)                                          \
+    ATTR static void NAME(void *out_, size_t total, size_t L, uint64_t *restrict lo0,                     \
+                          uint64_t *restrict hi0, const uint64_t *restrict ilo0,                          \
+                          const uint64_t *restrict ihi0)                                                  \
     {                                                                                                  \
+        T *restrict out = out_;                                                                        \
         for (size_t c0 = 0; c0 < total; c0 += TILE * L) { /* a tile of blocks stays in cache */        \
             size_t cend = total - c0 < TILE * L ? total : c0 + TILE * L;                               \
             size_t e0 = 0;                                                                             \
@@ -108,10 +107,11 @@ typedef double f64x8 __attribute__((vector_size(64)));
         }                                                                                              \
     }
 #else
-#  define DEFINE_FLAT_KERNEL(NAME, T, VT, VCONV, CONV)                                                \
-    static void NAME(T *restrict out, size_t total, size_t L, uint64_t *restrict lo0,                    \
-                     uint64_t *restrict hi0, const uint64_t *restrict ilo0, const uint64_t *restrict ihi0)       \
+#  define DEFINE_FLAT_KERNEL(NAME, T, VT, VCONV, CONV, ATTR)                                          \
+    static void NAME(void *out_, size_t total, size_t L, uint64_t *restrict lo0, uint64_t *restrict hi0,   \
+                     const uint64_t *restrict ilo0, const uint64_t *restrict ihi0)                        \
     {                                                                                                  \
+        T *restrict out = out_;                                                                        \
         for (size_t e0 = 0; e0 < L; ++e0) {                                                            \
             uint64_t lo = lo0[e0], hi = hi0[e0];                                                       \
             for (size_t base = e0; base < total; base += L) {                                          \
@@ -124,37 +124,59 @@ typedef double f64x8 __attribute__((vector_size(64)));
     }
 #endif
 
-DEFINE_KERNEL(kernel_u64, uint64_t, CONV_U64)
-DEFINE_KERNEL(kernel_f64, double, CONV_F64)
-DEFINE_KERNEL(kernel_f32, float, CONV_F32)
-DEFINE_FLAT_KERNEL(flat_u64, uint64_t, u64x8, VCONV_U64, CONV_U64)
-DEFINE_FLAT_KERNEL(flat_f64, double, f64x8, VCONV_F64, CONV_F64)
-DEFINE_FLAT_KERNEL(flat_f32, float, f32x8, VCONV_F32, CONV_F32)
+/* The kernels of one instruction set, and their table */
+typedef struct kernels {
+    void (*row[3])(void *out, size_t len, uint64_t *lo, uint64_t *hi, const uint64_t *ilo, const uint64_t *ihi);
+    void (*flat[3])(void *out, size_t total, size_t L, uint64_t *lo, uint64_t *hi, const uint64_t *ilo,
+                    const uint64_t *ihi);
+} kernels;
 
-static void run_flat(int kind, void *out, size_t total, size_t L, uint64_t *lo, uint64_t *hi,
-                     const uint64_t *ilo, const uint64_t *ihi)
+#define DEFINE_KERNELS(SUFFIX, ATTR)                                                                   \
+    DEFINE_KERNEL(kernel_u64_##SUFFIX, uint64_t, CONV_U64, ATTR)                                       \
+    DEFINE_KERNEL(kernel_f64_##SUFFIX, double, CONV_F64, ATTR)                                         \
+    DEFINE_KERNEL(kernel_f32_##SUFFIX, float, CONV_F32, ATTR)                                          \
+    DEFINE_FLAT_KERNEL(flat_u64_##SUFFIX, uint64_t, u64x8, VCONV_U64, CONV_U64, ATTR)                  \
+    DEFINE_FLAT_KERNEL(flat_f64_##SUFFIX, double, f64x8, VCONV_F64, CONV_F64, ATTR)                    \
+    DEFINE_FLAT_KERNEL(flat_f32_##SUFFIX, float, f32x8, VCONV_F32, CONV_F32, ATTR)                     \
+    static const kernels kernels_##SUFFIX = {{kernel_u64_##SUFFIX, kernel_f64_##SUFFIX, kernel_f32_##SUFFIX},      \
+                                              {flat_u64_##SUFFIX, flat_f64_##SUFFIX, flat_f32_##SUFFIX}};
+
+DEFINE_KERNELS(baseline, )
+#if defined(UDM1_HAVE_ISA_KERNELS)
+DEFINE_KERNELS(avx2, __attribute__((target("arch=x86-64-v3"))))
+DEFINE_KERNELS(avx512, __attribute__((target("arch=x86-64-v4"))))
+#endif
+
+static const kernels *kernels_in_use(void)
 {
-    switch (kind) {
-    case UDM1_OUT_U64: flat_u64((uint64_t *)out, total, L, lo, hi, ilo, ihi); break;
-    case UDM1_OUT_F64: flat_f64((double *)out, total, L, lo, hi, ilo, ihi); break;
-    default: flat_f32((float *)out, total, L, lo, hi, ilo, ihi); break;
+#if defined(UDM1_HAVE_ISA_KERNELS)
+    switch (udm1_isa_level()) {
+    case UDM1_ISA_AVX512: return &kernels_avx512;
+    case UDM1_ISA_AVX2: return &kernels_avx2;
+    default: break;
     }
+#endif
+    return &kernels_baseline;
 }
 
-static void run_kernel(int kind, void *out, size_t offset, size_t len, uint64_t *lo, uint64_t *hi,
+static void run_flat(const kernels *k, int kind, void *out, size_t total, size_t L, uint64_t *lo, uint64_t *hi,
+                     const uint64_t *ilo, const uint64_t *ihi)
+{
+    k->flat[kind](out, total, L, lo, hi, ilo, ihi);
+}
+
+static void run_kernel(const kernels *k, int kind, void *out, size_t offset, size_t len, uint64_t *lo, uint64_t *hi,
                        const uint64_t *ilo, const uint64_t *ihi)
 {
-    switch (kind) {
-    case UDM1_OUT_U64: kernel_u64((uint64_t *)out + offset, len, lo, hi, ilo, ihi); break;
-    case UDM1_OUT_F64: kernel_f64((double *)out + offset, len, lo, hi, ilo, ihi); break;
-    default: kernel_f32((float *)out + offset, len, lo, hi, ilo, ihi); break;
-    }
+    size_t size = kind == UDM1_OUT_F32 ? sizeof(float) : sizeof(uint64_t);
+    k->row[kind]((char *)out + offset * size, len, lo, hi, ilo, ihi);
 }
 
 void udm1_weyl_fill(int kind, const udm1_seq_t *seq, uint64_t skey, uint64_t first, size_t count, uint32_t dim0,
                     uint32_t ndims, void *out, size_t stride)
 {
     uint64_t lo[BLOCK], hi[BLOCK], inc_lo[BLOCK], inc_hi[BLOCK];
+    const kernels *k = kernels_in_use();
     first = udm1_screen_index(seq, skey, first); /* a pixel's segment of one sequence in screen mode */
 
     for (uint32_t c0 = 0; c0 < ndims; c0 += BLOCK) {
@@ -190,14 +212,14 @@ void udm1_weyl_fill(int kind, const udm1_seq_t *seq, uint64_t skey, uint64_t fir
         }
 
         if (flat) {
-            run_flat(kind, out, count * cw, rows_per_block * cw, lo, hi, inc_lo, inc_hi);
+            run_flat(k, kind, out, count * cw, rows_per_block * cw, lo, hi, inc_lo, inc_hi);
             continue;
         }
         for (size_t i = 0; i < count; i += rows_per_block) {
             size_t rows = count - i < rows_per_block ? count - i : rows_per_block;
             {
                 for (size_t q = 0; q < rows; ++q)
-                    run_kernel(kind, out, (i + q) * stride + c0, cw, lo + q * cw, hi + q * cw, inc_lo + q * cw,
+                    run_kernel(k, kind, out, (i + q) * stride + c0, cw, lo + q * cw, hi + q * cw, inc_lo + q * cw,
                                inc_hi + q * cw);
             }
         }

@@ -1,0 +1,48 @@
+/* isa.c - see isa.h. */
+#include "core/isa.h"
+
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* What the processor and this build support: the kernels exist for x86-64 with GCC or Clang when the
+ * build compiles them (UDM1_MULTIVERSION, UDM1_HAVE_ISA_KERNELS). */
+static int supported(void)
+{
+#if defined(UDM1_HAVE_ISA_KERNELS) && defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+        __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw"))
+        return UDM1_ISA_AVX512;
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2"))
+        return UDM1_ISA_AVX2;
+#endif
+    return UDM1_ISA_BASELINE;
+}
+
+static int cap(void)
+{
+    const char *v = getenv("UDM1_ISA");
+    if (!v || !*v) return UDM1_ISA_AVX512;
+    if (strcmp(v, "avx2") == 0) return UDM1_ISA_AVX2;
+    if (strcmp(v, "baseline") == 0 || strcmp(v, "scalar") == 0) return UDM1_ISA_BASELINE;
+    return UDM1_ISA_AVX512; /* "avx512" or anything else: no cap */
+}
+
+static atomic_int level = -1;
+
+int udm1_isa_level(void)
+{
+    int l = atomic_load_explicit(&level, memory_order_relaxed);
+    if (UDM1_LIKELY(l >= 0)) return l;
+    int s = supported(), c = cap();
+    l = s < c ? s : c;
+    atomic_store_explicit(&level, l, memory_order_relaxed); /* every thread computes the same value */
+    return l;
+}
+
+const char *udm1_isa(void)
+{
+    static const char *const names[] = {"baseline", "avx2", "avx512"};
+    return names[udm1_isa_level()];
+}
