@@ -233,11 +233,17 @@ class Sequence:
         fill_name = _DTYPES[dt][0]
         n = u64(n, "n")
         first, stream = u64(first, "first"), u64(stream, "stream")
+        fill = getattr(lib, fill_name)
         if out is None:
+            # the library's checks first (a range past a point set, ...), before a large allocation: with no
+            # output array it answers NULL_ARGUMENT only when everything else is valid
+            st = fill(self.handle, stream, first, n, d0, nd, None, nd)
+            if st not in (0, 1):
+                check(st)
             out = np.empty((n, nd), dtype=dt)
         elif out.dtype != dt or out.shape != (n, nd) or not out.flags.c_contiguous:
             raise ValueError(f"udm1.Sequence.points: out must be a C-contiguous {dt} array of shape ({n}, {nd})")
-        check(getattr(lib, fill_name)(self.handle, stream, first, n, d0, nd, out.ctypes.data if n else None, nd))
+        check(fill(self.handle, stream, first, n, d0, nd, out.ctypes.data if n else None, nd))
         return out
 
     def points_at(self, streams, indices, *, dims=None) -> np.ndarray:
