@@ -4,11 +4,15 @@
  *  - no crash, no hang, no sanitizer report;
  *  - every status is a udm1_status with a message string, and a failing call writes nothing;
  *  - every value is in [0, 1) (f64 and f32) and the raw values agree with the f64 conversion;
- *  - a bulk fill equals per-sample access and the cursor, value for value. */
+ *  - a bulk fill equals per-sample access and the cursor, value for value;
+ *  - many points at once equal the cursor, with a first dimension anywhere below 2^32; a dimension range
+ *    reaching the index limit is refused, and a cursor that passes it draws NaN;
+ *  - a discrepancy is never NaN, at any dimension. */
 #include "fuzz_bytes.h"
 
 #include <udm1/udm1.h>
 
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -109,6 +113,49 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             double pad[40];
             udm1_cursor_fill_f64(&c, (uint32_t)(take(&b, 1) % 40), pad);
         }
+    }
+    /* many points at once, the first dimension anywhere (the index limit included), against the cursor */
+    {
+        uint32_t fd = (take(&b, 1) & 1) ? (uint32_t)take(&b, 4) : (uint32_t)take(&b, 1) % (d + 4);
+        uint32_t nd = (uint32_t)take(&b, 1) % 6;
+        size_t np = (size_t)take(&b, 1) % 5;
+        uint64_t streams[4], idx[4];
+        for (size_t i = 0; i < np; ++i) {
+            streams[i] = take(&b, 1) & 1 ? take(&b, 8) : take(&b, 1);
+            idx[i] = k ? take(&b, 2) % (k + 1) : take(&b, 8);
+        }
+        double out[4 * 5];
+        udm1_status s5 = udm1_seq_fill_points_f64(seq, np, streams, idx, fd, nd, out);
+        check_status(s5);
+        int bad_dims = nd == 0 || fd >= UDM1_DIMENSION_INDEX_LIMIT || nd > UDM1_DIMENSION_INDEX_LIMIT - fd;
+        if (bad_dims) REQUIRE(s5 == UDM1_ERROR_DIMENSION);
+        if (s5 == UDM1_OK)
+            for (size_t i = 0; i < np; ++i) {
+                udm1_cursor c;
+                REQUIRE(udm1_cursor_start(&c, seq, streams[i], idx[i], fd) == UDM1_OK);
+                for (uint32_t j = 0; j < nd; ++j) REQUIRE(udm1_cursor_1d_f64(&c) == out[i * nd + j]);
+            }
+        /* a cursor near the limit: values up to it, NaN past it */
+        udm1_cursor c;
+        uint32_t near = UDM1_DIMENSION_INDEX_LIMIT - 1 - (uint32_t)take(&b, 1) % 4;
+        if (udm1_cursor_start(&c, seq, 0, 0, near) == UDM1_OK) {
+            double v[6];
+            udm1_cursor_fill_f64(&c, 6, v);
+            for (uint32_t j = 0; j < 6; ++j)
+                REQUIRE((uint64_t)near + j < UDM1_DIMENSION_INDEX_LIMIT ? (v[j] >= 0.0 && v[j] < 1.0) : isnan(v[j]));
+        }
+    }
+    /* a discrepancy of a few points at any dimension: a number or +inf, never NaN */
+    {
+        uint32_t dd = 1 + (uint32_t)take(&b, 2) % 3000;
+        size_t np = 1 + (size_t)take(&b, 1) % 3;
+        double *x = malloc(sizeof(double) * np * dd), disc = -1;
+        REQUIRE(x);
+        for (size_t i = 0; i < np * dd; ++i) x[i] = (double)(take(&b, 1) % 65) / 64.0;
+        udm1_status s6 = udm1_discrepancy(x, np, dd, dd, 1 + (uint32_t)take(&b, 1) % 4, &disc);
+        check_status(s6);
+        if (s6 == UDM1_OK) REQUIRE(!isnan(disc) && disc >= 0);
+        free(x);
     }
     udm1_alpha_report rep;
     uint64_t n = take(&b, 2) % 300;
