@@ -116,7 +116,7 @@ fuzz)
     udm1_bootstrap "$ROOT"
     udm1_log "building the libFuzzer targets with clang, ASan and UBSan (build-fuzz/)"
     CC=clang-14 CXX=clang++-14 build build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_FUZZ=ON \
-        -DUDM1_MULTIVERSION=OFF -DUDM1_PYTHON="$PY"
+        -DUDM1_MULTIVERSION=ON -DUDM1_PYTHON="$PY"
     udm1_log "fuzzing every target (tools/fuzz_run.py; ${1:-60} s each)"
     "$PY" tools/fuzz_run.py --build "$ROOT/build-fuzz" --seconds "${1:-60}" "${@:2}"
     ;;
