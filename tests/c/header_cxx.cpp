@@ -12,5 +12,12 @@ int main()
     double x = 0.0;
     if (udm1_seq_sample_f64(seq.get(), 0, 1000, 21, &x) != UDM1_OK) return 1;
     std::printf("udm1 %s from C++: %f\n", udm1_version_string(), x);
-    return (x >= 0.0 && x < 1.0) ? 0 : 1;
+    // the inline draws of udm1/stream.h and udm1/domain.h, compiled as C++
+    udm1_stream st;
+    if (udm1_stream_init(&st, seq.get(), 0, 20, 2) != UDM1_OK) return 1;
+    double y[2];
+    float u[4];
+    udm1_stream_draw_f64(&st, 1000, 1, 1, y);
+    udm1_domain_draw_f32(udm1_domain_chain(udm1_domain_root(&st, 9), 3, 1), 4, u);
+    return (x >= 0.0 && x < 1.0 && y[0] == x && u[0] >= 0.0f && u[3] < 1.0f) ? 0 : 1;
 }

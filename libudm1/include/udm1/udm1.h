@@ -3,6 +3,8 @@
  *
  *   udm1/core.h     version, export macro, status codes, the last error
  *   udm1/seq.h      sequences: presets, creation, random access, fills, cursor, generator check
+ *   udm1/stream.h   one stream of a sequence, drawn per sample inline (a renderer's pixel)
+ *   udm1/domain.h   domains: keyed sub-samplers of a stream's sample, up to four dimensions each
  *   udm1/metrics.h  discrepancies, distances, integrands, integration error, spectra, zone plate
  *   udm1/noise.h    lattice noise, POV-Ray patterns and colour maps
  *
@@ -22,6 +24,8 @@
 
 #include "udm1/core.h"
 #include "udm1/seq.h"
+#include "udm1/stream.h"
+#include "udm1/domain.h"
 #include "udm1/metrics.h"
 #include "udm1/noise.h"
 

@@ -15,17 +15,11 @@
 #ifndef UDM1_HASH_H
 #define UDM1_HASH_H
 
+#include "udm1/domain.h" /* udm1_mix64 and UDM1_GOLDEN_GAMMA: public, the domains' keys use them */
+
 #include <stdint.h>
 
-#define UDM1_GOLDEN_GAMMA 0x9E3779B97F4A7C15ull
 #define UDM1_SEED_SALT 0x75646D3153454544ull /* "udm1SEED" */
-
-static inline uint64_t udm1_mix64(uint64_t z)
-{
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
 
 static inline uint64_t udm1_seed_key(uint64_t seed) { return udm1_mix64(seed ^ UDM1_SEED_SALT); }
 

@@ -72,7 +72,7 @@ void udm1_cursor_2d_f64(udm1_cursor *cursor, double out[2])
 
 /* The next n raw values: the sequence's own fill over the dimensions it has (one
  * row of a sequential fill), cursor_next for the padded rest. */
-static void cursor_fill_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
+void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
 {
     const udm1_seq *seq = c->seq;
     uint32_t k = 0;
@@ -95,7 +95,7 @@ static void cursor_fill_as(const char *fn, udm1_cursor *cursor, uint32_t n, void
         uint32_t m = n - done < 32 ? n - done : 32, ok = 0;
         if (can_draw(cursor, fn)) {
             ok = UDM1_DIMENSION_INDEX_LIMIT - cursor->dimension < m ? UDM1_DIMENSION_INDEX_LIMIT - cursor->dimension : m;
-            cursor_fill_raw(cursor, ok, raw);
+            udm1_cursor_raw(cursor, ok, raw);
             if (ok < m) can_draw(cursor, fn); /* the message: exhausted */
         }
         for (uint32_t k = 0; k < m; ++k) {

@@ -52,35 +52,14 @@ static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
     return (uint32_t)(((uint64_t)i + p) % l);
 }
 
-static inline uint32_t udm1_reverse32(uint32_t x)
-{
-    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
-    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
-    return (x >> 16) | (x << 16);
-}
-
 static inline uint64_t udm1_reverse64(uint64_t x)
 {
     return ((uint64_t)udm1_reverse32((uint32_t)x) << 32) | udm1_reverse32((uint32_t)(x >> 32));
 }
 
-/* bits flow only from low to high: applied to reversed digits it is an Owen scramble */
-static inline uint32_t udm1_lk_hash(uint32_t x, uint32_t seed)
-{
-    x ^= x * 0x3d20adeau;
-    x += seed;
-    x *= (seed >> 16) | 1u;
-    x ^= x * 0x05526c56u;
-    x ^= x * 0x53a22864u;
-    return x;
-}
-
-static inline uint32_t udm1_owen32(uint32_t x, uint32_t seed)
-{
-    return udm1_reverse32(udm1_lk_hash(udm1_reverse32(x), seed));
-}
+/* udm1_reverse32, udm1_owen_hash32 and udm1_owen_index32 (an Owen scramble of 32 bits) are public:
+ * udm1/domain.h, where the domains' index permutation uses them. */
+static inline uint32_t udm1_owen32(uint32_t x, uint32_t seed) { return udm1_owen_index32(x, seed); }
 
 static inline uint64_t udm1_owen64(uint64_t v, uint64_t r)
 {

@@ -84,6 +84,11 @@ typedef struct udm1_preset {
 UDM1_HIDDEN const udm1_preset *udm1_preset_lookup(const char *name);
 UDM1_HIDDEN int udm1_preset_is_tent(const char *name);
 
+/* ---- the cursor's raw draws (cursor.c) ---- */
+/* The next n raw values of a started cursor (its dimensions stay below the index limit: the caller
+ * checks): the kind's fill of a row over the sequence's own dimensions, padding past them. */
+UDM1_HIDDEN void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw);
+
 /* ---- transforms of a kind (tent.c) ---- */
 /* The tent (baker's) transform 1 - |2x - 1| on a raw 0.64 value, exact: 2x below 1/2, 2 - 2x above. */
 static inline uint64_t udm1_tent(uint64_t x) { return (x >> 63) ? (0 - x) << 1 : x << 1; }

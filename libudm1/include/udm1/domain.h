@@ -1,0 +1,201 @@
+/*
+ * udm1/domain.h - domains: samplers for the sub-problems of a render, derived from keys, so that a
+ * renderer never hands out dimension indices. Part of libudm1's public interface; udm1/udm1.h includes
+ * every part. (1.6)
+ *
+ * A domain is a 24-byte value (a stream, a key, a sample index), passed and copied freely. It gives up
+ * to four dimensions, drawn together; a sub-problem that needs more takes more domains:
+ *
+ *     udm1_domain px = udm1_domain_root(&stream, sample);   // the pixel's sample
+ *     float film[2];  udm1_domain_draw_f32(px, 2, film);     // the root: the stream's dimensions 0, 1
+ *     for (int depth = 0; ...; ++depth) {
+ *         udm1_domain v = udm1_domain_child(px, 100 + depth);  // this vertex
+ *         float u[4];  udm1_domain_draw_f32(v, 4, u);           // light (u[0], u[1]), BSDF (u[2], u[3])
+ *         float rr;    udm1_domain_draw_f32(udm1_domain_child(v, 1), 1, &rr);
+ *     }
+ *
+ * The rules:
+ *  - Within a domain, the dimensions drawn together are low-discrepancy jointly, across the samples of
+ *    a stream: a domain's 4D pattern is the sequence's first four dimensions (those of its stream, from
+ *    `first`), so its 2D projections have the sequence's discrepancy.
+ *  - Different keys give decorrelated domains. A child's pattern is the same set randomized by its own
+ *    key: a random shift of each dimension (Weyl) or the sequence's randomization keyed by the domain
+ *    (the others), and its sample index permuted by a nested uniform (Owen) scramble of the low 32 bits,
+ *    so two domains pair their points like two independent stratified sets, not point by point. The
+ *    index permutation maps every aligned block of 2^k indices onto an aligned block: the first 2^k
+ *    samples of a child domain are 2^k consecutive points of the sequence (for a Kronecker sequence a
+ *    shifted copy of its first 2^k points, the same wrap-around discrepancy), and between powers of two
+ *    a stratified subset of the next block.
+ *  - The root is the stream itself: its draws equal udm1_stream_draw_* of dimensions 0..3 (the cursor's
+ *    values), with no permutation: the camera's dimensions keep the sequence's order at every count.
+ *  - Keys are any 64-bit numbers; siblings need distinct keys, which may be 0, 1, 2, ... A chain
+ *    child(child(d, a), b) is another domain than child(d, b). Equal derivations give equal domains in
+ *    every pixel, sample, thread and run.
+ *  - udm1_domain_split(d, key, n, i), i < n: the n sub-samples of d's sample (samples d.index * n + i of
+ *    the child of key): together over all samples one globally well-distributed pattern of n times the
+ *    samples, and for n a power of two each sample's n sub-samples are consecutive points of it.
+ *  - udm1_domain_chain(d, key, i): sub-sample i when their number is not fixed: child(child(d, key), i).
+ *
+ * Draws past the sequence's dimensions are padded with hashed values (the cursor's rule), and a point
+ * set's index permutation stays inside its K points. Domains of a sequence other than a Weyl sequence
+ * without a transform (see udm1/stream.h) draw through one library call, udm1_domain_fill_raw.
+ */
+#ifndef UDM1_DOMAIN_H
+#define UDM1_DOMAIN_H
+
+#include "udm1/stream.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct udm1_domain {
+    const udm1_stream *stream;
+    uint64_t key;    /* 0 for the root; else derived from its parent's key and its own (below) */
+    uint64_t index;  /* the sample index */
+} udm1_domain;
+
+/* The golden-ratio increment and the 64-bit finalizer (Stafford's Mix13) of the library's hashing: the
+ * per-stream shifts of udm1/seq.h, the padding and the domains' keys. Part of the ABI. */
+#define UDM1_GOLDEN_GAMMA 0x9E3779B97F4A7C15ull
+
+static inline uint64_t udm1_mix64(uint64_t z)
+{
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
+
+/* The bits of x in reverse order. */
+static inline uint32_t udm1_reverse32(uint32_t x)
+{
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+/* A hash of 32 bits in which each output bit depends only on the input bits at or below it, each step
+ * a bijection modulo 2^k for every k (Burley 2020, with Vegdahl's constants): applied to bit-reversed
+ * digits it is a nested uniform (Owen) scramble. */
+static inline uint32_t udm1_owen_hash32(uint32_t x, uint32_t seed)
+{
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+
+/* A nested uniform scramble of a 32-bit index: it maps each aligned block of 2^k indices onto an
+ * aligned block of 2^k. */
+static inline uint32_t udm1_owen_index32(uint32_t x, uint32_t seed)
+{
+    return udm1_reverse32(udm1_owen_hash32(udm1_reverse32(x), seed));
+}
+
+/* The root domain of a stream's sample `index`. */
+static inline udm1_domain udm1_domain_root(const udm1_stream *st, uint64_t index)
+{
+    udm1_domain d;
+    d.stream = st, d.key = 0, d.index = index;
+    return d;
+}
+
+/* The child of key `key`: its key is mix64(K + (key + 1) G), K its parent's key (the stream's own for
+ * the root), and never 0 (0 becomes G). */
+static inline udm1_domain udm1_domain_child(udm1_domain parent, uint64_t key)
+{
+    uint64_t base = parent.key ? parent.key : (parent.stream ? parent.stream->key : 0);
+    uint64_t k = udm1_mix64(base + (key + 1u) * UDM1_GOLDEN_GAMMA);
+    parent.key = k ? k : UDM1_GOLDEN_GAMMA;
+    return parent;
+}
+
+/* Sub-sample i of n of the child of key (see the rules above): that child at index parent.index * n + i. */
+static inline udm1_domain udm1_domain_split(udm1_domain parent, uint64_t key, uint32_t n, uint32_t i)
+{
+    udm1_domain d = udm1_domain_child(parent, key);
+    d.index = parent.index * n + i;
+    return d;
+}
+
+/* Sub-sample i of an open-ended number: child(child(parent, key), i). */
+static inline udm1_domain udm1_domain_chain(udm1_domain parent, uint64_t key, uint64_t i)
+{
+    return udm1_domain_child(udm1_domain_child(parent, key), i);
+}
+
+/* The raw values of the domain's first n dimensions (1..4) into raw: any domain, any sequence kind.
+ * Errors (raw left unchanged): NULL_ARGUMENT, DIMENSION (n 0 or above 4). */
+UDM1_API udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw);
+
+/* Whether the child domain d draws n dimensions inline (a Weyl sequence, no point set, held dims). */
+static inline int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
+{
+    const udm1_stream *st = d->stream;
+    return st && d->key && n <= 4 && n <= st->held && st->point_count == 0;
+}
+
+/* A child domain's raw value of dimension j (inline case): its index scrambled, its own shift. */
+static inline uint64_t udm1_domain_value_(const udm1_stream *st, uint64_t key, uint64_t m, uint32_t j)
+{
+    return udm1_weyl_value(st->a_hi[j], st->a_lo[j], st->domain_base[j] + udm1_mix64(key + st->domain_key[j]), m);
+}
+
+/* The domain's first n dimensions (1..4) as raw values, floats or doubles. A draw the library refuses
+ * gives 0 (raw) or NaN, with udm1_last_error() saying why. */
+static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
+{
+    if (!d.key && d.stream) {
+        udm1_stream_draw_raw(d.stream, d.index, 0, n <= 4 ? n : 4, raw);
+        return;
+    }
+    if (udm1_domain_inline_(&d, n)) {
+        uint64_t m = (d.index & 0xFFFFFFFF00000000ull) | udm1_owen_index32((uint32_t)d.index, (uint32_t)(d.key >> 32));
+        for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_domain_value_(d.stream, d.key, m, j);
+        return;
+    }
+    if (udm1_domain_fill_raw(&d, n, raw) != UDM1_OK)
+        for (uint32_t j = 0; j < n && j < 4; ++j) raw[j] = 0;
+}
+
+static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
+{
+    uint64_t raw[4];
+    if (d.key && udm1_domain_inline_(&d, n)) {
+        uint64_t m = (d.index & 0xFFFFFFFF00000000ull) | udm1_owen_index32((uint32_t)d.index, (uint32_t)(d.key >> 32));
+        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f32(udm1_domain_value_(d.stream, d.key, m, j));
+        return;
+    }
+    if (!d.key && d.stream) {
+        udm1_stream_draw_f32(d.stream, d.index, 0, n <= 4 ? n : 4, out);
+        return;
+    }
+    int ok = udm1_domain_fill_raw(&d, n, raw) == UDM1_OK;
+    for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = ok ? udm1_raw_to_f32(raw[j]) : (float)NAN;
+}
+
+static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
+{
+    uint64_t raw[4];
+    if (d.key && udm1_domain_inline_(&d, n)) {
+        uint64_t m = (d.index & 0xFFFFFFFF00000000ull) | udm1_owen_index32((uint32_t)d.index, (uint32_t)(d.key >> 32));
+        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f64(udm1_domain_value_(d.stream, d.key, m, j));
+        return;
+    }
+    if (!d.key && d.stream) {
+        udm1_stream_draw_f64(d.stream, d.index, 0, n <= 4 ? n : 4, out);
+        return;
+    }
+    int ok = udm1_domain_fill_raw(&d, n, raw) == UDM1_OK;
+    for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = ok ? udm1_raw_to_f64(raw[j]) : NAN;
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* UDM1_DOMAIN_H */

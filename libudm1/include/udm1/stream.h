@@ -1,0 +1,187 @@
+/*
+ * udm1/stream.h - one stream of a sequence, ready to draw per sample without a library call: a
+ * renderer's pixel. Part of libudm1's public interface; udm1/udm1.h includes every part. (1.6)
+ *
+ * A renderer asks for a few dimensions of one (pixel, sample) at a time. A call into the shared library
+ * per value costs more than the value (a Weyl value is two multiplications), so udm1_stream_init fills,
+ * once per stream, what each of its dimensions needs - for a Weyl sequence the generator A_j and the
+ * stream's offset O_j = o_j + r_j(seed, stream) of the sequence contract (udm1/seq.h) - and the draws
+ * below are static inline: the documented integer arithmetic on this struct, in the caller's code,
+ * where the compiler can keep it in registers and vectorize it over dimensions.
+ *
+ *     udm1_stream px;                                      // about 1.7 KB, on the stack or in a tile
+ *     udm1_stream_init(&px, seq, ((uint64_t)y << 32) | x, 0, 32);   // once per pixel: dims 0..31
+ *     for (uint64_t i = 0; i < spp; ++i) {
+ *         float film[2];  udm1_stream_draw_f32(&px, i, 0, 2, film);    // dimensions 0, 1 of sample i
+ *         ...
+ *     }
+ *
+ * The values are those of the sequence, bit for bit: udm1_seq_sample_*, the fills, the cursor and
+ * udm1_seq_fill_points_f64 give the same (the contract's exactness, conversions and padding included).
+ * The inline arithmetic is used where the struct says it applies (flags & UDM1_STREAM_INLINE: a Weyl
+ * sequence without a transform, in modes none, shift or screen) and the dimensions asked are among the
+ * `held` ones (the sequence's own, not padded); every other case - the other sampler kinds, the tent, digit scrambling, dimensions
+ * outside [first, first + count), an index outside a point set - goes through udm1_stream_fill_raw, one
+ * library call for the whole draw (for a PRNG one seek for all its values). Those draws are no less
+ * exact, only not inline.
+ *
+ * A udm1_stream refers to its sequence (which must outlive it) and is not changed by drawing: one may be
+ * shared by any number of threads. It holds no allocation: no cleanup.
+ */
+#ifndef UDM1_STREAM_H
+#define UDM1_STREAM_H
+
+#include "udm1/seq.h"
+
+#include <math.h>
+
+/* The dimensions one udm1_stream holds (more: several streams, or draws through the library). */
+#define UDM1_STREAM_DIMS 64u
+/* udm1_stream.flags: the inline Weyl arithmetic applies to the dimensions it holds. */
+#define UDM1_STREAM_INLINE 1u
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct udm1_stream {
+    uint32_t struct_size;  /* sizeof(udm1_stream) of the library that filled it */
+    uint32_t flags;        /* UDM1_STREAM_* */
+    const udm1_seq *seq;
+    uint64_t stream;       /* the stream id given to udm1_stream_init */
+    uint64_t key;          /* private: the stream's key (core hash of seed and stream) */
+    uint64_t index_base;   /* added to every index (screen-space randomization: m N; else 0) */
+    uint64_t point_count;  /* K of a point set, else 0 */
+    uint32_t first, count; /* the dimensions it stands for: [first, first + count), count <= UDM1_STREAM_DIMS */
+    uint32_t held;         /* how many of them, from first, the inline arithmetic covers (0 if none) */
+    uint32_t dimensions;   /* D of the sequence */
+    /* per dimension held (UDM1_STREAM_INLINE): A_j in 0.128 fixed point and O_j in 0.64 */
+    uint64_t a_hi[UDM1_STREAM_DIMS], a_lo[UDM1_STREAM_DIMS], offset[UDM1_STREAM_DIMS];
+    /* for domains (udm1/domain.h), the first four dimensions held: base offsets o_j and dimension keys */
+    uint64_t domain_base[4], domain_key[4];
+} udm1_stream;
+
+/* Fill *st for stream `stream` of seq, dimensions [first_dimension, first_dimension + count).
+ * count may exceed D (the rest is padded, as the cursor pads) and is at most UDM1_STREAM_DIMS.
+ * Errors: NULL_ARGUMENT, DIMENSION (count 0 or above UDM1_STREAM_DIMS, or the range past the dimension
+ * index limit). On error *st is left unchanged. */
+UDM1_API udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stream,
+                                      uint32_t first_dimension, uint32_t count);
+
+/* Raw 0.64 values of dimensions [first + dim, first + dim + n) of point `index` into raw[0..n-1]: any
+ * dimension (held, or not: the sequence's value or its padding), any kind. The draws below call it where
+ * their inline arithmetic does not apply. Errors (raw left unchanged): NULL_ARGUMENT, INDEX_RANGE
+ * (index >= K of a point set), DIMENSION (past the dimension index limit). */
+UDM1_API udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+                                          uint64_t *raw);
+
+/* ---- inline arithmetic (the sequence contract of udm1/seq.h) -------------------------------------- */
+
+/* The top 64 bits of a * b. */
+static inline uint64_t udm1_mulhi64(uint64_t a, uint64_t b)
+{
+#if defined(__SIZEOF_INT128__)
+    __extension__ typedef unsigned __int128 udm1_u128_;
+    return (uint64_t)(((udm1_u128_)a * b) >> 64);
+#else
+    uint64_t a0 = a & 0xFFFFFFFFu, a1 = a >> 32, b0 = b & 0xFFFFFFFFu, b1 = b >> 32;
+    uint64_t mid = (a0 * b0 >> 32) + (a1 * b0 & 0xFFFFFFFFu) + (a0 * b1 & 0xFFFFFFFFu);
+    return a1 * b1 + (a1 * b0 >> 32) + (a0 * b1 >> 32) + (mid >> 32);
+#endif
+}
+
+/* The raw value of a Weyl dimension: the top 64 bits of (o 2^64 + n (a_hi 2^64 + a_lo)) mod 2^128. */
+static inline uint64_t udm1_weyl_value(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint64_t n)
+{
+    return o + n * a_hi + udm1_mulhi64(n, a_lo);
+}
+
+/* The same for n < 2^32 with 32-bit products only, which compilers vectorize (equal bit for bit: with
+ * n < 2^32 neither partial sum below reaches 2^64). */
+static inline uint64_t udm1_weyl_value32(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint64_t n)
+{
+    uint64_t hi_part = n * (a_hi & 0xFFFFFFFFu) + ((n * (a_hi >> 32)) << 32);
+    uint64_t carry = (n * (a_lo >> 32) + ((n * (a_lo & 0xFFFFFFFFu)) >> 32)) >> 32;
+    return o + hi_part + carry;
+}
+
+/* The documented conversions (udm1/seq.h): float = top 24 bits x 2^-24, double = top 53 bits x 2^-53. */
+static inline float udm1_raw_to_f32(uint64_t u) { return (float)(int32_t)(u >> 40) * (1.0f / 16777216.0f); }
+static inline double udm1_raw_to_f64(uint64_t u) { return (double)(int64_t)(u >> 11) * (1.0 / 9007199254740992.0); }
+
+/* Whether dimensions [dim, dim + n) of point index are drawn inline. */
+static inline int udm1_stream_inline_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
+{
+    return n <= st->held && dim <= st->held - n && (st->point_count == 0 || index < st->point_count);
+}
+
+/* Dimensions [first + dim, first + dim + n) of point `index`, as raw 0.64 values, floats or doubles.
+ * A draw the library refuses (an index outside a point set, a NULL stream) gives NaN for the float
+ * and double draws (0 for raw values), and udm1_last_error() says why. */
+static inline void udm1_stream_draw_raw(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+                                        uint64_t *raw)
+{
+    if (st && udm1_stream_inline_(st, index, dim, n)) {
+        uint64_t m = index + st->index_base;
+        if (m <= 0xFFFFFFFFu) {
+            for (uint32_t j = 0; j < n; ++j)
+                raw[j] = udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m);
+        } else {
+            for (uint32_t j = 0; j < n; ++j)
+                raw[j] = udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m);
+        }
+        return;
+    }
+    if (udm1_stream_fill_raw(st, index, dim, n, raw) != UDM1_OK)
+        for (uint32_t j = 0; j < n; ++j) raw[j] = 0;
+}
+
+static inline void udm1_stream_draw_f32(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, float *out)
+{
+    if (st && udm1_stream_inline_(st, index, dim, n)) {
+        uint64_t m = index + st->index_base;
+        if (m <= 0xFFFFFFFFu) {
+            for (uint32_t j = 0; j < n; ++j)
+                out[j] = udm1_raw_to_f32(udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
+        } else {
+            for (uint32_t j = 0; j < n; ++j)
+                out[j] = udm1_raw_to_f32(udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
+        }
+        return;
+    }
+    uint64_t raw[UDM1_STREAM_DIMS];
+    for (uint32_t done = 0; done < n;) {
+        uint32_t m = n - done < UDM1_STREAM_DIMS ? n - done : UDM1_STREAM_DIMS;
+        int ok = udm1_stream_fill_raw(st, index, dim + done, m, raw) == UDM1_OK;
+        for (uint32_t j = 0; j < m; ++j) out[done + j] = ok ? udm1_raw_to_f32(raw[j]) : (float)NAN;
+        done += m;
+    }
+}
+
+static inline void udm1_stream_draw_f64(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, double *out)
+{
+    if (st && udm1_stream_inline_(st, index, dim, n)) {
+        uint64_t m = index + st->index_base;
+        if (m <= 0xFFFFFFFFu) {
+            for (uint32_t j = 0; j < n; ++j)
+                out[j] = udm1_raw_to_f64(udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
+        } else {
+            for (uint32_t j = 0; j < n; ++j)
+                out[j] = udm1_raw_to_f64(udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
+        }
+        return;
+    }
+    uint64_t raw[UDM1_STREAM_DIMS];
+    for (uint32_t done = 0; done < n;) {
+        uint32_t m = n - done < UDM1_STREAM_DIMS ? n - done : UDM1_STREAM_DIMS;
+        int ok = udm1_stream_fill_raw(st, index, dim + done, m, raw) == UDM1_OK;
+        for (uint32_t j = 0; j < m; ++j) out[done + j] = ok ? udm1_raw_to_f64(raw[j]) : NAN;
+        done += m;
+    }
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* UDM1_STREAM_H */

@@ -1,0 +1,61 @@
+/* domain.c - udm1_domain_fill_raw (udm1/domain.h): a domain's values for every sequence kind - the
+ * root through its stream, a child as its sequence at (the child's key as stream key, the permuted
+ * index); the header's inline draws give the same values for Weyl sequences. */
+#include "seq/scramble.h"
+#include "seq/value.h"
+
+/* A nested uniform scramble of the k-bit index v (v < 2^k, k <= 32): the bit-reversed value hashed
+ * modulo 2^k (each step a bijection) and reversed back; k = 32 is udm1_owen_index32. */
+static uint32_t owen_bits(uint32_t v, uint32_t seed, unsigned k)
+{
+    if (k == 0) return 0;
+    uint32_t mask = k == 32 ? 0xFFFFFFFFu : (1u << k) - 1u;
+    uint32_t x = udm1_owen_hash32(udm1_reverse32(v) >> (32 - k), seed) & mask;
+    return udm1_reverse32(x) >> (32 - k);
+}
+
+/* The child's index: the low 32 bits scrambled for a sequence; for a point set of K points a
+ * permutation of [0, K): the scramble of ceil(log2 K) bits, cycle-walked back into [0, K). */
+static uint64_t permuted_index(uint64_t index, uint64_t K, uint32_t seed)
+{
+    if (!K) return (index & 0xFFFFFFFF00000000ull) | udm1_owen_index32((uint32_t)index, seed);
+    unsigned k = 0;
+    while (k < 32 && (1ull << k) < K) ++k;
+    uint32_t v = (uint32_t)index;
+    do v = owen_bits(v, seed, k);
+    while (v >= K);
+    return v;
+}
+
+udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw)
+{
+    static const char fn[] = "udm1_domain_fill_raw";
+    if (!d || !d->stream || !d->stream->seq || !raw)
+        return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn,
+                         !d ? "d" : !raw ? "raw" : !d->stream ? "d->stream" : "d->stream->seq");
+    if (n == 0 || n > 4) return udm1_fail(UDM1_ERROR_DIMENSION, "%s: n = %u is outside 1..4", fn, n);
+    const udm1_stream *st = d->stream;
+    if (!d->key) return udm1_stream_fill_raw(st, d->index, 0, n, raw); /* the root: the stream itself */
+    const udm1_seq *seq = st->seq;
+    if (seq->point_count && d->index >= seq->point_count)
+        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn,
+                         (unsigned long long)d->index, (unsigned long long)seq->point_count);
+    if ((uint64_t)st->first + n > UDM1_DIMENSION_INDEX_LIMIT)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: the stream's first dimension %u passes the index limit", fn,
+                         st->first);
+    uint64_t key = d->key, m = permuted_index(d->index, seq->point_count, (uint32_t)(key >> 32));
+    uint32_t inside = st->first >= seq->dims ? 0 : seq->dims - st->first < n ? seq->dims - st->first : n;
+    if (seq->kind == &udm1_weyl_kind) { /* its own shift, whatever the stream's mode (screen: the root only) */
+        for (uint32_t j = 0; j < inside; ++j) {
+            uint32_t dim = st->first + j;
+            raw[j] = udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_shift(key, seq->dim_key[dim]), m);
+        }
+    } else if (inside && seq->kind->fill) {
+        seq->kind->fill(seq, key, m, 1, st->first, inside, raw);
+    } else {
+        for (uint32_t j = 0; j < inside; ++j) raw[j] = udm1_value_of(seq, key, m, st->first + j);
+    }
+    for (uint32_t j = inside; j < n; ++j) /* padding: the cursor's rule, the domain's key as the stream's */
+        raw[j] = udm1_pad(udm1_shift(key, udm1_dim_key(seq->seed_key, st->first + j)), d->index);
+    return UDM1_OK;
+}

@@ -1,0 +1,70 @@
+/* stream.c - udm1_stream (udm1/stream.h): a stream's per-dimension words for the inline draws, and the
+ * library's own draw for every case they do not cover. */
+#include "seq/value.h"
+
+#include <string.h>
+
+udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stream, uint32_t first, uint32_t count)
+{
+    static const char fn[] = "udm1_stream_init";
+    if (!st || !seq) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, st ? "seq" : "st");
+    if (count == 0 || count > UDM1_STREAM_DIMS)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: count %u is outside 1..%u (UDM1_STREAM_DIMS)", fn, count,
+                         UDM1_STREAM_DIMS);
+    if (first >= UDM1_DIMENSION_INDEX_LIMIT || count > UDM1_DIMENSION_INDEX_LIMIT - first)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: first_dimension %u + count %u passes the dimension index limit",
+                         fn, first, count);
+    udm1_stream s;
+    memset(&s, 0, sizeof s);
+    s.struct_size = (uint32_t)sizeof s;
+    s.seq = seq;
+    s.stream = stream;
+    s.key = udm1_stream_key(seq->seed_key, stream); /* hashed in every mode: the domains' root key */
+    s.point_count = seq->point_count;
+    s.first = first;
+    s.count = count;
+    s.dimensions = seq->dims;
+    uint64_t skey = udm1_seq_stream_key(seq, stream);
+    if (seq->kind == &udm1_weyl_kind) { /* modes none, shift, screen: the inline arithmetic */
+        s.flags = UDM1_STREAM_INLINE;
+        s.index_base = udm1_screen_index(seq, skey, 0);
+        s.held = first >= seq->dims ? 0 : seq->dims - first < count ? seq->dims - first : count;
+        for (uint32_t j = 0; j < s.held; ++j) {
+            uint32_t dim = first + j;
+            s.a_hi[j] = seq->gen[dim].hi;
+            s.a_lo[j] = seq->gen[dim].lo;
+            s.offset[j] = seq->offset[dim] + udm1_weyl_shift(seq, skey, dim);
+        }
+    }
+    for (uint32_t j = 0; j < 4 && first < seq->dims && j < seq->dims - first; ++j) {
+        s.domain_base[j] = seq->offset[first + j];
+        s.domain_key[j] = seq->dim_key[first + j];
+    }
+    *st = s;
+    return UDM1_OK;
+}
+
+udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, uint64_t *raw)
+{
+    static const char fn[] = "udm1_stream_fill_raw";
+    if (!st || !st->seq || !raw)
+        return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, !st ? "st" : !raw ? "raw" : "st->seq");
+    const udm1_seq *seq = st->seq;
+    if (seq->point_count && index >= seq->point_count)
+        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn, (unsigned long long)index,
+                         (unsigned long long)seq->point_count);
+    uint64_t d0 = (uint64_t)st->first + dim;
+    if (d0 + n > UDM1_DIMENSION_INDEX_LIMIT)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimensions from %llu, %u of them, pass the dimension index limit",
+                         fn, (unsigned long long)d0, n);
+    if (n == 0) return UDM1_OK;
+    udm1_cursor c;
+    c.seq = seq;
+    c.stream = st->stream;
+    c.index = index;
+    c.key = seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key; /* udm1_seq_stream_key, without the hash */
+    c.dimension = (uint32_t)d0;
+    c.padded = 0;
+    udm1_cursor_raw(&c, n, raw);
+    return UDM1_OK;
+}
