@@ -72,4 +72,4 @@ udm1_status udm1_init_cmj(udm1_seq_t *seq)
     return UDM1_OK;
 }
 
-const udm1_kind udm1_cmj_kind = {"cmj", cmj_value, NULL, NULL, NULL};
+const udm1_kind udm1_cmj_kind = {.name = "cmj", .value = cmj_value};

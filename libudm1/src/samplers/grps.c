@@ -83,4 +83,4 @@ udm1_status udm1_init_grps(udm1_seq_t *seq)
     return UDM1_OK;
 }
 
-const udm1_kind udm1_grps_kind = {"grps", grps_value, NULL, NULL, NULL};
+const udm1_kind udm1_grps_kind = {.name = "grps", .value = grps_value};

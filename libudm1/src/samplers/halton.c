@@ -25,4 +25,4 @@ udm1_status udm1_init_halton(udm1_seq_t *seq)
     return UDM1_OK;
 }
 
-const udm1_kind udm1_halton_kind = {"halton", halton_value, NULL, NULL, NULL};
+const udm1_kind udm1_halton_kind = {.name = "halton", .value = halton_value};

@@ -59,5 +59,5 @@ udm1_status udm1_init_lp(udm1_seq_t *seq)
     return UDM1_OK;
 }
 
-const udm1_kind udm1_hammersley_kind = {"hammersley", hammersley_value, NULL, NULL, NULL};
-const udm1_kind udm1_lp_kind = {"lp", lp_value, NULL, NULL, NULL};
+const udm1_kind udm1_hammersley_kind = {.name = "hammersley", .value = hammersley_value};
+const udm1_kind udm1_lp_kind = {.name = "lp", .value = lp_value};

@@ -159,6 +159,7 @@ static int build(uint32_t *xs, uint32_t *ys, uint32_t K, uint64_t key)
 typedef struct pmj02 {
     uint32_t pairs;
     uint32_t bits;  /* m with 2^m >= K */
+    uint32_t *key;  /* per pair: its shuffle's key (after xy in the same allocation) */
     uint32_t xy[1]; /* pairs x K x 2 */
 } pmj02;
 
@@ -183,7 +184,7 @@ static uint64_t pmj02_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index
     const pmj02 *t = seq->data;
     uint64_t K = seq->point_count;
     uint32_t pair = dim / 2;
-    if (pair) index = shuffled(t, K, udm1_key32(seq->seed_key, 0x504D4A53u, pair), index);
+    if (pair) index = shuffled(t, K, t->key[pair], index);
     uint64_t v = (uint64_t)t->xy[(pair * K + index) * 2 + (dim & 1)] << 32;
     return v + seq->offset[dim];
 }
@@ -201,7 +202,7 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
         return udm1_fail(UDM1_ERROR_POINT_COUNT,
                          "udm1_seq_create: pmj02 takes K <= 2^20 and K x pairs <= 2^24, got K = %llu with %u pairs",
                          (unsigned long long)K, pairs);
-    pmj02 *t = malloc(sizeof(pmj02) + sizeof(uint32_t) * 2 * K * pairs);
+    pmj02 *t = malloc(sizeof(pmj02) + sizeof(uint32_t) * (2 * K * pairs + pairs));
     uint32_t *xs = malloc(sizeof(uint32_t) * K), *ys = malloc(sizeof(uint32_t) * K);
     int ok = t && xs && ys;
     for (uint32_t p = 0; ok && p < pairs; ++p) {
@@ -218,10 +219,12 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
         return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for pmj02 tables");
     }
     t->pairs = pairs;
+    t->key = t->xy + 2 * K * pairs;
+    for (uint32_t p = 0; p < pairs; ++p) t->key[p] = udm1_key32(seq->seed_key, 0x504D4A53u, p);
     t->bits = 0;
     while (((uint64_t)1 << t->bits) < K) ++t->bits;
     seq->data = t;
     return UDM1_OK;
 }
 
-const udm1_kind udm1_pmj02_kind = {"pmj02", pmj02_value, NULL, pmj02_base2, NULL};
+const udm1_kind udm1_pmj02_kind = {.name = "pmj02", .value = pmj02_value, .base2 = pmj02_base2};

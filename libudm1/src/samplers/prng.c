@@ -78,11 +78,17 @@ static uint32_t pcg_output(uint64_t old)
     return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
 }
 
+/* the increment of pcg32_srandom(initstate, initseq) */
+static uint64_t pcg_inc(const udm1_seq_t *seq, uint64_t stream_key)
+{
+    uint64_t initseq = seq->mode == UDM1_MODE_NONE ? 54u : stream_key;
+    return (initseq << 1) | 1u;
+}
+
 /* the state after pcg32_srandom(initstate, initseq), and the increment */
 static void pcg_seed(const udm1_seq_t *seq, uint64_t stream_key, uint64_t *state, uint64_t *inc)
 {
-    uint64_t initseq = seq->mode == UDM1_MODE_NONE ? 54u : stream_key;
-    *inc = (initseq << 1) | 1u;
+    *inc = pcg_inc(seq, stream_key);
     uint64_t s = 0;
     s = s * PCG_MULT + *inc;
     s += seq->seed;
@@ -168,5 +174,44 @@ udm1_status udm1_init_drand48(udm1_seq_t *seq)
     return UDM1_OK;
 }
 
-const udm1_kind udm1_pcg32_kind = {"pcg32", pcg_value, pcg_fill, NULL, NULL};
-const udm1_kind udm1_drand48_kind = {"drand48", drand_value, drand_fill, NULL, NULL};
+/* A cursor's steps: the state at position index D + dim, then one LCG step per value (pcg32: the output
+ * of the state, then the step; drand48: the step, then its state, as drand48() does). */
+static uint64_t pcg_seek(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    uint64_t state, inc, m, p;
+    pcg_seed(seq, skey, &state, &inc);
+    lcg_jump_table(seq->data, inc, index * seq->dims + dim, &m, &p);
+    return state * m + p;
+}
+
+/* the stream key where the mode uses it (the increment, a word), else 0 */
+static uint64_t step_key(const udm1_seq_t *seq, uint64_t stream, int increment_uses_it)
+{
+    int used = seq->mode != UDM1_MODE_NONE && (increment_uses_it || seq->mode != UDM1_MODE_STREAMS);
+    return used ? udm1_stream_key(seq->seed_key, stream) : 0;
+}
+
+static uint64_t pcg_step(const udm1_seq_t *seq, uint64_t stream, uint64_t *state, uint32_t dim)
+{
+    uint64_t skey = step_key(seq, stream, 1), old = *state;
+    *state = old * PCG_MULT + pcg_inc(seq, skey);
+    uint64_t v = (uint64_t)pcg_output(old) << 32;
+    return udm1_randomize_base2(seq->mode, v + seq->offset[dim], udm1_word(seq, skey, dim));
+}
+
+static uint64_t drand_seek(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
+{
+    uint64_t m, p;
+    lcg_jump_table(seq->data, DRAND_C, index * seq->dims + dim, &m, &p);
+    return (drand_start(seq, skey) * m + p) & DRAND_MASK;
+}
+
+static uint64_t drand_step(const udm1_seq_t *seq, uint64_t stream, uint64_t *state, uint32_t dim)
+{
+    uint64_t skey = step_key(seq, stream, 0), x = (*state * DRAND_A + DRAND_C) & DRAND_MASK;
+    *state = x;
+    return udm1_randomize_base2(seq->mode, (x << 16) + seq->offset[dim], udm1_word(seq, skey, dim));
+}
+
+const udm1_kind udm1_pcg32_kind = {.name = "pcg32", .value = pcg_value, .fill = pcg_fill, .seek = pcg_seek, .step = pcg_step};
+const udm1_kind udm1_drand48_kind = {.name = "drand48", .value = drand_value, .fill = drand_fill, .seek = drand_seek, .step = drand_step};

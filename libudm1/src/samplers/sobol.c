@@ -135,4 +135,4 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
 #endif
 }
 
-const udm1_kind udm1_sobol_kind = {"sobol", sobol_value, sobol_fill, sobol_base2, sobol_base2_point};
+const udm1_kind udm1_sobol_kind = {.name = "sobol", .value = sobol_value, .fill = sobol_fill, .base2 = sobol_base2, .base2_point = sobol_base2_point};

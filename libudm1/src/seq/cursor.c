@@ -5,6 +5,17 @@
 
 #include <math.h>
 
+void udm1_cursor_init(udm1_cursor *c, const udm1_seq_t *seq, uint64_t stream, uint64_t index, uint32_t dim,
+                      uint64_t stream_key)
+{
+    c->seq = seq;
+    c->stream = stream;
+    c->index = index;
+    c->key = seq->kind->seek && dim < seq->dims ? seq->kind->seek(seq, stream_key, index, dim) : stream_key;
+    c->dimension = dim;
+    c->padded = 0;
+}
+
 udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t stream, uint64_t index,
                               uint32_t first_dimension)
 {
@@ -16,24 +27,27 @@ udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t
     if (first_dimension >= UDM1_DIMENSION_INDEX_LIMIT)
         return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_cursor_start: first_dimension %u is not below the dimension index "
                          "limit 2^32 - 1", first_dimension);
-    cursor->seq = seq;
-    cursor->stream = stream;
-    cursor->index = index;
-    cursor->key = udm1_seq_stream_key(seq, stream);
-    cursor->dimension = first_dimension;
-    cursor->padded = 0;
+    udm1_cursor_init(cursor, seq, stream, index, first_dimension, udm1_seq_stream_key(seq, stream));
     return UDM1_OK;
+}
+
+/* The stream key: the cursor's key, or computed again for a kind whose cursor holds its state */
+static inline uint64_t stream_key_of(const udm1_cursor *c)
+{
+    return c->seq->kind->seek ? udm1_seq_stream_key(c->seq, c->stream) : c->key;
 }
 
 static inline uint64_t cursor_next(udm1_cursor *c)
 {
     const udm1_seq *seq = c->seq;
     uint32_t dim = c->dimension++;
-    uint64_t skey = c->key;
-    if (UDM1_LIKELY(dim < seq->dims)) return udm1_value_of(seq, skey, c->index, dim);
+    if (UDM1_LIKELY(dim < seq->dims)) {
+        if (seq->kind->step) return seq->kind->step(seq, c->stream, &c->key, dim); /* one step, no seek */
+        return udm1_value_of(seq, c->key, c->index, dim);
+    }
     ++c->padded;
     /* padding: an independent uniform value of (seed, stream, index, dim) */
-    return udm1_pad(udm1_shift(skey, udm1_dim_key(seq->seed_key, dim)), c->index);
+    return udm1_pad(udm1_shift(stream_key_of(c), udm1_dim_key(seq->seed_key, dim)), c->index);
 }
 
 /* Whether the cursor can draw (else the message for udm1_last_error) */
@@ -76,11 +90,15 @@ void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
 {
     const udm1_seq *seq = c->seq;
     uint32_t k = 0;
-    if (seq->kind->fill && c->dimension < seq->dims) {
+    if (!seq->kind->step && seq->kind->fill && c->dimension < seq->dims) {
         uint32_t inside = seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
         seq->kind->fill(seq, c->key, c->index, 1, c->dimension, inside, raw);
         c->dimension += inside;
         k = inside;
+    } else if (seq->kind == &udm1_weyl_kind) { /* the Weyl values in one loop, without the generic step */
+        uint32_t inside = c->dimension >= seq->dims ? 0 : seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
+        for (; k < inside; ++k) raw[k] = udm1_weyl_shifted_raw(seq, c->key, c->index, c->dimension + k);
+        c->dimension += inside;
     }
     for (; k < n; ++k) raw[k] = cursor_next(c);
 }

@@ -82,7 +82,8 @@ static inline uint64_t udm1_randomize_base2(uint32_t mode, uint64_t v, uint64_t 
 /* The random word r_j of a dimension for a stream (0 without randomization). */
 static inline uint64_t udm1_word(const udm1_seq_t *seq, uint64_t stream_key, uint32_t dim)
 {
-    return seq->mode == UDM1_MODE_NONE ? 0 : udm1_shift(stream_key, seq->dim_key[dim]);
+    /* (the modes that use no word: none, and the PRNGs' and patterns' plain streams) */
+    return seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS ? 0 : udm1_shift(stream_key, seq->dim_key[dim]);
 }
 
 /* A 32-bit key of (seed, what, k): patterns and per-pair index permutations. */

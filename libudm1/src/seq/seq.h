@@ -10,6 +10,10 @@
  *   base2        optional: for kinds whose value is udm1_randomize_base2(mode, base2(...), word),
  *                the value before randomization (fills of many points find a stream's words once)
  *   base2_point  optional, with base2: base2 of dimensions dim0 .. dim0 + m - 1 of one point at once
+ *   seek, step   optional, for generators whose values follow one another (the PRNGs: value (n, j) is
+ *                output n D + j): seek gives the state at (index, dim), step the value there and the
+ *                state advanced to the next dimension, so a cursor draws one step at a time instead of
+ *                seeking again for every value
  *
  * The Weyl kind (weyl/weyl.c) is the one the generic code also knows inline: its values and bulk fills
  * are the integer arithmetic of weyl/weyl.h, with no call through the table. Transforms of a kind (the
@@ -42,6 +46,11 @@ typedef void (*udm1_fill_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_
 /* Values of dimensions dim0 .. dim0 + m - 1 (all < dims) of one point into raw[0 .. m). */
 typedef void (*udm1_point_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim0, uint32_t m,
                               uint64_t *raw);
+/* The generator's state at (index, dim < dims). */
+typedef uint64_t (*udm1_seek_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim);
+/* The value at the state's position (dimension dim, randomization applied); the state advanced by one.
+ * It takes the stream id, not its key: the kind hashes it only where it needs the key. */
+typedef uint64_t (*udm1_step_fn)(const udm1_seq_t *seq, uint64_t stream, uint64_t *state, uint32_t dim);
 
 /* The operations of one sampler kind (see the top of this file). */
 typedef struct udm1_kind {
@@ -50,6 +59,8 @@ typedef struct udm1_kind {
     udm1_fill_fn fill;         /* optional */
     udm1_value_fn base2;       /* optional */
     udm1_point_fn base2_point; /* optional, with base2 */
+    udm1_seek_fn seek;         /* optional, with step */
+    udm1_step_fn step;
 } udm1_kind;
 
 struct udm1_seq {
@@ -84,9 +95,13 @@ typedef struct udm1_preset {
 UDM1_HIDDEN const udm1_preset *udm1_preset_lookup(const char *name);
 UDM1_HIDDEN int udm1_preset_is_tent(const char *name);
 
-/* ---- the cursor's raw draws (cursor.c) ---- */
+/* ---- the cursor (cursor.c) ---- */
+/* Its private key: the stream key, or for a kind with seek/step the generator's state while the cursor
+ * is below the sequence's dimensions (the stream key is then computed again where it is needed). */
+UDM1_HIDDEN void udm1_cursor_init(udm1_cursor *c, const udm1_seq_t *seq, uint64_t stream, uint64_t index,
+                                  uint32_t dim, uint64_t stream_key);
 /* The next n raw values of a started cursor (its dimensions stay below the index limit: the caller
- * checks): the kind's fill of a row over the sequence's own dimensions, padding past them. */
+ * checks): the sequence's values over its own dimensions, padding past them. */
 UDM1_HIDDEN void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw);
 
 /* ---- transforms of a kind (tent.c) ---- */

@@ -59,12 +59,8 @@ udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t
                          fn, (unsigned long long)d0, n);
     if (n == 0) return UDM1_OK;
     udm1_cursor c;
-    c.seq = seq;
-    c.stream = st->stream;
-    c.index = index;
-    c.key = seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key; /* udm1_seq_stream_key, without the hash */
-    c.dimension = (uint32_t)d0;
-    c.padded = 0;
+    udm1_cursor_init(&c, seq, st->stream, index, (uint32_t)d0,
+                     seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key); /* udm1_seq_stream_key, without the hash */
     udm1_cursor_raw(&c, n, raw);
     return UDM1_OK;
 }

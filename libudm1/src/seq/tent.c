@@ -26,4 +26,4 @@ static void tent_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, size
 }
 
 /* no base2: the tent is not a base-2 randomization of a base-2 value */
-const udm1_kind udm1_tent_kind = {"tent", tent_value, tent_fill, NULL, NULL};
+const udm1_kind udm1_tent_kind = {.name = "tent", .value = tent_value, .fill = tent_fill};

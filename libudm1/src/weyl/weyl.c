@@ -237,5 +237,5 @@ static uint64_t weyl_scrambled_value(const udm1_seq_t *seq, uint64_t skey, uint6
     return udm1_randomize_base2(seq->mode, udm1_weyl_raw(&seq->gen[dim], seq->offset[dim], index), r);
 }
 
-const udm1_kind udm1_weyl_kind = {"weyl", weyl_shifted_value, NULL, NULL, NULL};
-const udm1_kind udm1_weyl_scrambled_kind = {"weyl-scrambled", weyl_scrambled_value, NULL, NULL, NULL};
+const udm1_kind udm1_weyl_kind = {.name = "weyl", .value = weyl_shifted_value};
+const udm1_kind udm1_weyl_scrambled_kind = {.name = "weyl-scrambled", .value = weyl_scrambled_value};

@@ -1,0 +1,132 @@
+"""Domains and streams (udm1/domain.h, udm1/stream.h) pinned by the independent reference: a domain is
+defined by the values it gives. The library's udm1_stream_fill_raw and udm1_domain_fill_raw (which the
+header's inline draws equal bit for bit: tests/c/test_stream.c) against reference.py's exact arithmetic,
+the documented hash and an independent transcription of the index scramble, for the root, children,
+chains, splits, indices below and above 2^32, and padding past the sequence's dimensions."""
+
+import ctypes
+
+import pytest
+
+import reference as ref
+import udm1
+from udm1._native import lib
+
+M32, M64 = (1 << 32) - 1, (1 << 64) - 1
+DIMS = 64
+
+
+class Stream(ctypes.Structure):
+    _fields_ = [("struct_size", ctypes.c_uint32), ("flags", ctypes.c_uint32), ("seq", ctypes.c_void_p),
+                ("stream", ctypes.c_uint64), ("key", ctypes.c_uint64), ("index_base", ctypes.c_uint64),
+                ("point_count", ctypes.c_uint64), ("first", ctypes.c_uint32), ("count", ctypes.c_uint32),
+                ("held", ctypes.c_uint32), ("dimensions", ctypes.c_uint32), ("a_hi", ctypes.c_uint64 * DIMS),
+                ("a_lo", ctypes.c_uint64 * DIMS), ("offset", ctypes.c_uint64 * DIMS),
+                ("domain_base", ctypes.c_uint64 * 4), ("domain_key", ctypes.c_uint64 * 4)]
+
+
+class Domain(ctypes.Structure):
+    _fields_ = [("stream", ctypes.POINTER(Stream)), ("key", ctypes.c_uint64), ("index", ctypes.c_uint64)]
+
+
+lib.udm1_stream_init.argtypes = [ctypes.POINTER(Stream), ctypes.c_void_p, ctypes.c_uint64, ctypes.c_uint32,
+                                 ctypes.c_uint32]
+lib.udm1_stream_fill_raw.argtypes = [ctypes.POINTER(Stream), ctypes.c_uint64, ctypes.c_uint32, ctypes.c_uint32,
+                                     ctypes.POINTER(ctypes.c_uint64)]
+lib.udm1_domain_fill_raw.argtypes = [ctypes.POINTER(Domain), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint64)]
+
+
+# ---- the reference: the documented derivations, written out independently ----
+
+def reverse32(x: int) -> int:
+    return int(f"{x & M32:032b}"[::-1], 2)
+
+
+def owen_hash32(x: int, seed: int) -> int:
+    x ^= (x * 0x3D20ADEA) & M32
+    x = (x + seed) & M32
+    x = (x * ((seed >> 16) | 1)) & M32
+    x ^= (x * 0x05526C56) & M32
+    x ^= (x * 0x53A22864) & M32
+    return x
+
+
+def child_key(parent: int, key: int) -> int:
+    k = ref.mix64(parent + (key + 1) * ref.GOLDEN_GAMMA)
+    return k or ref.GOLDEN_GAMMA
+
+
+def domain_values(alphas, seed, stream, path, index, n):
+    """Raw values of the domain reached from (stream, index) by path: a list of ("child", key),
+    ("split", key, count, i) and ("chain", key, i) steps (a root if empty)."""
+    sk = ref.seed_key(seed)
+    key = 0
+    for step in path:
+        base = key or ref.stream_key(sk, stream)
+        if step[0] == "child":
+            key = child_key(base, step[1])
+        elif step[0] == "split":
+            key = child_key(base, step[1])
+            index = index * step[2] + step[3]
+        else:
+            key = child_key(child_key(base, step[1]), step[2])
+    out = []
+    for j in range(n):
+        if key == 0:  # the root: the stream's own shift and index
+            off = ref.shift(seed, stream, j)
+            m = index
+        else:
+            off = ref.mix64(key + ref.dim_key(sk, j))
+            m = (index & ~M32) | reverse32(owen_hash32(reverse32(index & M32), key >> 32))
+        if j < len(alphas):
+            out.append(ref.raw_value(off, alphas[j], m & M64))
+        else:  # padding past the sequence's dimensions: the cursor's rule with the domain's key
+            out.append(ref.mix64(off + (index + 1) * ref.GOLDEN_GAMMA))
+    return out
+
+
+PATHS = [[], [("child", 0)], [("child", 3)], [("child", 3), ("child", 0)], [("split", 5, 4, 2)],
+         [("chain", 2, 9)], [("child", 2**64 - 1), ("split", 1, 8, 7)]]
+
+
+@pytest.mark.parametrize("preset,d", [("wr", 4), ("rd", 3), ("wr-ao", 2)])
+def test_domains_equal_the_reference(preset, d):
+    seed = 7
+    seq = udm1.Sequence(preset, d, seed=seed)
+    alphas = [ref.round128(f) for f in ref.preset_fracs(preset, d)]
+    for stream in (0, (5 << 32) | 9, M64):
+        st = Stream()
+        assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, stream, 0, 8) == 0
+        for index in (0, 1, 1000, M32, 1 << 32, (1 << 40) + 17, M64 // 8):
+            for path in PATHS:
+                want = domain_values(alphas, seed, stream, path, index, 4)
+                dom = Domain(ctypes.pointer(st), 0, index)
+                # derive as the header does (its inline functions are not callable from ctypes)
+                for step in path:
+                    base = dom.key or st.key
+                    if step[0] == "child":
+                        dom.key = child_key(base, step[1])
+                    elif step[0] == "split":
+                        dom.key, dom.index = child_key(base, step[1]), (dom.index * step[2] + step[3]) & M64
+                    else:
+                        dom.key = child_key(child_key(base, step[1]), step[2])
+                raw = (ctypes.c_uint64 * 4)()
+                assert lib.udm1_domain_fill_raw(ctypes.byref(dom), 4, raw) == 0
+                assert list(raw) == want, (preset, stream, index, path)
+
+
+def test_stream_values_and_padding_equal_the_reference():
+    seed, d = 11, 3
+    seq = udm1.Sequence("wr", d, seed=seed)
+    alphas = [ref.round128(f) for f in ref.preset_fracs("wr", d)]
+    st = Stream()
+    assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, 42, 1, 5) == 0
+    assert st.held == 2 and st.flags == 1  # dimensions 1, 2 inline; 3..5 padded
+    raw = (ctypes.c_uint64 * 5)()
+    for index in (0, 3, 1 << 33):
+        assert lib.udm1_stream_fill_raw(ctypes.byref(st), index, 0, 5, raw) == 0
+        for j in range(5):
+            dim = 1 + j
+            want = (ref.raw_value(ref.shift(seed, 42, dim), alphas[dim], index) if dim < d
+                    else ref.pad(seed, 42, index, dim))
+            assert raw[j] == want
