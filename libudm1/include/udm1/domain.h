@@ -136,13 +136,53 @@ UDM1_API udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint
 static inline int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
 {
     const udm1_stream *st = d->stream;
-    return st && d->key && n <= 4 && n <= st->held && st->point_count == 0;
+    return st && d->key && (st->flags & UDM1_STREAM_INLINE) && n <= 4 && n <= st->held && st->point_count == 0;
 }
 
-/* A child domain's raw value of dimension j (inline case): its index scrambled, its own shift. */
-static inline uint64_t udm1_domain_value_(const udm1_stream *st, uint64_t key, uint64_t m, uint32_t j)
+/* udm1_mix64 of four values at once, where the compiler targets AVX2 (64-bit products from 32-bit ones,
+ * or AVX-512's own): the same values. */
+#if defined(__AVX2__)
+static inline __m256i udm1_mul64x4_(__m256i a, uint64_t c)
 {
-    return udm1_weyl_value(st->a_hi[j], st->a_lo[j], st->domain_base[j] + udm1_mix64(key + st->domain_key[j]), m);
+#if defined(__AVX512DQ__) && defined(__AVX512VL__)
+    return _mm256_mullo_epi64(a, _mm256_set1_epi64x((long long)c));
+#else
+    __m256i lo = _mm256_set1_epi64x((long long)(c & 0xFFFFFFFFu)), hi = _mm256_set1_epi64x((long long)(c >> 32));
+    __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(a, 32), lo), _mm256_mul_epu32(a, hi));
+    return _mm256_add_epi64(_mm256_mul_epu32(a, lo), _mm256_slli_epi64(cross, 32));
+#endif
+}
+
+static inline void udm1_mix64x4(const uint64_t *in, uint64_t *out)
+{
+    __m256i z = _mm256_loadu_si256((const __m256i *)in);
+    z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), 0xBF58476D1CE4E5B9ull);
+    z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), 0x94D049BB133111EBull);
+    _mm256_storeu_si256((__m256i *)out, _mm256_xor_si256(z, _mm256_srli_epi64(z, 31)));
+}
+#else
+static inline void udm1_mix64x4(const uint64_t *in, uint64_t *out)
+{
+    for (int j = 0; j < 4; ++j) out[j] = udm1_mix64(in[j]);
+}
+#endif
+
+/* A child domain's raw values of dimensions 0..n-1 (inline case): its index scrambled, its own shifts. */
+static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_t index, uint32_t n, uint64_t *raw)
+{
+    uint32_t low = udm1_owen_index32((uint32_t)index, (uint32_t)(key >> 32));
+    if (index <= 0xFFFFFFFFu) { /* vectorized: four shifts and four values (the stream's arrays have room), n kept */
+        uint64_t o[4], v[4];
+        for (int j = 0; j < 4; ++j) o[j] = key + st->domain_key[j];
+        udm1_mix64x4(o, o);
+        for (int j = 0; j < 4; ++j) o[j] += st->domain_base[j];
+        udm1_weyl4_32(st->a_hi, st->a_lo, o, low, v);
+        for (uint32_t j = 0; j < n; ++j) raw[j] = v[j];
+    } else {
+        uint64_t m = (index & 0xFFFFFFFF00000000ull) | low;
+        for (uint32_t j = 0; j < n; ++j)
+            raw[j] = udm1_weyl_value(st->a_hi[j], st->a_lo[j], st->domain_base[j] + udm1_mix64(key + st->domain_key[j]), m);
+    }
 }
 
 /* The domain's first n dimensions (1..4) as raw values, floats or doubles. A draw the library refuses
@@ -154,8 +194,7 @@ static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw
         return;
     }
     if (udm1_domain_inline_(&d, n)) {
-        uint64_t m = (d.index & 0xFFFFFFFF00000000ull) | udm1_owen_index32((uint32_t)d.index, (uint32_t)(d.key >> 32));
-        for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_domain_value_(d.stream, d.key, m, j);
+        udm1_domain_values_(d.stream, d.key, d.index, n, raw);
         return;
     }
     if (udm1_domain_fill_raw(&d, n, raw) != UDM1_OK)
@@ -166,8 +205,8 @@ static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
 {
     uint64_t raw[4];
     if (d.key && udm1_domain_inline_(&d, n)) {
-        uint64_t m = (d.index & 0xFFFFFFFF00000000ull) | udm1_owen_index32((uint32_t)d.index, (uint32_t)(d.key >> 32));
-        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f32(udm1_domain_value_(d.stream, d.key, m, j));
+        udm1_domain_values_(d.stream, d.key, d.index, n, raw);
+        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f32(raw[j]);
         return;
     }
     if (!d.key && d.stream) {
@@ -182,8 +221,8 @@ static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
 {
     uint64_t raw[4];
     if (d.key && udm1_domain_inline_(&d, n)) {
-        uint64_t m = (d.index & 0xFFFFFFFF00000000ull) | udm1_owen_index32((uint32_t)d.index, (uint32_t)(d.key >> 32));
-        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f64(udm1_domain_value_(d.stream, d.key, m, j));
+        udm1_domain_values_(d.stream, d.key, d.index, n, raw);
+        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f64(raw[j]);
         return;
     }
     if (!d.key && d.stream) {

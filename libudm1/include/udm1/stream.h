@@ -53,9 +53,10 @@ typedef struct udm1_stream {
     uint64_t index_base;   /* added to every index (screen-space randomization: m N; else 0) */
     uint64_t point_count;  /* K of a point set, else 0 */
     uint32_t first, count; /* the dimensions it stands for: [first, first + count), count <= UDM1_STREAM_DIMS */
-    uint32_t held;         /* how many of them, from first, the inline arithmetic covers (0 if none) */
+    uint32_t held;         /* how many of them, from first, have their words below (the sequence's own) */
     uint32_t dimensions;   /* D of the sequence */
-    /* per dimension held (UDM1_STREAM_INLINE): A_j in 0.128 fixed point and O_j in 0.64 */
+    /* per dimension held: with UDM1_STREAM_INLINE, A_j in 0.128 fixed point and O_j in 0.64; otherwise
+     * private data of the library's draws (the stream's randomization words of the base-2 kinds) */
     uint64_t a_hi[UDM1_STREAM_DIMS], a_lo[UDM1_STREAM_DIMS], offset[UDM1_STREAM_DIMS];
     /* for domains (udm1/domain.h), the first four dimensions held: base offsets o_j and dimension keys */
     uint64_t domain_base[4], domain_key[4];
@@ -96,13 +97,85 @@ static inline uint64_t udm1_weyl_value(uint64_t a_hi, uint64_t a_lo, uint64_t o,
     return o + n * a_hi + udm1_mulhi64(n, a_lo);
 }
 
-/* The same for n < 2^32 with 32-bit products only, which compilers vectorize (equal bit for bit: with
- * n < 2^32 neither partial sum below reaches 2^64). */
-static inline uint64_t udm1_weyl_value32(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint64_t n)
+/* The same for n < 2^32 with 32 x 32 -> 64-bit products only, which compilers vectorize (equal bit for
+ * bit: with n < 2^32 neither partial sum below reaches 2^64). */
+static inline uint64_t udm1_weyl_value32(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint32_t n)
 {
-    uint64_t hi_part = n * (a_hi & 0xFFFFFFFFu) + ((n * (a_hi >> 32)) << 32);
-    uint64_t carry = (n * (a_lo >> 32) + ((n * (a_lo & 0xFFFFFFFFu)) >> 32)) >> 32;
-    return o + hi_part + carry;
+    uint64_t h0 = (uint64_t)n * (uint32_t)a_hi, h1 = (uint64_t)n * (uint32_t)(a_hi >> 32);
+    uint64_t l0 = (uint64_t)n * (uint32_t)a_lo, l1 = (uint64_t)n * (uint32_t)(a_lo >> 32);
+    return o + h0 + (h1 << 32) + ((l1 + (l0 >> 32)) >> 32);
+}
+
+/* Four dimensions at once for n < 2^32: udm1_weyl_value32 of (a_hi[j], a_lo[j], o[j], n), j < 4, with
+ * the 32 x 32 -> 64-bit vector multiply of SSE2 (x86-64's baseline) or AVX2, where the compiler targets
+ * them; the same values bit for bit. */
+#if (defined(__x86_64__) || defined(_M_X64)) && (defined(__SSE2__) || defined(_MSC_VER))
+#include <immintrin.h>
+#endif
+#if defined(__AVX2__)
+static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                 uint64_t *out)
+{
+    __m256i N = _mm256_set1_epi64x((long long)n);
+    __m256i H = _mm256_loadu_si256((const __m256i *)a_hi), L = _mm256_loadu_si256((const __m256i *)a_lo);
+    __m256i h0 = _mm256_mul_epu32(N, H), h1 = _mm256_mul_epu32(N, _mm256_srli_epi64(H, 32));
+    __m256i l0 = _mm256_mul_epu32(N, L), l1 = _mm256_mul_epu32(N, _mm256_srli_epi64(L, 32));
+    __m256i carry = _mm256_srli_epi64(_mm256_add_epi64(l1, _mm256_srli_epi64(l0, 32)), 32);
+    __m256i r = _mm256_add_epi64(_mm256_loadu_si256((const __m256i *)o), _mm256_add_epi64(h0, _mm256_slli_epi64(h1, 32)));
+    _mm256_storeu_si256((__m256i *)out, _mm256_add_epi64(r, carry));
+}
+#elif (defined(__x86_64__) || defined(_M_X64)) && (defined(__SSE2__) || defined(_MSC_VER))
+static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                 uint64_t *out)
+{
+    __m128i N = _mm_set1_epi64x((long long)n);
+    for (int k = 0; k < 4; k += 2) {
+        __m128i H = _mm_loadu_si128((const __m128i *)(a_hi + k)), L = _mm_loadu_si128((const __m128i *)(a_lo + k));
+        __m128i h0 = _mm_mul_epu32(N, H), h1 = _mm_mul_epu32(N, _mm_srli_epi64(H, 32));
+        __m128i l0 = _mm_mul_epu32(N, L), l1 = _mm_mul_epu32(N, _mm_srli_epi64(L, 32));
+        __m128i carry = _mm_srli_epi64(_mm_add_epi64(l1, _mm_srli_epi64(l0, 32)), 32);
+        __m128i r = _mm_add_epi64(_mm_loadu_si128((const __m128i *)(o + k)), _mm_add_epi64(h0, _mm_slli_epi64(h1, 32)));
+        _mm_storeu_si128((__m128i *)(out + k), _mm_add_epi64(r, carry));
+    }
+}
+#else
+static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                 uint64_t *out)
+{
+    for (int j = 0; j < 4; ++j) out[j] = udm1_weyl_value32(a_hi[j], a_lo[j], o[j], n);
+}
+#endif
+
+/* Two dimensions at once for n < 2^32 (SSE2 on x86-64), as udm1_weyl4_32. */
+#if (defined(__x86_64__) || defined(_M_X64)) && (defined(__SSE2__) || defined(_MSC_VER))
+static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                 uint64_t *out)
+{
+    __m128i N = _mm_set1_epi64x((long long)n);
+    __m128i H = _mm_loadu_si128((const __m128i *)a_hi), L = _mm_loadu_si128((const __m128i *)a_lo);
+    __m128i h0 = _mm_mul_epu32(N, H), h1 = _mm_mul_epu32(N, _mm_srli_epi64(H, 32));
+    __m128i l0 = _mm_mul_epu32(N, L), l1 = _mm_mul_epu32(N, _mm_srli_epi64(L, 32));
+    __m128i carry = _mm_srli_epi64(_mm_add_epi64(l1, _mm_srli_epi64(l0, 32)), 32);
+    __m128i r = _mm_add_epi64(_mm_loadu_si128((const __m128i *)o), _mm_add_epi64(h0, _mm_slli_epi64(h1, 32)));
+    _mm_storeu_si128((__m128i *)out, _mm_add_epi64(r, carry));
+}
+#else
+static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                 uint64_t *out)
+{
+    out[0] = udm1_weyl_value32(a_hi[0], a_lo[0], o[0], n);
+    out[1] = udm1_weyl_value32(a_hi[1], a_lo[1], o[1], n);
+}
+#endif
+
+/* Dimensions 0..n-1 of (a_hi, a_lo, o) at n < 2^32: fours, then a two, then a one. */
+static inline void udm1_weyl_run32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                   uint32_t count, uint64_t *out)
+{
+    uint32_t j = 0;
+    for (; j + 4 <= count; j += 4) udm1_weyl4_32(a_hi + j, a_lo + j, o + j, n, out + j);
+    if (j + 2 <= count) udm1_weyl2_32(a_hi + j, a_lo + j, o + j, n, out + j), j += 2;
+    if (j < count) out[j] = udm1_weyl_value32(a_hi[j], a_lo[j], o[j], n);
 }
 
 /* The documented conversions (udm1/seq.h): float = top 24 bits x 2^-24, double = top 53 bits x 2^-53. */
@@ -112,7 +185,8 @@ static inline double udm1_raw_to_f64(uint64_t u) { return (double)(int64_t)(u >>
 /* Whether dimensions [dim, dim + n) of point index are drawn inline. */
 static inline int udm1_stream_inline_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
 {
-    return n <= st->held && dim <= st->held - n && (st->point_count == 0 || index < st->point_count);
+    return (st->flags & UDM1_STREAM_INLINE) && n <= st->held && dim <= st->held - n &&
+           (st->point_count == 0 || index < st->point_count);
 }
 
 /* Dimensions [first + dim, first + dim + n) of point `index`, as raw 0.64 values, floats or doubles.
@@ -124,8 +198,7 @@ static inline void udm1_stream_draw_raw(const udm1_stream *st, uint64_t index, u
     if (st && udm1_stream_inline_(st, index, dim, n)) {
         uint64_t m = index + st->index_base;
         if (m <= 0xFFFFFFFFu) {
-            for (uint32_t j = 0; j < n; ++j)
-                raw[j] = udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m);
+            udm1_weyl_run32(st->a_hi + dim, st->a_lo + dim, st->offset + dim, (uint32_t)m, n, raw);
         } else {
             for (uint32_t j = 0; j < n; ++j)
                 raw[j] = udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m);
@@ -140,9 +213,17 @@ static inline void udm1_stream_draw_f32(const udm1_stream *st, uint64_t index, u
 {
     if (st && udm1_stream_inline_(st, index, dim, n)) {
         uint64_t m = index + st->index_base;
-        if (m <= 0xFFFFFFFFu) {
-            for (uint32_t j = 0; j < n; ++j)
-                out[j] = udm1_raw_to_f32(udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
+        if (m <= 0xFFFFFFFFu && n <= 4) { /* the common draw: one vector step */
+            uint64_t r[4];
+            udm1_weyl_run32(st->a_hi + dim, st->a_lo + dim, st->offset + dim, (uint32_t)m, n, r);
+            for (uint32_t k = 0; k < n; ++k) out[k] = udm1_raw_to_f32(r[k]);
+        } else if (m <= 0xFFFFFFFFu) {
+            for (uint32_t j = 0; j < n; j += UDM1_STREAM_DIMS) {
+                uint64_t r[UDM1_STREAM_DIMS];
+                uint32_t c = n - j < UDM1_STREAM_DIMS ? n - j : UDM1_STREAM_DIMS;
+                udm1_weyl_run32(st->a_hi + dim + j, st->a_lo + dim + j, st->offset + dim + j, (uint32_t)m, c, r);
+                for (uint32_t k = 0; k < c; ++k) out[j + k] = udm1_raw_to_f32(r[k]);
+            }
         } else {
             for (uint32_t j = 0; j < n; ++j)
                 out[j] = udm1_raw_to_f32(udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
@@ -162,9 +243,17 @@ static inline void udm1_stream_draw_f64(const udm1_stream *st, uint64_t index, u
 {
     if (st && udm1_stream_inline_(st, index, dim, n)) {
         uint64_t m = index + st->index_base;
-        if (m <= 0xFFFFFFFFu) {
-            for (uint32_t j = 0; j < n; ++j)
-                out[j] = udm1_raw_to_f64(udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
+        if (m <= 0xFFFFFFFFu && n <= 4) { /* the common draw: one vector step */
+            uint64_t r[4];
+            udm1_weyl_run32(st->a_hi + dim, st->a_lo + dim, st->offset + dim, (uint32_t)m, n, r);
+            for (uint32_t k = 0; k < n; ++k) out[k] = udm1_raw_to_f64(r[k]);
+        } else if (m <= 0xFFFFFFFFu) {
+            for (uint32_t j = 0; j < n; j += UDM1_STREAM_DIMS) {
+                uint64_t r[UDM1_STREAM_DIMS];
+                uint32_t c = n - j < UDM1_STREAM_DIMS ? n - j : UDM1_STREAM_DIMS;
+                udm1_weyl_run32(st->a_hi + dim + j, st->a_lo + dim + j, st->offset + dim + j, (uint32_t)m, c, r);
+                for (uint32_t k = 0; k < c; ++k) out[j + k] = udm1_raw_to_f64(r[k]);
+            }
         } else {
             for (uint32_t j = 0; j < n; ++j)
                 out[j] = udm1_raw_to_f64(udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));

@@ -26,23 +26,6 @@
 #define DRAND_C 0xBull
 #define DRAND_MASK ((1ull << 48) - 1)
 
-/* (mult, plus) of n steps of x -> a x + c modulo 2^64 */
-static void lcg_jump(uint64_t a, uint64_t c, uint64_t n, uint64_t *mult, uint64_t *plus)
-{
-    uint64_t am = 1, ap = 0;
-    while (n) {
-        if (n & 1) {
-            am *= a;
-            ap = ap * a + c;
-        }
-        c = (a + 1) * c;
-        a *= a;
-        n >>= 1;
-    }
-    *mult = am;
-    *plus = ap;
-}
-
 typedef struct lcg_table { uint64_t A[64], G[64]; } lcg_table;
 
 static lcg_table *lcg_table_new(uint64_t a)
@@ -61,12 +44,15 @@ static lcg_table *lcg_table_new(uint64_t a)
 /* (mult, plus) of n steps of x -> a x + c, by the table of a */
 static void lcg_jump_table(const lcg_table *t, uint64_t c, uint64_t n, uint64_t *mult, uint64_t *plus)
 {
+    /* branch-free: each bit selects its factor or the identity (a data-dependent branch per bit
+     * mispredicted about half the time, which cost more than the multiplications) */
     uint64_t am = 1, g = 0;
-    for (int k = 0; n; ++k, n >>= 1)
-        if (n & 1) {
-            g = g * t->A[k] + t->G[k];
-            am *= t->A[k];
-        }
+    for (int k = 0; n; ++k, n >>= 1) {
+        uint64_t bit = 0 - (n & 1);
+        uint64_t a = (t->A[k] & bit) | (1 & ~bit), gk = t->G[k] & bit;
+        g = g * a + gk;
+        am *= a;
+    }
     *mult = am;
     *plus = g * c;
 }
@@ -132,11 +118,11 @@ static void prng_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, size
         pcg_seed(seq, skey, &state, &inc);
     }
     uint64_t pos = first * seq->dims + dim0 + (drand ? 1u : 0u);
-    lcg_jump(a, inc, pos, &m, &p);
+    lcg_jump_table(seq->data, inc, pos, &m, &p);
     state = state * m + p;
     /* steps from the last dimension of a row to dim0 of the next */
     uint64_t skip_m, skip_p;
-    lcg_jump(a, inc, (uint64_t)seq->dims - nd + 1, &skip_m, &skip_p);
+    lcg_jump_table(seq->data, inc, (uint64_t)seq->dims - nd + 1, &skip_m, &skip_p);
     for (size_t i = 0; i < count; ++i) {
         for (uint32_t j = 0; j < nd; ++j) {
             uint32_t dim = dim0 + j;
@@ -184,16 +170,9 @@ static uint64_t pcg_seek(const udm1_seq_t *seq, uint64_t skey, uint64_t index, u
     return state * m + p;
 }
 
-/* the stream key where the mode uses it (the increment, a word), else 0 */
-static uint64_t step_key(const udm1_seq_t *seq, uint64_t stream, int increment_uses_it)
+static uint64_t pcg_step(const udm1_seq_t *seq, uint64_t skey, uint64_t *state, uint32_t dim)
 {
-    int used = seq->mode != UDM1_MODE_NONE && (increment_uses_it || seq->mode != UDM1_MODE_STREAMS);
-    return used ? udm1_stream_key(seq->seed_key, stream) : 0;
-}
-
-static uint64_t pcg_step(const udm1_seq_t *seq, uint64_t stream, uint64_t *state, uint32_t dim)
-{
-    uint64_t skey = step_key(seq, stream, 1), old = *state;
+    uint64_t old = *state;
     *state = old * PCG_MULT + pcg_inc(seq, skey);
     uint64_t v = (uint64_t)pcg_output(old) << 32;
     return udm1_randomize_base2(seq->mode, v + seq->offset[dim], udm1_word(seq, skey, dim));
@@ -206,9 +185,9 @@ static uint64_t drand_seek(const udm1_seq_t *seq, uint64_t skey, uint64_t index,
     return (drand_start(seq, skey) * m + p) & DRAND_MASK;
 }
 
-static uint64_t drand_step(const udm1_seq_t *seq, uint64_t stream, uint64_t *state, uint32_t dim)
+static uint64_t drand_step(const udm1_seq_t *seq, uint64_t skey, uint64_t *state, uint32_t dim)
 {
-    uint64_t skey = step_key(seq, stream, 0), x = (*state * DRAND_A + DRAND_C) & DRAND_MASK;
+    uint64_t x = (*state * DRAND_A + DRAND_C) & DRAND_MASK;
     *state = x;
     return udm1_randomize_base2(seq->mode, (x << 16) + seq->offset[dim], udm1_word(seq, skey, dim));
 }

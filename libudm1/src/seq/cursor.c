@@ -31,10 +31,13 @@ udm1_status udm1_cursor_start(udm1_cursor *cursor, const udm1_seq *seq, uint64_t
     return UDM1_OK;
 }
 
-/* The stream key: the cursor's key, or computed again for a kind whose cursor holds its state */
-static inline uint64_t stream_key_of(const udm1_cursor *c)
+/* The stream key: the cursor's key, or for a kind whose cursor holds its state computed again (0 where
+ * the mode is none: a stepping kind does not use it then) */
+static inline uint64_t stream_key_of(const udm1_cursor *c, int for_padding)
 {
-    return c->seq->kind->seek ? udm1_seq_stream_key(c->seq, c->stream) : c->key;
+    const udm1_seq *seq = c->seq;
+    if (!seq->kind->seek) return c->key;
+    return seq->mode == UDM1_MODE_NONE && !for_padding ? 0 : udm1_seq_stream_key(seq, c->stream);
 }
 
 static inline uint64_t cursor_next(udm1_cursor *c)
@@ -42,12 +45,12 @@ static inline uint64_t cursor_next(udm1_cursor *c)
     const udm1_seq *seq = c->seq;
     uint32_t dim = c->dimension++;
     if (UDM1_LIKELY(dim < seq->dims)) {
-        if (seq->kind->step) return seq->kind->step(seq, c->stream, &c->key, dim); /* one step, no seek */
+        if (seq->kind->step) return seq->kind->step(seq, stream_key_of(c, 0), &c->key, dim); /* a step, no seek */
         return udm1_value_of(seq, c->key, c->index, dim);
     }
     ++c->padded;
     /* padding: an independent uniform value of (seed, stream, index, dim) */
-    return udm1_pad(udm1_shift(stream_key_of(c), udm1_dim_key(seq->seed_key, dim)), c->index);
+    return udm1_pad(udm1_shift(stream_key_of(c, 1), udm1_dim_key(seq->seed_key, dim)), c->index);
 }
 
 /* Whether the cursor can draw (else the message for udm1_last_error) */
@@ -95,6 +98,11 @@ void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
         seq->kind->fill(seq, c->key, c->index, 1, c->dimension, inside, raw);
         c->dimension += inside;
         k = inside;
+    } else if (seq->kind->step && c->dimension < seq->dims) { /* steps, with the stream key found once */
+        uint32_t inside = seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
+        uint64_t skey = stream_key_of(c, 0);
+        for (; k < inside; ++k) raw[k] = seq->kind->step(seq, skey, &c->key, c->dimension + k);
+        c->dimension += inside;
     } else if (seq->kind == &udm1_weyl_kind) { /* the Weyl values in one loop, without the generic step */
         uint32_t inside = c->dimension >= seq->dims ? 0 : seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
         for (; k < inside; ++k) raw[k] = udm1_weyl_shifted_raw(seq, c->key, c->index, c->dimension + k);

@@ -49,8 +49,8 @@ typedef void (*udm1_point_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64
 /* The generator's state at (index, dim < dims). */
 typedef uint64_t (*udm1_seek_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim);
 /* The value at the state's position (dimension dim, randomization applied); the state advanced by one.
- * It takes the stream id, not its key: the kind hashes it only where it needs the key. */
-typedef uint64_t (*udm1_step_fn)(const udm1_seq_t *seq, uint64_t stream, uint64_t *state, uint32_t dim);
+ * The stream key may be 0 where the mode is none (no kind uses it then). */
+typedef uint64_t (*udm1_step_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t *state, uint32_t dim);
 
 /* The operations of one sampler kind (see the top of this file). */
 typedef struct udm1_kind {

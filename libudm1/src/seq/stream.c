@@ -1,5 +1,9 @@
 /* stream.c - udm1_stream (udm1/stream.h): a stream's per-dimension words for the inline draws, and the
  * library's own draw for every case they do not cover. */
+
+/* udm1_stream.flags, private: offset[] holds the randomization words of a base-2 kind */
+#define STREAM_WORDS 0x100u
+#include "seq/scramble.h"
 #include "seq/value.h"
 
 #include <string.h>
@@ -25,16 +29,22 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
     s.count = count;
     s.dimensions = seq->dims;
     uint64_t skey = udm1_seq_stream_key(seq, stream);
+    uint32_t own = first >= seq->dims ? 0 : seq->dims - first < count ? seq->dims - first : count;
     if (seq->kind == &udm1_weyl_kind) { /* modes none, shift, screen: the inline arithmetic */
         s.flags = UDM1_STREAM_INLINE;
         s.index_base = udm1_screen_index(seq, skey, 0);
-        s.held = first >= seq->dims ? 0 : seq->dims - first < count ? seq->dims - first : count;
+        s.held = own;
         for (uint32_t j = 0; j < s.held; ++j) {
             uint32_t dim = first + j;
             s.a_hi[j] = seq->gen[dim].hi;
             s.a_lo[j] = seq->gen[dim].lo;
             s.offset[j] = seq->offset[dim] + udm1_weyl_shift(seq, skey, dim);
         }
+    } else if (seq->kind->base2 || seq->kind == &udm1_weyl_scrambled_kind) {
+        /* a base-2 randomization on top of the kind's value: the stream's words found once */
+        s.flags = STREAM_WORDS;
+        s.held = own;
+        for (uint32_t j = 0; j < s.held; ++j) s.offset[j] = udm1_word(seq, skey, first + j);
     }
     for (uint32_t j = 0; j < 4 && first < seq->dims && j < seq->dims - first; ++j) {
         s.domain_base[j] = seq->offset[first + j];
@@ -58,6 +68,23 @@ udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t
         return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimensions from %llu, %u of them, pass the dimension index limit",
                          fn, (unsigned long long)d0, n);
     if (n == 0) return UDM1_OK;
+    if ((st->flags & STREAM_WORDS) && dim < st->held && n <= st->held - dim) { /* base-2 kinds: words found */
+        uint64_t skey = st->key;
+        if (seq->kind == &udm1_weyl_scrambled_kind) {
+            for (uint32_t j = 0; j < n; ++j) {
+                uint32_t d = st->first + dim + j;
+                raw[j] = udm1_randomize_base2(seq->mode, udm1_weyl_raw(&seq->gen[d], seq->offset[d], index),
+                                              st->offset[dim + j]);
+            }
+        } else {
+            if (seq->kind->base2_point)
+                seq->kind->base2_point(seq, skey, index, st->first + dim, n, raw);
+            else
+                for (uint32_t j = 0; j < n; ++j) raw[j] = seq->kind->base2(seq, skey, index, st->first + dim + j);
+            for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_randomize_base2(seq->mode, raw[j], st->offset[dim + j]);
+        }
+        return UDM1_OK;
+    }
     udm1_cursor c;
     udm1_cursor_init(&c, seq, st->stream, index, (uint32_t)d0,
                      seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key); /* udm1_seq_stream_key, without the hash */
