@@ -132,6 +132,10 @@ static inline udm1_domain udm1_domain_chain(udm1_domain parent, uint64_t key, ui
  * Errors (raw left unchanged): NULL_ARGUMENT, DIMENSION (n 0 or above 4). */
 UDM1_API udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw);
 
+/* The same as floats (the conversion of udm1/seq.h), without the low bits a float does not read.
+ * Errors as udm1_domain_fill_raw, NULL out. */
+UDM1_API udm1_status udm1_domain_fill_f32(const udm1_domain *d, uint32_t n, float *out);
+
 /* Whether the child domain d draws n dimensions inline (a Weyl sequence, no point set, held dims). */
 static inline int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
 {
@@ -213,8 +217,9 @@ static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
         udm1_stream_draw_f32(d.stream, d.index, 0, n <= 4 ? n : 4, out);
         return;
     }
-    int ok = udm1_domain_fill_raw(&d, n, raw) == UDM1_OK;
-    for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = ok ? udm1_raw_to_f32(raw[j]) : (float)NAN;
+    (void)raw;
+    if (udm1_domain_fill_f32(&d, n, out) != UDM1_OK)
+        for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = (float)NAN;
 }
 
 static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)

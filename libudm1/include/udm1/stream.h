@@ -76,6 +76,11 @@ UDM1_API udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint
 UDM1_API udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
                                           uint64_t *raw);
 
+/* The same values as floats into out[0..n-1] (the conversion of udm1/seq.h); for the kinds whose low
+ * bits a float does not read, without computing them. Errors as udm1_stream_fill_raw, NULL out. */
+UDM1_API udm1_status udm1_stream_fill_f32(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+                                          float *out);
+
 /* ---- inline arithmetic (the sequence contract of udm1/seq.h) -------------------------------------- */
 
 /* The top 64 bits of a * b. */
@@ -230,13 +235,8 @@ static inline void udm1_stream_draw_f32(const udm1_stream *st, uint64_t index, u
         }
         return;
     }
-    uint64_t raw[UDM1_STREAM_DIMS];
-    for (uint32_t done = 0; done < n;) {
-        uint32_t m = n - done < UDM1_STREAM_DIMS ? n - done : UDM1_STREAM_DIMS;
-        int ok = udm1_stream_fill_raw(st, index, dim + done, m, raw) == UDM1_OK;
-        for (uint32_t j = 0; j < m; ++j) out[done + j] = ok ? udm1_raw_to_f32(raw[j]) : (float)NAN;
-        done += m;
-    }
+    if (udm1_stream_fill_f32(st, index, dim, n, out) != UDM1_OK)
+        for (uint32_t j = 0; j < n; ++j) out[j] = (float)NAN;
 }
 
 static inline void udm1_stream_draw_f64(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, double *out)

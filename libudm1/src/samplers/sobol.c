@@ -27,18 +27,30 @@ extern const uint32_t udm1_sobol_table_m[];
  * first 8, indexed by the subset's bits (the Gray code's low byte), so that a point of up to 256
  * samples is one load a dimension: a loop over the set bits mispredicts its exit about once a
  * dimension, which cost more than the rest of the value */
-enum { TABLE_DIMS = 256 };
+enum { TABLE_DIMS = 256, BYTE_DIMS = 16 };
 typedef struct sobol {
-    uint32_t table_dims;
+    uint32_t table_dims, byte_dims;
     uint64_t (*low)[256];
+    uint64_t (*bytes)[3][256]; /* the first BYTE_DIMS dimensions: the subsets of direction numbers 8..31, by byte */
     uint64_t v[][64];
 } sobol;
+
+/* The first 32 bits of the Gray code g of dimension dim (< byte_dims): four loads, no branch. Random
+ * indices (a domain's permuted ones) have about twelve set bits above the low byte. */
+static inline uint64_t sobol_bytes(const sobol *t, uint32_t dim, uint64_t g)
+{
+    uint64_t(*b)[256] = t->bytes[dim];
+    return t->low[dim][g & 255u] ^ b[0][(g >> 8) & 255u] ^ b[1][(g >> 16) & 255u] ^ b[2][(g >> 24) & 255u];
+}
 
 static uint64_t sobol_raw(const sobol *t, uint32_t dim, uint64_t n)
 {
     uint64_t g = n ^ (n >> 1), x = 0;
     const uint64_t *v = t->v[dim];
-    if (dim < t->table_dims) {
+    if (dim < t->byte_dims) {
+        x = sobol_bytes(t, dim, g);
+        g &= ~(uint64_t)0xFFFFFFFFu;
+    } else if (dim < t->table_dims) {
         x = t->low[dim][g & 255u];
         g &= ~(uint64_t)255u;
     }
@@ -52,9 +64,28 @@ static uint64_t sobol_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index
     return sobol_raw(seq->data, dim, index) + seq->offset[dim];
 }
 
-/* sobol_raw of dimensions dim0 .. dim0 + m - 1 at once */
+/* sobol_raw of dimensions dim0 .. dim0 + m - 1 at once: where every one has its low-byte table, the
+ * Gray code's higher set bits found once and each XORed into every dimension (the branch on the bits
+ * taken once, not once a dimension) */
 static void sobol_raw_dims(const sobol *t, uint64_t n, uint32_t dim0, uint32_t m, uint64_t *raw)
 {
+    uint64_t g = n ^ (n >> 1);
+    if (dim0 + m <= t->byte_dims) {
+        for (uint32_t k = 0; k < m; ++k) raw[k] = sobol_bytes(t, dim0 + k, g);
+        for (uint64_t b = g & ~(uint64_t)0xFFFFFFFFu; b; b &= b - 1) {
+            unsigned bit = (unsigned)__builtin_ctzll(b);
+            for (uint32_t k = 0; k < m; ++k) raw[k] ^= t->v[dim0 + k][bit];
+        }
+        return;
+    }
+    if (dim0 + m <= t->table_dims) {
+        for (uint32_t k = 0; k < m; ++k) raw[k] = t->low[dim0 + k][g & 255u];
+        for (uint64_t b = g & ~(uint64_t)255u; b; b &= b - 1) {
+            unsigned bit = (unsigned)__builtin_ctzll(b);
+            for (uint32_t k = 0; k < m; ++k) raw[k] ^= t->v[dim0 + k][bit];
+        }
+        return;
+    }
     for (uint32_t j = 0; j < m; ++j) raw[j] = sobol_raw(t, dim0 + j, n);
 }
 
@@ -96,13 +127,15 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
     if (seq->dims > udm1_sobol_table_dims)
         return udm1_fail(UDM1_ERROR_DIMENSION, "udm1_seq_create: the Sobol table has %u dimensions, %u asked",
                          udm1_sobol_table_dims, seq->dims);
-    uint32_t td = seq->dims < TABLE_DIMS ? seq->dims : TABLE_DIMS;
+    uint32_t td = seq->dims < TABLE_DIMS ? seq->dims : TABLE_DIMS, bd = seq->dims < BYTE_DIMS ? seq->dims : BYTE_DIMS;
     size_t head = sizeof(sobol) + sizeof(uint64_t) * 64 * seq->dims;
     head = (head + 63) / 64 * 64;
-    sobol *t = malloc(head + sizeof(uint64_t) * 256 * td);
+    sobol *t = malloc(head + sizeof(uint64_t) * 256 * (td + 3 * (size_t)bd));
     if (!t) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u dimensions", seq->dims);
     t->table_dims = td;
+    t->byte_dims = bd;
     t->low = (uint64_t(*)[256])((char *)t + head);
+    t->bytes = (uint64_t(*)[3][256])((char *)t + head + sizeof(uint64_t) * 256 * td);
     for (uint32_t j = 0; j < seq->dims; ++j) {
         uint64_t *v = t->v[j];
         uint32_t poly = udm1_sobol_table_poly[j];
@@ -126,6 +159,12 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
         t->low[j][0] = 0;
         for (uint32_t b = 1; b < 256; ++b) t->low[j][b] = t->low[j][b & (b - 1)] ^ t->v[j][__builtin_ctz(b)];
     }
+    for (uint32_t j = 0; j < bd; ++j) /* ... and of numbers 8..15, 16..23, 24..31 */
+        for (int k = 0; k < 3; ++k) {
+            t->bytes[j][k][0] = 0;
+            for (uint32_t b = 1; b < 256; ++b)
+                t->bytes[j][k][b] = t->bytes[j][k][b & (b - 1)] ^ t->v[j][8 * (k + 1) + __builtin_ctz(b)];
+        }
     seq->data = t;
     return UDM1_OK;
 #else

@@ -27,15 +27,15 @@ static uint64_t permuted_index(uint64_t index, uint64_t K, uint32_t seed)
     return v;
 }
 
-udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw)
+/* A draw's raw values; with low_half 0 an Owen-scrambled base-2 kind may leave the low 32 bits 0. */
+static udm1_status domain_fill(const char *fn, const udm1_domain *d, uint32_t n, uint64_t *raw, int low_half)
 {
-    static const char fn[] = "udm1_domain_fill_raw";
     if (!d || !d->stream || !d->stream->seq || !raw)
         return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn,
                          !d ? "d" : !raw ? "raw" : !d->stream ? "d->stream" : "d->stream->seq");
     if (n == 0 || n > 4) return udm1_fail(UDM1_ERROR_DIMENSION, "%s: n = %u is outside 1..4", fn, n);
     const udm1_stream *st = d->stream;
-    if (!d->key) return udm1_stream_fill_raw(st, d->index, 0, n, raw); /* the root: the stream itself */
+    if (!d->key) return udm1_stream_fill(fn, st, d->index, 0, n, raw, low_half); /* the root: the stream itself */
     const udm1_seq *seq = st->seq;
     if (seq->point_count && d->index >= seq->point_count)
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn,
@@ -50,6 +50,20 @@ udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw
             uint32_t dim = st->first + j;
             raw[j] = udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_shift(key, seq->dim_key[dim]), m);
         }
+    } else if (inside && seq->kind->base2) { /* the values, then the domain's words on them */
+        uint64_t word[4];
+        if (seq->kind->base2_point)
+            seq->kind->base2_point(seq, key, m, st->first, inside, raw);
+        else
+            for (uint32_t j = 0; j < inside; ++j) raw[j] = seq->kind->base2(seq, key, m, st->first + j);
+        if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
+            for (uint32_t j = 0; j < inside; ++j) word[j] = 0;
+        else /* udm1_word of the four dimensions at once */
+            udm1_mix64_many(seq->dim_key + st->first, key, word, inside);
+        if (seq->mode == UDM1_MODE_OWEN)
+            udm1_owen64_many(raw, word, raw, inside, low_half);
+        else
+            for (uint32_t j = 0; j < inside; ++j) raw[j] = udm1_randomize_base2(seq->mode, raw[j], word[j]);
     } else if (inside && seq->kind->fill) {
         seq->kind->fill(seq, key, m, 1, st->first, inside, raw);
     } else {
@@ -58,4 +72,19 @@ udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw
     for (uint32_t j = inside; j < n; ++j) /* padding: the cursor's rule, the domain's key as the stream's */
         raw[j] = udm1_pad(udm1_shift(key, udm1_dim_key(seq->seed_key, st->first + j)), d->index);
     return UDM1_OK;
+}
+
+udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw)
+{
+    return domain_fill("udm1_domain_fill_raw", d, n, raw, 1);
+}
+
+udm1_status udm1_domain_fill_f32(const udm1_domain *d, uint32_t n, float *out)
+{
+    uint64_t raw[4];
+    if (!out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_domain_fill_f32: out is NULL");
+    udm1_status s = domain_fill("udm1_domain_fill_f32", d, n, raw, 0);
+    if (s == UDM1_OK)
+        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_to_f32(raw[j]);
+    return s;
 }

@@ -68,6 +68,15 @@ static inline uint64_t udm1_owen64(uint64_t v, uint64_t r)
     return (uint64_t)top << 32 | low;
 }
 
+/* udm1_owen64 of v[j], r[j] into out[j] for j < n, four at a time where the instruction set allows
+ * (owen_simd.c): the same values; with low_half 0 only their top 32 bits (the low half 0), which is
+ * all a float conversion reads. */
+UDM1_HIDDEN void udm1_owen64_many(const uint64_t *v, const uint64_t *r, uint64_t *out, uint32_t n, int low_half);
+
+/* udm1_mix64(in[j] + add) into out[j] for j < n, four at a time where the instruction set allows: the
+ * words udm1_shift(key, K_j) of n dimensions at once (in = their keys K_j, add = the stream key). */
+UDM1_HIDDEN void udm1_mix64_many(const uint64_t *in, uint64_t add, uint64_t *out, uint32_t n);
+
 /* Randomize a value whose digits are binary (Weyl, Sobol, i/K, ...). */
 static inline uint64_t udm1_randomize_base2(uint32_t mode, uint64_t v, uint64_t r)
 {

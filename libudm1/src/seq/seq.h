@@ -104,6 +104,12 @@ UDM1_HIDDEN void udm1_cursor_init(udm1_cursor *c, const udm1_seq_t *seq, uint64_
  * checks): the sequence's values over its own dimensions, padding past them. */
 UDM1_HIDDEN void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw);
 
+/* ---- streams (stream.c) ---- */
+/* udm1_stream_fill_raw, naming fn in its messages; with low_half 0 an Owen-scrambled base-2 kind may
+ * leave the low 32 bits 0 (a float reads only the top 24). */
+UDM1_HIDDEN udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t index, uint32_t dim,
+                                         uint32_t n, uint64_t *raw, int low_half);
+
 /* ---- transforms of a kind (tent.c) ---- */
 /* The tent (baker's) transform 1 - |2x - 1| on a raw 0.64 value, exact: 2x below 1/2, 2 - 2x above. */
 static inline uint64_t udm1_tent(uint64_t x) { return (x >> 63) ? (0 - x) << 1 : x << 1; }

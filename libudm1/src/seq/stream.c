@@ -54,9 +54,11 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
     return UDM1_OK;
 }
 
-udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, uint64_t *raw)
+/* The raw values of a draw; with low_half 0 a base-2 Owen-scrambled kind may leave the low 32 bits 0
+ * (a float reads the top 24). */
+udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+                             uint64_t *raw, int low_half)
 {
-    static const char fn[] = "udm1_stream_fill_raw";
     if (!st || !st->seq || !raw)
         return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, !st ? "st" : !raw ? "raw" : "st->seq");
     const udm1_seq *seq = st->seq;
@@ -81,7 +83,10 @@ udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t
                 seq->kind->base2_point(seq, skey, index, st->first + dim, n, raw);
             else
                 for (uint32_t j = 0; j < n; ++j) raw[j] = seq->kind->base2(seq, skey, index, st->first + dim + j);
-            for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_randomize_base2(seq->mode, raw[j], st->offset[dim + j]);
+            if (seq->mode == UDM1_MODE_OWEN)
+                udm1_owen64_many(raw, st->offset + dim, raw, n, low_half);
+            else
+                for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_randomize_base2(seq->mode, raw[j], st->offset[dim + j]);
         }
         return UDM1_OK;
     }
@@ -89,5 +94,29 @@ udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t
     udm1_cursor_init(&c, seq, st->stream, index, (uint32_t)d0,
                      seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key); /* udm1_seq_stream_key, without the hash */
     udm1_cursor_raw(&c, n, raw);
+    return UDM1_OK;
+}
+
+udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, uint64_t *raw)
+{
+    return udm1_stream_fill("udm1_stream_fill_raw", st, index, dim, n, raw, 1);
+}
+
+udm1_status udm1_stream_fill_f32(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, float *out)
+{
+    if (!out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_stream_fill_f32: out is NULL");
+    uint64_t raw[64];
+    if (n <= 4) { /* the common draw (n 0: the checks only) */
+        udm1_status s = udm1_stream_fill("udm1_stream_fill_f32", st, index, dim, n, raw, 0);
+        for (uint32_t j = 0; s == UDM1_OK && j < n; ++j) out[j] = udm1_to_f32(raw[j]);
+        return s;
+    }
+    for (uint32_t done = 0; done < n;) {
+        uint32_t m = n - done < 64 ? n - done : 64;
+        udm1_status s = udm1_stream_fill("udm1_stream_fill_f32", st, index, dim + done, m, raw, 0);
+        if (s != UDM1_OK) return s;
+        for (uint32_t j = 0; j < m; ++j) out[done + j] = udm1_to_f32(raw[j]);
+        done += m;
+    }
     return UDM1_OK;
 }
