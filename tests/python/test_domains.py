@@ -22,7 +22,8 @@ class Stream(ctypes.Structure):
                 ("point_count", ctypes.c_uint64), ("first", ctypes.c_uint32), ("count", ctypes.c_uint32),
                 ("held", ctypes.c_uint32), ("dimensions", ctypes.c_uint32), ("a_hi", ctypes.c_uint64 * DIMS),
                 ("a_lo", ctypes.c_uint64 * DIMS), ("offset", ctypes.c_uint64 * DIMS),
-                ("domain_base", ctypes.c_uint64 * 4), ("domain_key", ctypes.c_uint64 * 4)]
+                ("domain_base", ctypes.c_uint64 * 4), ("domain_key", ctypes.c_uint64 * 4),
+                ("table", ctypes.c_void_p), ("table_bits", ctypes.c_uint32), ("table_xor", ctypes.c_uint32)]
 
 
 class Domain(ctypes.Structure):
@@ -97,6 +98,7 @@ def test_domains_equal_the_reference(preset, d):
     for stream in (0, (5 << 32) | 9, M64):
         st = Stream()
         assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, stream, 0, 8) == 0
+        assert st.struct_size == ctypes.sizeof(Stream)  # this mirror of udm1/stream.h is current
         for index in (0, 1, 1000, M32, 1 << 32, (1 << 40) + 17, M64 // 8):
             for path in PATHS:
                 want = domain_values(alphas, seed, stream, path, index, 4)

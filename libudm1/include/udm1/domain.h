@@ -66,29 +66,6 @@ static inline uint64_t udm1_mix64(uint64_t z)
     return z ^ (z >> 31);
 }
 
-/* The bits of x in reverse order. */
-static inline uint32_t udm1_reverse32(uint32_t x)
-{
-    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
-    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
-    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
-    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
-    return (x >> 16) | (x << 16);
-}
-
-/* A hash of 32 bits in which each output bit depends only on the input bits at or below it, each step
- * a bijection modulo 2^k for every k (Burley 2020, with Vegdahl's constants): applied to bit-reversed
- * digits it is a nested uniform (Owen) scramble. */
-static inline uint32_t udm1_owen_hash32(uint32_t x, uint32_t seed)
-{
-    x ^= x * 0x3d20adeau;
-    x += seed;
-    x *= (seed >> 16) | 1u;
-    x ^= x * 0x05526c56u;
-    x ^= x * 0x53a22864u;
-    return x;
-}
-
 /* A nested uniform scramble of a 32-bit index: it maps each aligned block of 2^k indices onto an
  * aligned block of 2^k. */
 static inline uint32_t udm1_owen_index32(uint32_t x, uint32_t seed)
@@ -189,6 +166,30 @@ static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint
     }
 }
 
+/* Whether the child domain d of a pmj02 stream draws n dimensions inline. */
+static inline int udm1_domain_pmj02_(const udm1_domain *d, uint32_t n)
+{
+    const udm1_stream *st = d->stream;
+    return st && d->key && (st->flags & UDM1_STREAM_PMJ02) && n <= 4 && n <= st->held && d->index < st->point_count;
+}
+
+/* A pmj02 child domain's raw values: its index permuted inside the K points, its own words. */
+static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, uint64_t *raw)
+{
+    const udm1_stream *st = d->stream;
+    uint64_t K = st->point_count, words[4];
+    uint32_t m = (uint32_t)d->index;
+    if (st->table_bits) {
+        do m = udm1_owen_bits(m, (uint32_t)(d->key >> 32), st->table_bits);
+        while (m >= K);
+    }
+    if (st->table_xor) {
+        for (int j = 0; j < 4; ++j) words[j] = d->key + st->domain_key[j];
+        udm1_mix64x4(words, words);
+    }
+    udm1_pmj02_values_(st, m, 0, n, words, (int)st->table_xor, raw);
+}
+
 /* The domain's first n dimensions (1..4) as raw values, floats or doubles. A draw the library refuses
  * gives 0 (raw) or NaN, with udm1_last_error() saying why. */
 static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
@@ -199,6 +200,10 @@ static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw
     }
     if (udm1_domain_inline_(&d, n)) {
         udm1_domain_values_(d.stream, d.key, d.index, n, raw);
+        return;
+    }
+    if (udm1_domain_pmj02_(&d, n)) {
+        udm1_domain_pmj02_values_(&d, n, raw);
         return;
     }
     if (udm1_domain_fill_raw(&d, n, raw) != UDM1_OK)
@@ -217,7 +222,11 @@ static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
         udm1_stream_draw_f32(d.stream, d.index, 0, n <= 4 ? n : 4, out);
         return;
     }
-    (void)raw;
+    if (udm1_domain_pmj02_(&d, n)) {
+        udm1_domain_pmj02_values_(&d, n, raw);
+        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f32(raw[j]);
+        return;
+    }
     if (udm1_domain_fill_f32(&d, n, out) != UDM1_OK)
         for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = (float)NAN;
 }
@@ -232,6 +241,11 @@ static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
     }
     if (!d.key && d.stream) {
         udm1_stream_draw_f64(d.stream, d.index, 0, n <= 4 ? n : 4, out);
+        return;
+    }
+    if (udm1_domain_pmj02_(&d, n)) {
+        udm1_domain_pmj02_values_(&d, n, raw);
+        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f64(raw[j]);
         return;
     }
     int ok = udm1_domain_fill_raw(&d, n, raw) == UDM1_OK;

@@ -37,8 +37,15 @@
 
 /* The dimensions one udm1_stream holds (more: several streams, or draws through the library). */
 #define UDM1_STREAM_DIMS 64u
-/* udm1_stream.flags: the inline Weyl arithmetic applies to the dimensions it holds. */
+/* udm1_stream.flags: which inline arithmetic applies to the dimensions it holds. Each flag also names the
+ * layout of the data it reads: a later library that changes a layout sets another flag, and code
+ * compiled against this header then draws through the library instead.
+ *   UDM1_STREAM_INLINE  a Weyl sequence: a_hi, a_lo, offset (the contract's arithmetic)
+ *   UDM1_STREAM_PMJ02   pmj02 without randomization or with its digital shift: `table` holds the (0,2)
+ *                       coordinates as [pair][K][2] 32-bit fractions, each pair in the order its indices
+ *                       read it, then XORed with the word in offset */
 #define UDM1_STREAM_INLINE 1u
+#define UDM1_STREAM_PMJ02 2u
 
 #ifdef __cplusplus
 extern "C" {
@@ -60,6 +67,10 @@ typedef struct udm1_stream {
     uint64_t a_hi[UDM1_STREAM_DIMS], a_lo[UDM1_STREAM_DIMS], offset[UDM1_STREAM_DIMS];
     /* for domains (udm1/domain.h), the first four dimensions held: base offsets o_j and dimension keys */
     uint64_t domain_base[4], domain_key[4];
+    /* UDM1_STREAM_PMJ02: the table and ceil(log2 K) */
+    const uint32_t *table;
+    uint32_t table_bits;
+    uint32_t table_xor;    /* 1: values XORed with their word (offset[]); 0: as they are */
 } udm1_stream;
 
 /* Fill *st for stream `stream` of seq, dimensions [first_dimension, first_dimension + count).
@@ -187,11 +198,59 @@ static inline void udm1_weyl_run32(const uint64_t *a_hi, const uint64_t *a_lo, c
 static inline float udm1_raw_to_f32(uint64_t u) { return (float)(int32_t)(u >> 40) * (1.0f / 16777216.0f); }
 static inline double udm1_raw_to_f64(uint64_t u) { return (double)(int64_t)(u >> 11) * (1.0 / 9007199254740992.0); }
 
+/* The bits of x in reverse order; a hash of 32 bits in which each output bit depends only on the input
+ * bits at or below it, each step a bijection modulo 2^k for every k (Burley 2020, with Vegdahl's
+ * constants): applied to bit-reversed digits it is a nested uniform (Owen) scramble. */
+static inline uint32_t udm1_reverse32(uint32_t x)
+{
+    x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+    x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+    x = ((x >> 4) & 0x0F0F0F0Fu) | ((x & 0x0F0F0F0Fu) << 4);
+    x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
+    return (x >> 16) | (x << 16);
+}
+
+static inline uint32_t udm1_owen_hash32(uint32_t x, uint32_t seed)
+{
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+
+/* A nested uniform scramble of the k-bit value v (v < 2^k, 1 <= k <= 32): it maps each aligned block of
+ * 2^j values onto an aligned block of 2^j. */
+static inline uint32_t udm1_owen_bits(uint32_t v, uint32_t seed, unsigned k)
+{
+    uint32_t mask = k >= 32 ? 0xFFFFFFFFu : (1u << k) - 1u;
+    return udm1_reverse32(udm1_owen_hash32(udm1_reverse32(v) >> (32 - k), seed) & mask) >> (32 - k);
+}
+
+/* Raw pmj02 values (UDM1_STREAM_PMJ02) of dimensions first + dim .. + n - 1 of point index < K, XORed
+ * with words[] (or not). */
+static inline void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+                                      const uint64_t *words, int xor_words, uint64_t *raw)
+{
+    for (uint32_t j = 0; j < n; ++j) {
+        uint32_t d = st->first + dim + j;
+        uint64_t v = (uint64_t)st->table[((uint64_t)(d / 2) * st->point_count + index) * 2 + (d & 1)] << 32;
+        raw[j] = xor_words ? v ^ words[j] : v;
+    }
+}
+
 /* Whether dimensions [dim, dim + n) of point index are drawn inline. */
 static inline int udm1_stream_inline_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
 {
     return (st->flags & UDM1_STREAM_INLINE) && n <= st->held && dim <= st->held - n &&
            (st->point_count == 0 || index < st->point_count);
+}
+
+/* Whether dimensions [dim, dim + n) of point index are pmj02 values drawn inline. */
+static inline int udm1_stream_pmj02_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
+{
+    return (st->flags & UDM1_STREAM_PMJ02) && n <= st->held && dim <= st->held - n && index < st->point_count;
 }
 
 /* Dimensions [first + dim, first + dim + n) of point `index`, as raw 0.64 values, floats or doubles.
@@ -208,6 +267,10 @@ static inline void udm1_stream_draw_raw(const udm1_stream *st, uint64_t index, u
             for (uint32_t j = 0; j < n; ++j)
                 raw[j] = udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m);
         }
+        return;
+    }
+    if (st && udm1_stream_pmj02_(st, index, dim, n)) {
+        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, raw);
         return;
     }
     if (udm1_stream_fill_raw(st, index, dim, n, raw) != UDM1_OK)
@@ -235,6 +298,12 @@ static inline void udm1_stream_draw_f32(const udm1_stream *st, uint64_t index, u
         }
         return;
     }
+    if (st && n <= 4 && udm1_stream_pmj02_(st, index, dim, n)) {
+        uint64_t r[4];
+        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, r);
+        for (uint32_t k = 0; k < n; ++k) out[k] = udm1_raw_to_f32(r[k]);
+        return;
+    }
     if (udm1_stream_fill_f32(st, index, dim, n, out) != UDM1_OK)
         for (uint32_t j = 0; j < n; ++j) out[j] = (float)NAN;
 }
@@ -258,6 +327,12 @@ static inline void udm1_stream_draw_f64(const udm1_stream *st, uint64_t index, u
             for (uint32_t j = 0; j < n; ++j)
                 out[j] = udm1_raw_to_f64(udm1_weyl_value(st->a_hi[dim + j], st->a_lo[dim + j], st->offset[dim + j], m));
         }
+        return;
+    }
+    if (st && n <= 4 && udm1_stream_pmj02_(st, index, dim, n)) {
+        uint64_t r[4];
+        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, r);
+        for (uint32_t k = 0; k < n; ++k) out[k] = udm1_raw_to_f64(r[k]);
         return;
     }
     uint64_t raw[UDM1_STREAM_DIMS];

@@ -159,20 +159,21 @@ static int build(uint32_t *xs, uint32_t *ys, uint32_t K, uint64_t key)
 typedef struct pmj02 {
     uint32_t pairs;
     uint32_t bits;  /* m with 2^m >= K */
-    uint32_t *key;  /* per pair: its shuffle's key (after xy in the same allocation) */
-    uint32_t xy[1]; /* pairs x K x 2 */
+    uint32_t xy[1]; /* pairs x K x 2: pair k's point at index i is xy[k][i] (pairs k >= 1 stored shuffled) */
 } pmj02;
 
-/* Pairs k >= 1 read their table in a shuffled order: the index, as an m-bit
+/* Pairs k >= 1 read their points in a shuffled order: the index, as an m-bit
  * fraction, Owen-scrambled (Burley's shuffle), walking again while past K.
  * Owen scrambling maps aligned blocks of 2^a indices onto aligned blocks, and
  * every aligned block of a PMJ02 table is itself a (0,a,2)-net, so every
  * power-of-two prefix of every pair stays stratified, while the pairs are
- * decorrelated (the same index no longer means the same stratum pattern). */
-static uint64_t shuffled(const pmj02 *t, uint64_t K, uint32_t key, uint64_t index)
+ * decorrelated (the same index no longer means the same stratum pattern).
+ * The table stores each pair in its shuffled order (made once, at creation),
+ * so a value is one load. */
+static uint64_t shuffled(uint32_t bits, uint64_t K, uint32_t key, uint64_t index)
 {
-    if (t->bits == 0) return index;
-    uint32_t sh = 32 - t->bits, j = (uint32_t)index;
+    if (bits == 0) return index;
+    uint32_t sh = 32 - bits, j = (uint32_t)index;
     do j = udm1_owen32(j << sh, key) >> sh;
     while (j >= K);
     return j;
@@ -182,11 +183,20 @@ static uint64_t pmj02_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index
 {
     (void)skey;
     const pmj02 *t = seq->data;
-    uint64_t K = seq->point_count;
-    uint32_t pair = dim / 2;
-    if (pair) index = shuffled(t, K, t->key[pair], index);
-    uint64_t v = (uint64_t)t->xy[(pair * K + index) * 2 + (dim & 1)] << 32;
+    uint64_t v = (uint64_t)t->xy[((dim / 2) * seq->point_count + index) * 2 + (dim & 1)] << 32;
     return v + seq->offset[dim];
+}
+
+/* pmj02_base2 of dimensions dim0 .. dim0 + m - 1 */
+static void pmj02_base2_point(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim0, uint32_t m,
+                              uint64_t *raw)
+{
+    (void)skey;
+    const pmj02 *t = seq->data;
+    for (uint32_t j = 0; j < m; ++j) {
+        uint32_t dim = dim0 + j;
+        raw[j] = ((uint64_t)t->xy[((dim / 2) * seq->point_count + index) * 2 + (dim & 1)] << 32) + seq->offset[dim];
+    }
 }
 
 static uint64_t pmj02_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
@@ -202,14 +212,18 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
         return udm1_fail(UDM1_ERROR_POINT_COUNT,
                          "udm1_seq_create: pmj02 takes K <= 2^20 and K x pairs <= 2^24, got K = %llu with %u pairs",
                          (unsigned long long)K, pairs);
-    pmj02 *t = malloc(sizeof(pmj02) + sizeof(uint32_t) * (2 * K * pairs + pairs));
+    pmj02 *t = malloc(sizeof(pmj02) + sizeof(uint32_t) * 2 * K * pairs);
     uint32_t *xs = malloc(sizeof(uint32_t) * K), *ys = malloc(sizeof(uint32_t) * K);
     int ok = t && xs && ys;
+    uint32_t bits = 0;
+    while (((uint64_t)1 << bits) < K) ++bits;
     for (uint32_t p = 0; ok && p < pairs; ++p) {
         ok = build(xs, ys, (uint32_t)K, seq->seed_key ^ udm1_mix64(0x504D4A3032ull + p));
+        uint32_t key = udm1_key32(seq->seed_key, 0x504D4A53u, p);
         for (uint64_t i = 0; ok && i < K; ++i) {
-            t->xy[(p * K + i) * 2] = xs[i];
-            t->xy[(p * K + i) * 2 + 1] = ys[i];
+            uint64_t at = p ? shuffled(bits, K, key, i) : i;
+            t->xy[(p * K + i) * 2] = xs[at];
+            t->xy[(p * K + i) * 2 + 1] = ys[at];
         }
     }
     free(xs);
@@ -219,12 +233,18 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
         return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for pmj02 tables");
     }
     t->pairs = pairs;
-    t->key = t->xy + 2 * K * pairs;
-    for (uint32_t p = 0; p < pairs; ++p) t->key[p] = udm1_key32(seq->seed_key, 0x504D4A53u, p);
-    t->bits = 0;
-    while (((uint64_t)1 << t->bits) < K) ++t->bits;
+    t->bits = bits;
     seq->data = t;
     return UDM1_OK;
 }
 
-const udm1_kind udm1_pmj02_kind = {.name = "pmj02", .value = pmj02_value, .base2 = pmj02_base2};
+const udm1_kind udm1_pmj02_kind = {.name = "pmj02", .value = pmj02_value, .base2 = pmj02_base2,
+                                   .base2_point = pmj02_base2_point};
+
+const uint32_t *udm1_pmj02_stream_table(const udm1_seq_t *seq, uint32_t *bits)
+{
+    if (seq->kind != &udm1_pmj02_kind) return NULL;
+    const pmj02 *t = seq->data;
+    *bits = t->bits;
+    return t->xy;
+}

@@ -3,6 +3,7 @@
 
 /* udm1_stream.flags, private: offset[] holds the randomization words of a base-2 kind */
 #define STREAM_WORDS 0x100u
+#include "samplers/samplers.h"
 #include "seq/scramble.h"
 #include "seq/value.h"
 
@@ -45,6 +46,13 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
         s.flags = STREAM_WORDS;
         s.held = own;
         for (uint32_t j = 0; j < s.held; ++j) s.offset[j] = udm1_word(seq, skey, first + j);
+        /* pmj02 without base offsets, unrandomized or digitally shifted: drawn inline from its table */
+        int plain = seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_PERMUTE;
+        for (uint32_t j = 0; plain && j < s.held; ++j) plain = seq->offset[first + j] == 0;
+        if (plain && (s.table = udm1_pmj02_stream_table(seq, &s.table_bits)) != NULL) {
+            s.flags |= UDM1_STREAM_PMJ02;
+            s.table_xor = seq->mode == UDM1_MODE_PERMUTE;
+        }
     }
     for (uint32_t j = 0; j < 4 && first < seq->dims && j < seq->dims - first; ++j) {
         s.domain_base[j] = seq->offset[first + j];
