@@ -120,7 +120,7 @@ static inline int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
     return st && d->key && (st->flags & UDM1_STREAM_INLINE) && n <= 4 && n <= st->held && st->point_count == 0;
 }
 
-/* udm1_mix64 of four values at once, where the compiler targets AVX2 (64-bit products from 32-bit ones,
+/* udm1_mix64(add + in[j]) of four values at once, where the compiler targets AVX2 (64-bit products from 32-bit ones,
  * or AVX-512's own): the same values. */
 #if defined(__AVX2__)
 static inline __m256i udm1_mul64x4_(__m256i a, uint64_t c)
@@ -134,35 +134,67 @@ static inline __m256i udm1_mul64x4_(__m256i a, uint64_t c)
 #endif
 }
 
-static inline void udm1_mix64x4(const uint64_t *in, uint64_t *out)
+static inline void udm1_mix64x4(uint64_t add, const uint64_t *in, uint64_t *out)
 {
-    __m256i z = _mm256_loadu_si256((const __m256i *)in);
+    __m256i z = _mm256_add_epi64(_mm256_set1_epi64x((long long)add), _mm256_loadu_si256((const __m256i *)in));
     z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), 0xBF58476D1CE4E5B9ull);
     z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), 0x94D049BB133111EBull);
     _mm256_storeu_si256((__m256i *)out, _mm256_xor_si256(z, _mm256_srli_epi64(z, 31)));
 }
 #else
-static inline void udm1_mix64x4(const uint64_t *in, uint64_t *out)
+static inline void udm1_mix64x4(uint64_t add, const uint64_t *in, uint64_t *out)
 {
-    for (int j = 0; j < 4; ++j) out[j] = udm1_mix64(in[j]);
+    for (int j = 0; j < 4; ++j) out[j] = udm1_mix64(add + in[j]);
 }
 #endif
 
-/* A child domain's raw values of dimensions 0..n-1 (inline case): its index scrambled, its own shifts. */
-static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_t index, uint32_t n, uint64_t *raw)
+/* A child domain's values of dimensions 0..n-1 (inline case) as raw values (out_kind 0), floats (1) or
+ * doubles (2): its index scrambled, its own shifts. Where the compiler targets AVX2 the four shifts and
+ * values stay in one register from the key to the conversion (a wide load of values just stored one by
+ * one would wait for them). */
+static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_t index, uint32_t n, int out_kind,
+                                       void *out)
 {
     uint32_t low = udm1_owen_index32((uint32_t)index, (uint32_t)(key >> 32));
-    if (index <= 0xFFFFFFFFu) { /* vectorized: four shifts and four values (the stream's arrays have room), n kept */
-        uint64_t o[4], v[4];
-        for (int j = 0; j < 4; ++j) o[j] = key + st->domain_key[j];
-        udm1_mix64x4(o, o);
-        for (int j = 0; j < 4; ++j) o[j] += st->domain_base[j];
-        udm1_weyl4_32(st->a_hi, st->a_lo, o, low, v);
-        for (uint32_t j = 0; j < n; ++j) raw[j] = v[j];
-    } else {
-        uint64_t m = (index & 0xFFFFFFFF00000000ull) | low;
+    if (index <= 0xFFFFFFFFu) {
+#if defined(__AVX2__)
+        __m256i z = _mm256_add_epi64(_mm256_set1_epi64x((long long)key), _mm256_loadu_si256((const __m256i *)st->domain_key));
+        z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), 0xBF58476D1CE4E5B9ull);
+        z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), 0x94D049BB133111EBull);
+        z = _mm256_xor_si256(z, _mm256_srli_epi64(z, 31));
+        __m256i O = _mm256_add_epi64(z, _mm256_loadu_si256((const __m256i *)st->domain_base));
+        __m256i N = _mm256_set1_epi64x((long long)low);
+        __m256i H = _mm256_loadu_si256((const __m256i *)st->a_hi), L = _mm256_loadu_si256((const __m256i *)st->a_lo);
+        __m256i h0 = _mm256_mul_epu32(N, H), h1 = _mm256_mul_epu32(N, _mm256_srli_epi64(H, 32));
+        __m256i l0 = _mm256_mul_epu32(N, L), l1 = _mm256_mul_epu32(N, _mm256_srli_epi64(L, 32));
+        __m256i carry = _mm256_srli_epi64(_mm256_add_epi64(l1, _mm256_srli_epi64(l0, 32)), 32);
+        __m256i v = _mm256_add_epi64(_mm256_add_epi64(O, _mm256_add_epi64(h0, _mm256_slli_epi64(h1, 32))), carry);
+        if (out_kind == 1 && n == 4) { /* the top 24 bits of each lane, as floats, in the register */
+            __m256i top = _mm256_srli_epi64(v, 40);
+            __m128i lo32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(top, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6)));
+            _mm_storeu_ps((float *)out, _mm_mul_ps(_mm_cvtepi32_ps(lo32), _mm_set1_ps(1.0f / 16777216.0f)));
+            return;
+        }
+        uint64_t r[4];
+        _mm256_storeu_si256((__m256i *)r, v);
+#else
+        uint64_t r[4];
         for (uint32_t j = 0; j < n; ++j)
-            raw[j] = udm1_weyl_value(st->a_hi[j], st->a_lo[j], st->domain_base[j] + udm1_mix64(key + st->domain_key[j]), m);
+            r[j] = udm1_weyl_value32(st->a_hi[j], st->a_lo[j], st->domain_base[j] + udm1_mix64(key + st->domain_key[j]), low);
+#endif
+        for (uint32_t j = 0; j < n; ++j) {
+            if (out_kind == 1) ((float *)out)[j] = udm1_raw_to_f32(r[j]);
+            else if (out_kind == 2) ((double *)out)[j] = udm1_raw_to_f64(r[j]);
+            else ((uint64_t *)out)[j] = r[j];
+        }
+        return;
+    }
+    uint64_t m = (index & 0xFFFFFFFF00000000ull) | low;
+    for (uint32_t j = 0; j < n; ++j) {
+        uint64_t r = udm1_weyl_value(st->a_hi[j], st->a_lo[j], st->domain_base[j] + udm1_mix64(key + st->domain_key[j]), m);
+        if (out_kind == 1) ((float *)out)[j] = udm1_raw_to_f32(r);
+        else if (out_kind == 2) ((double *)out)[j] = udm1_raw_to_f64(r);
+        else ((uint64_t *)out)[j] = r;
     }
 }
 
@@ -173,8 +205,9 @@ static inline int udm1_domain_pmj02_(const udm1_domain *d, uint32_t n)
     return st && d->key && (st->flags & UDM1_STREAM_PMJ02) && n <= 4 && n <= st->held && d->index < st->point_count;
 }
 
-/* A pmj02 child domain's raw values: its index permuted inside the K points, its own words. */
-static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, uint64_t *raw)
+/* A pmj02 child domain's values (out_kind as udm1_pmj02_values_): its index permuted inside the K
+ * points, its own words. */
+static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, int out_kind, void *out)
 {
     const udm1_stream *st = d->stream;
     uint64_t K = st->point_count, words[4];
@@ -183,11 +216,8 @@ static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, u
         do m = udm1_owen_bits(m, (uint32_t)(d->key >> 32), st->table_bits);
         while (m >= K);
     }
-    if (st->table_xor) {
-        for (int j = 0; j < 4; ++j) words[j] = d->key + st->domain_key[j];
-        udm1_mix64x4(words, words);
-    }
-    udm1_pmj02_values_(st, m, 0, n, words, (int)st->table_xor, raw);
+    if (st->table_xor) udm1_mix64x4(d->key, st->domain_key, words);
+    udm1_pmj02_values_(st, m, 0, n, words, (int)st->table_xor, out_kind, out);
 }
 
 /* The domain's first n dimensions (1..4) as raw values, floats or doubles. A draw the library refuses
@@ -199,11 +229,11 @@ static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw
         return;
     }
     if (udm1_domain_inline_(&d, n)) {
-        udm1_domain_values_(d.stream, d.key, d.index, n, raw);
+        udm1_domain_values_(d.stream, d.key, d.index, n, 0, raw);
         return;
     }
     if (udm1_domain_pmj02_(&d, n)) {
-        udm1_domain_pmj02_values_(&d, n, raw);
+        udm1_domain_pmj02_values_(&d, n, 0, raw);
         return;
     }
     if (udm1_domain_fill_raw(&d, n, raw) != UDM1_OK)
@@ -212,10 +242,8 @@ static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw
 
 static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
 {
-    uint64_t raw[4];
     if (d.key && udm1_domain_inline_(&d, n)) {
-        udm1_domain_values_(d.stream, d.key, d.index, n, raw);
-        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f32(raw[j]);
+        udm1_domain_values_(d.stream, d.key, d.index, n, 1, out);
         return;
     }
     if (!d.key && d.stream) {
@@ -223,8 +251,7 @@ static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
         return;
     }
     if (udm1_domain_pmj02_(&d, n)) {
-        udm1_domain_pmj02_values_(&d, n, raw);
-        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f32(raw[j]);
+        udm1_domain_pmj02_values_(&d, n, 1, out);
         return;
     }
     if (udm1_domain_fill_f32(&d, n, out) != UDM1_OK)
@@ -235,8 +262,7 @@ static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
 {
     uint64_t raw[4];
     if (d.key && udm1_domain_inline_(&d, n)) {
-        udm1_domain_values_(d.stream, d.key, d.index, n, raw);
-        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f64(raw[j]);
+        udm1_domain_values_(d.stream, d.key, d.index, n, 2, out);
         return;
     }
     if (!d.key && d.stream) {
@@ -244,8 +270,7 @@ static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
         return;
     }
     if (udm1_domain_pmj02_(&d, n)) {
-        udm1_domain_pmj02_values_(&d, n, raw);
-        for (uint32_t j = 0; j < n; ++j) out[j] = udm1_raw_to_f64(raw[j]);
+        udm1_domain_pmj02_values_(&d, n, 2, out);
         return;
     }
     int ok = udm1_domain_fill_raw(&d, n, raw) == UDM1_OK;

@@ -228,15 +228,23 @@ static inline uint32_t udm1_owen_bits(uint32_t v, uint32_t seed, unsigned k)
     return udm1_reverse32(udm1_owen_hash32(udm1_reverse32(v) >> (32 - k), seed) & mask) >> (32 - k);
 }
 
-/* Raw pmj02 values (UDM1_STREAM_PMJ02) of dimensions first + dim .. + n - 1 of point index < K, XORed
- * with words[] (or not). */
+/* The raw pmj02 value (UDM1_STREAM_PMJ02) of dimension first + dim of point index < K, XORed with word. */
+static inline uint64_t udm1_pmj02_value_(const udm1_stream *st, uint64_t index, uint32_t dim, uint64_t word)
+{
+    uint32_t d = st->first + dim;
+    return ((uint64_t)st->table[((uint64_t)(d / 2) * st->point_count + index) * 2 + (d & 1)] << 32) ^ word;
+}
+
+/* ... of dimensions dim .. dim + n - 1, as raw values (out_kind 0), floats (1) or doubles (2), each
+ * converted where it is made (a wide load of values just stored one by one would wait for them) */
 static inline void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
-                                      const uint64_t *words, int xor_words, uint64_t *raw)
+                                      const uint64_t *words, int xor_words, int out_kind, void *out)
 {
     for (uint32_t j = 0; j < n; ++j) {
-        uint32_t d = st->first + dim + j;
-        uint64_t v = (uint64_t)st->table[((uint64_t)(d / 2) * st->point_count + index) * 2 + (d & 1)] << 32;
-        raw[j] = xor_words ? v ^ words[j] : v;
+        uint64_t v = udm1_pmj02_value_(st, index, dim + j, xor_words ? words[j] : 0);
+        if (out_kind == 1) ((float *)out)[j] = udm1_raw_to_f32(v);
+        else if (out_kind == 2) ((double *)out)[j] = udm1_raw_to_f64(v);
+        else ((uint64_t *)out)[j] = v;
     }
 }
 
@@ -270,7 +278,7 @@ static inline void udm1_stream_draw_raw(const udm1_stream *st, uint64_t index, u
         return;
     }
     if (st && udm1_stream_pmj02_(st, index, dim, n)) {
-        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, raw);
+        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, 0, raw);
         return;
     }
     if (udm1_stream_fill_raw(st, index, dim, n, raw) != UDM1_OK)
@@ -298,10 +306,8 @@ static inline void udm1_stream_draw_f32(const udm1_stream *st, uint64_t index, u
         }
         return;
     }
-    if (st && n <= 4 && udm1_stream_pmj02_(st, index, dim, n)) {
-        uint64_t r[4];
-        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, r);
-        for (uint32_t k = 0; k < n; ++k) out[k] = udm1_raw_to_f32(r[k]);
+    if (st && udm1_stream_pmj02_(st, index, dim, n)) {
+        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, 1, out);
         return;
     }
     if (udm1_stream_fill_f32(st, index, dim, n, out) != UDM1_OK)
@@ -329,10 +335,8 @@ static inline void udm1_stream_draw_f64(const udm1_stream *st, uint64_t index, u
         }
         return;
     }
-    if (st && n <= 4 && udm1_stream_pmj02_(st, index, dim, n)) {
-        uint64_t r[4];
-        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, r);
-        for (uint32_t k = 0; k < n; ++k) out[k] = udm1_raw_to_f64(r[k]);
+    if (st && udm1_stream_pmj02_(st, index, dim, n)) {
+        udm1_pmj02_values_(st, index, dim, n, st->offset + dim, (int)st->table_xor, 2, out);
         return;
     }
     uint64_t raw[UDM1_STREAM_DIMS];
