@@ -132,3 +132,36 @@ def test_stream_values_and_padding_equal_the_reference():
             want = (ref.raw_value(ref.shift(seed, 42, dim), alphas[dim], index) if dim < d
                     else ref.pad(seed, 42, index, dim))
             assert raw[j] == want
+
+
+def morton(stream: int) -> int:
+    x, y, m = stream & M32, stream >> 32, 0
+    for b in range(32):
+        m |= ((x >> b) & 1) << (2 * b) | ((y >> b) & 1) << (2 * b + 1)
+    return m
+
+
+def test_screen_domains_keep_the_pixels_segments():
+    """Screen-space randomization: a child's key is the same in every pixel, and its index is the pixel's
+    segment base m N plus the permuted sample index, so neighbouring pixels hold consecutive segments of
+    one shifted sequence in every domain (the reference computes it independently)."""
+    seed, d, N = 5, 4, 16
+    seq = udm1.Sequence("wr", d, seed=seed, randomize="screen", screen_spp=N)
+    alphas = [ref.round128(f) for f in ref.preset_fracs("wr", d)]
+    sk = ref.seed_key(seed)
+    root_key = ref.stream_key(sk, M64)  # the seed's, not the pixel's
+    keys = set()
+    for stream in (0, 1, (1 << 32) | 3, (7 << 32) | 6):
+        st = Stream()
+        assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, stream, 0, 4) == 0
+        assert st.key == root_key and st.index_base == morton(stream) * N
+        for n in (0, 5, 15):
+            key = child_key(root_key, 2)
+            dom = Domain(ctypes.pointer(st), key, n)
+            raw = (ctypes.c_uint64 * 4)()
+            assert lib.udm1_domain_fill_raw(ctypes.byref(dom), 4, raw) == 0
+            m = morton(stream) * N + reverse32(owen_hash32(reverse32(n), key >> 32))
+            want = [ref.raw_value(ref.mix64(key + ref.dim_key(sk, j)), alphas[j], m % (1 << 64)) for j in range(4)]
+            assert list(raw) == want
+            keys.add(key)
+    assert len(keys) == 1

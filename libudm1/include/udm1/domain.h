@@ -35,6 +35,10 @@
  *    the child of key): together over all samples one globally well-distributed pattern of n times the
  *    samples, and for n a power of two each sample's n sub-samples are consecutive points of it.
  *  - udm1_domain_chain(d, key, i): sub-sample i when their number is not fixed: child(child(d, key), i).
+ *  - Screen-space randomization (UDM1_RANDOMIZE_SCREEN): the keys do not depend on the pixel, and a
+ *    child's index is its permuted sample index after the pixel's segment (m N, udm1/seq.h), so that in
+ *    every domain neighbouring pixels take consecutive segments of one shifted sequence: the error stays
+ *    blue noise in every dimension, and each pixel stays unbiased over seeds.
  *
  * Draws past the sequence's dimensions are padded with hashed values (the cursor's rule), and a point
  * set's index permutation stays inside its K points. Domains of a sequence other than a Weyl sequence
@@ -82,7 +86,8 @@ static inline udm1_domain udm1_domain_root(const udm1_stream *st, uint64_t index
 }
 
 /* The child of key `key`: its key is mix64(K + (key + 1) G), K its parent's key (the stream's own for
- * the root), and never 0 (0 becomes G). */
+ * the root: a hash of the seed and the stream, in screen mode of the seed alone), and never 0 (0 becomes
+ * G). */
 static inline udm1_domain udm1_domain_child(udm1_domain parent, uint64_t key)
 {
     uint64_t base = parent.key ? parent.key : (parent.stream ? parent.stream->key : 0);
@@ -156,7 +161,7 @@ static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint
                                        void *out)
 {
     uint32_t low = udm1_owen_index32((uint32_t)index, (uint32_t)(key >> 32));
-    if (index <= 0xFFFFFFFFu) {
+    if (index <= 0xFFFFFFFFu && st->index_base == 0) {
 #if defined(__AVX2__)
         __m256i z = _mm256_add_epi64(_mm256_set1_epi64x((long long)key), _mm256_loadu_si256((const __m256i *)st->domain_key));
         z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), 0xBF58476D1CE4E5B9ull);
@@ -189,7 +194,7 @@ static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint
         }
         return;
     }
-    uint64_t m = (index & 0xFFFFFFFF00000000ull) | low;
+    uint64_t m = ((index & 0xFFFFFFFF00000000ull) | low) + st->index_base; /* (screen mode: the pixel's segment) */
     for (uint32_t j = 0; j < n; ++j) {
         uint64_t r = udm1_weyl_value(st->a_hi[j], st->a_lo[j], st->domain_base[j] + udm1_mix64(key + st->domain_key[j]), m);
         if (out_kind == 1) ((float *)out)[j] = udm1_raw_to_f32(r);

@@ -45,10 +45,11 @@ static udm1_status domain_fill(const char *fn, const udm1_domain *d, uint32_t n,
                          st->first);
     uint64_t key = d->key, m = permuted_index(d->index, seq->point_count, (uint32_t)(key >> 32));
     uint32_t inside = st->first >= seq->dims ? 0 : seq->dims - st->first < n ? seq->dims - st->first : n;
-    if (seq->kind == &udm1_weyl_kind) { /* its own shift, whatever the stream's mode (screen: the root only) */
+    if (seq->kind == &udm1_weyl_kind) { /* its own shift; in screen mode after the pixel's segment base */
         for (uint32_t j = 0; j < inside; ++j) {
             uint32_t dim = st->first + j;
-            raw[j] = udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_shift(key, seq->dim_key[dim]), m);
+            raw[j] = udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_shift(key, seq->dim_key[dim]),
+                                   m + st->index_base);
         }
     } else if (inside && seq->kind->base2) { /* the values, then the domain's words on them */
         uint64_t word[4];

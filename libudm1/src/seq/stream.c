@@ -24,7 +24,9 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
     s.struct_size = (uint32_t)sizeof s;
     s.seq = seq;
     s.stream = stream;
-    s.key = udm1_stream_key(seq->seed_key, stream); /* hashed in every mode: the domains' root key */
+    /* the domains' root key: the stream's hashed key; in screen mode one key for every pixel, so that a
+     * child domain of neighbouring pixels is consecutive segments of one sequence too (udm1/domain.h) */
+    s.key = udm1_stream_key(seq->seed_key, seq->mode == UDM1_MODE_SCREEN ? UINT64_MAX : stream);
     s.point_count = seq->point_count;
     s.first = first;
     s.count = count;
