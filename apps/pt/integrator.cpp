@@ -63,7 +63,7 @@ struct Tracer {
     bool roulette;
     int rr_depth;
 
-    Vec3 trace(Vec3 o, Vec3 d, udm1_cursor *c, uint64_t *rays) const
+    Vec3 trace(Vec3 o, Vec3 d, udm1_domain sample, uint64_t *rays) const
     {
         Vec3 L, beta(1, 1, 1);
         bool specular_bounce = false;
@@ -95,9 +95,9 @@ struct Tracer {
                 }
             }
             if (depth == max_depth) break;
-            // this vertex's 6 dimensions, always drawn, so that the layout does not depend on what happens
+            // this vertex's values (integrator.h): always drawn, so that nothing depends on what happens
             double u[DIMS_PER_VERTEX];
-            udm1_cursor_fill_f64(c, DIMS_PER_VERTEX, u);
+            vertex_values(sample, depth, u);
             const double u_lp[2] = {u[0], u[1]}, u_lobe = u[2], u_rr = u[3], u_dir[2] = {u[4], u[5]};
 
             const udm1scene::Shape &shape = scene.shapes[h.shape];
@@ -158,10 +158,19 @@ struct Tracer {
 
 }  // namespace
 
-Sequence make_sequence(const Options &opt, uint32_t path_dims)
+void vertex_values(udm1_domain sample, int depth, double u[6])
 {
-    // at least 2 dimensions, at most the preset's own (the rest of a path is padded)
-    return Sequence(udm1app::create_render_sampler(opt.sampler, path_dims, true, opt.spp, opt.seed,
+    udm1_domain vertex = udm1_domain_next(sample, 1 + (uint32_t)depth);
+    double a[4], b[2];
+    udm1_domain_draw_f64(vertex, 4, a);                        // light (a[0], a[1]), BSDF direction (a[2], a[3])
+    udm1_domain_draw_f64(udm1_domain_child(vertex, 0), 2, b);  // lobe, roulette
+    u[0] = a[0], u[1] = a[1], u[2] = b[0], u[3] = b[1], u[4] = a[2], u[5] = a[3];
+}
+
+Sequence make_sequence(const Options &opt, uint32_t dims)
+{
+    // at least 2 dimensions, at most the preset's own (the domains pad the rest)
+    return Sequence(udm1app::create_render_sampler(opt.sampler, dims, true, opt.spp, opt.seed,
                                                    opt.randomize, "udm1-pt"),
                     udm1_seq_destroy);
 }
@@ -184,12 +193,12 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
     Lights lights(scene, opt.near_light);
 
-    uint32_t path_dims = (scene.camera.lens_radius > 0 ? 4 : 2) + DIMS_PER_VERTEX * (uint32_t)max_depth;
+    uint32_t path_dims = 4 + 4 * (uint32_t)max_depth;  // the chain of next(); the lobe and roulette are children
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
     udm1app::check_pixel_bounds(bounds, view.width, view.height);  // before anything is allocated
-    Sequence seq_owner = make_sequence(opt, path_dims);  // freed on every path
+    Sequence seq_owner = make_sequence(opt, 4 + 4 * (uint32_t)max_depth);  // freed on every path
     udm1_seq *seq = seq_owner.get();
     Accumulator acc;
     acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1], {"R", "G", "B"},
@@ -216,14 +225,15 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
                 uint64_t stream = ((uint64_t)y << 32) | (uint32_t)x;
                 int64_t *px = &acc.sum[3 * ((size_t)(y - acc.y0) * acc.width + (x - acc.x0))];
+                udm1_stream pixel;  // the pixel's randomization, once: its samples' domains draw inline
+                udm1_stream_init(&pixel, seq, stream, 0, stream_dims(max_depth));
                 for (uint64_t i = opt.first; i < opt.first + count; ++i) {
-                    udm1_cursor c;
-                    udm1_cursor_start(&c, seq, stream, i, 0);
+                    udm1_domain sample = udm1_domain_root(&pixel, i);
                     double uv[4];
-                    udm1_cursor_fill_f64(&c, camera.has_lens() ? 4 : 2, uv);
+                    udm1_domain_draw_f64(sample, camera.has_lens() ? 4 : 2, uv);
                     Vec3 o, d;
                     camera.ray(x + uv[0], y + uv[1], uv[2], uv[3], &o, &d);
-                    Vec3 L = tracer.trace(o, d, &c, &local_rays) * scene.film_scale;
+                    Vec3 L = tracer.trace(o, d, sample, &local_rays) * scene.film_scale;
                     for (int k = 0; k < 3; ++k) {
                         double v = L[k];
                         if (!std::isfinite(v)) {

@@ -5,22 +5,17 @@
 // its subset, the wavefront loop (wavefront.h: many paths at a time, in float); the same
 // estimator and sampler points in both (Options::loop chooses).
 //
-// Dimension layout: one sampler point per path. For pixel p and sample index i the
-// udm1 cursor starts at (stream p, index i, dimension 0) and hands out, in order:
-//   0, 1            position in the pixel (box filter)
-//   2, 3            only if the camera has a lens (lensradius > 0): the point on the thin lens
-//   then for each path vertex that scatters (depth 0, 1, ..., maxdepth - 1), 6 values:
-//   +0, +1          next-event estimation: +0 picks the light (by power) and, rescaled,
-//                   gives with +1 the point on it
-//   +2              BSDF lobe / layer choice
-//   +3              Russian roulette
-//   +4, +5          BSDF direction
-// so a path of depth d uses 2 + 6d dimensions (4 + 6d with a lens) and depth 5 uses 32. Every 2D decision
-// starts at an even dimension: samplers that are stratified by pairs of dimensions
-// (PMJ02, CMJ, padded sets) stratify each 2D decision, not half of two. A sampler with
-// fewer dimensions D (WMMR and HWMMR have 22) gives dimensions >= D by the library's
-// padding rule: independent hashed uniforms of (seed, pixel, index, dimension) - random,
-// not low-discrepancy, and never a reuse of the set's own dimensions.
+// The sampler's values: one udm1 domain tree per path (udm1/domain.h), so that no dimension is counted by
+// hand. Sample i of pixel p is the root domain udm1_domain_root(stream of p, i):
+//   root                 2 values: the position in the pixel (box filter); 4 with a thin lens (2, 3: lens)
+//   next(root, 1 + d)    the vertex of depth d (0, 1, ..., maxdepth - 1) that scatters, 4 values: 0, 1
+//                        next-event estimation (0 picks the light by power and, rescaled, gives with 1 the
+//                        point on it), 2, 3 the BSDF direction
+//   child(that, 0)       2 values: the BSDF lobe or layer, Russian roulette
+// The chain of next() is one jointly low-discrepancy pattern: the sequence's dimensions 0 .. 4 + 4 d + 3
+// at the sample's index, as a cursor would hand them out (a Kronecker sequence's point of the whole
+// path); the lobe and roulette values are decorrelated children. Past the sequence's dimensions the
+// values are padded (WMMR and HWMMR have 22): random, not low-discrepancy.
 #pragma once
 
 #include "bsdf.h"
@@ -41,7 +36,19 @@ namespace udm1pt {
 
 // Changes whenever the estimator or the dimension layout above changes (cached references are
 // reused only when it matches).
-constexpr int LAYOUT_VERSION = 4;
+constexpr int LAYOUT_VERSION = 5;
+
+// The dimensions a pixel's stream holds for a maximum depth: the chain of next(), at most UDM1_STREAM_DIMS
+// (farther ones draw through the library).
+inline uint32_t stream_dims(int max_depth)
+{
+    uint32_t d = 4 + 4 * (uint32_t)max_depth;
+    return d < UDM1_STREAM_DIMS ? d : UDM1_STREAM_DIMS;
+}
+
+// The six values of the vertex of depth `depth` of a path whose root domain is `sample` (layout above):
+// u[0], u[1] light, u[2] lobe, u[3] roulette, u[4], u[5] BSDF direction.
+void vertex_values(udm1_domain sample, int depth, double u[6]);
 
 // How light is found: both (MIS), light sampling only, BSDF sampling only (which cannot find point, spot
 // and distant lights: with Bsdf they are left out).
@@ -82,10 +89,11 @@ struct Stats {
     bool wavefront = false;        // which loop traced
 };
 
-// The sampler of a render: opt's preset, seed and randomization, min(path_dims, the preset's maximum)
-// dimensions, K = spp for point sets. Throws std::runtime_error (unknown sampler, bad parameters).
+// The sampler of a render: opt's preset, seed and randomization, min(dims, the preset's maximum)
+// dimensions (at least 2), K = spp for point sets. Throws std::runtime_error (unknown sampler, bad
+// parameters).
 using Sequence = std::unique_ptr<udm1_seq, void (*)(udm1_seq *)>;
-Sequence make_sequence(const Options &opt, uint32_t path_dims);
+Sequence make_sequence(const Options &opt, uint32_t dims);
 
 // Throws std::runtime_error with a one-line message (unknown sampler, bad range, material, a forced
 // wavefront loop on a scene outside its subset).

@@ -65,21 +65,21 @@ inline void sincos_2pi_f(float u, float *s, float *c)
 }
 
 // The live paths of a batch, structure of arrays: ray, throughput, radiance so far, the BSDF
-// sample's density and the vertex it left (for MIS at the light it may hit), pixel, and the sampler
-// point's stream (the pixel) and index (the sample number).
+// sample's density and the vertex it left (for MIS at the light it may hit), pixel (in the tile), and the
+// sample index.
 struct Paths {
     std::vector<float> ox, oy, oz, dx, dy, dz, br, bg, bb, lr, lg, lb, pb, qx, qy, qz;
     std::vector<int> pixel;
-    std::vector<uint64_t> stream, index;
+    std::vector<uint64_t> index;
     void resize(size_t n)
     {
         for (auto *v : floats()) v->resize(n);
-        pixel.resize(n), stream.resize(n), index.resize(n);
+        pixel.resize(n), index.resize(n);
     }
     void move(size_t to, size_t from)  // compaction: path `from` into slot `to`
     {
         for (auto *v : floats()) (*v)[to] = (*v)[from];
-        pixel[to] = pixel[from], stream[to] = stream[from], index[to] = index[from];
+        pixel[to] = pixel[from], index[to] = index[from];
     }
 
 private:
@@ -111,14 +111,6 @@ struct NearSample {
     size_t j;
     float sx, sy, sz, dx, dy, dz, len, cr, cg, cb;
 };
-
-// The sampler's values of n points (render() checked the indices: a failure is a bug, not bad input).
-void fill(const udm1_seq *seq, size_t n, const uint64_t *streams, const uint64_t *indices, uint32_t first_dim,
-          uint32_t dims, double *out)
-{
-    if (udm1_seq_fill_points_f64(seq, n, streams, indices, first_dim, dims, out) != UDM1_OK)
-        throw std::runtime_error(udm1_last_error());
-}
 
 // What Embree's SOA stream needs beside the rays' origins and directions: constant inputs (tnear, time,
 // mask, id, flags), tfar, and the hit.
@@ -337,11 +329,17 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
 // (the vectorized shading) and shadows() (occlusion, the light samples that arrive; ended paths retired).
 class Wavefront::Batch {
 public:
-    Batch(const Wavefront &w, const udm1_seq *seq, int x0, int x1, int y0, uint64_t first, uint64_t count,
+    Batch(const Wavefront &w, const udm1_seq *seq, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
           double film_scale, Accumulator *acc, Counts *counts)
-        : w_(w), seq_(seq), x0_(x0), x1_(x1), y0_(y0), W_(x1 - x0), first_(first), count_(count),
+        : w_(w), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count),
           film_scale_(film_scale), acc_(acc), counts_(counts), b_(buffers())
     {
+        // the tile's pixels' streams, once: every path's domains draw from its pixel's (integrator.h)
+        streams_.resize((size_t)W_ * (size_t)(y1 - y0));
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x)
+                udm1_stream_init(&streams_[(size_t)(y - y0) * W_ + (x - x0)], seq, ((uint64_t)y << 32) | (uint32_t)x, 0,
+                                 stream_dims(w.max_depth_));
     }
     // The camera rays of paths [start, start + n) of the tile (path k: pixel k / count, sample
     // first + k % count); n of them are now live.
@@ -372,13 +370,13 @@ private:
     void finish(size_t j);
 
     const Wavefront &w_;
-    const udm1_seq *seq_;
-    int x0_, x1_, y0_, W_;
+    int x0_, y0_, W_;
     uint64_t first_, count_;
     double film_scale_;
     Accumulator *acc_;
     Counts *counts_;
     Buffers &b_;
+    std::vector<udm1_stream> streams_;  // the tile's pixels', by pixel
     size_t n_ = 0;  // live paths
     RTCIntersectContext ctx_;
 };
@@ -406,18 +404,14 @@ void Wavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64_t star
     n_ = n;
     {
         uint64_t s = start % count_;
-        int p = (int)(start / count_), x = x0_ + p % W_, y = y0_ + p / W_;
+        int p = (int)(start / count_);
         for (size_t k = 0; k < n; ++k) {
-            P.stream[k] = ((uint64_t)y << 32) | (uint32_t)x, P.index[k] = first_ + s, P.pixel[k] = p;
-            if (++s == count_) {  // the next pixel
-                s = 0, ++p;
-                if (++x == x1_) x = x0_, ++y;
-            }
+            P.index[k] = first_ + s, P.pixel[k] = p;
+            if (++s == count_) s = 0, ++p;  // the next pixel
         }
     }
-    // dimensions 0, 1 of every path's point: one call per batch (a pixel's paths are consecutive, so its
-    // randomization is computed once)
-    fill(seq_, n, P.stream.data(), P.index.data(), 0, 2, b_.u.data());
+    // the root domain's 2 values of every path: the position in the pixel
+    for (size_t k = 0; k < n; ++k) udm1_domain_draw_f64(udm1_domain_root(&streams_[P.pixel[k]], P.index[k]), 2, &b_.u[2 * k]);
     Vec3 co, ca, cb, cc;
     camera.pinhole(&co, &ca, &cb, &cc);
     const double *uv = b_.u.data();
@@ -502,8 +496,9 @@ void Wavefront::Batch::sample(int depth)
     std::vector<double> &u = b_.u;
     const Lights &lights = w_.lights_;
     const size_t n = n_;
-    // this vertex's 6 dimensions for every live path (the layout of integrator.h), one call
-    fill(seq_, n, P.stream.data(), P.index.data(), 2 + DIMS_PER_VERTEX * (uint32_t)depth, DIMS_PER_VERTEX, u.data());
+    // this vertex's 6 values for every live path (the domains of integrator.h)
+    for (size_t m = 0; m < n; ++m)
+        vertex_values(udm1_domain_root(&streams_[P.pixel[m]], P.index[m]), depth, &u[DIMS_PER_VERTEX * m]);
     if (w_.choice_.cdf.size() <= 16) {
         choose_lights(n, u.data(), V, w_.choice_);
     } else {  // many lights: Lights::choose's binary search, path by path
@@ -590,7 +585,7 @@ void Wavefront::Batch::shadows()
 void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
                        uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const
 {
-    Batch batch(*this, seq, x0, x1, y0, first, count, film_scale, acc, counts);
+    Batch batch(*this, seq, x0, x1, y0, y1, first, count, film_scale, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
         batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));

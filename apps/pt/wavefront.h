@@ -2,7 +2,7 @@
 // same estimator, dimension layout and sampler points as the scalar loop (integrator.h), traced in
 // batches of up to 4096 paths with one Embree SOA stream per bounce for the closest hits (over the
 // paths' own origin and direction arrays; camera rays flagged coherent) and one for the shadow rays,
-// the sampler's values of the whole batch in one call (udm1_seq_fill_points_f64), the light choice
+// the sampler's values from each path's domains (one stream per pixel of the tile), the light choice
 // (Lights::choose's double operations, as tables) and the shading (light sample, MIS, BSDF sample,
 // roulette, next ray) in loops over the live paths that the compiler vectorizes.
 //

@@ -127,14 +127,19 @@ static void test_domains_agree(void)
                     udm1_domain_draw_f64(root, 4, a);
                     udm1_stream_draw_f64(&st, index, 0, 4, b);
                     CHECKF(memcmp(a, b, sizeof a) == 0, "%s root", info.name);
-                    udm1_domain ds[3] = {udm1_domain_child(root, i % 3), udm1_domain_split(root, 5, 4, (uint32_t)i % 4),
-                                         udm1_domain_chain(root, 2, i)};
+                    /* the root's chain of next() is the stream's dimensions */
+                    udm1_domain_draw_f64(udm1_domain_next(root, 1), 4, a);
+                    udm1_stream_draw_f64(&st, index, 4, 4, b);
+                    CHECKF(memcmp(a, b, sizeof a) == 0, "%s root next", info.name);
+                    udm1_domain ds[5] = {udm1_domain_child(root, i % 3), udm1_domain_split(root, 5, 4, (uint32_t)i % 4),
+                                         udm1_domain_chain(root, 2, i), udm1_domain_next(udm1_domain_child(root, 1), 1),
+                                         udm1_domain_child(udm1_domain_next(root, 1), 1)};
                     if (K && ds[1].index >= K) { /* a split past a point set's K points: refused */
                         uint64_t lib[4];
                         CHECK_STATUS(udm1_domain_fill_raw(&ds[1], 4, lib), UDM1_ERROR_INDEX_RANGE);
                         ds[1] = ds[0];
                     }
-                    for (int k = 0; k < 3; ++k) {
+                    for (int k = 0; k < 5; ++k) {
                         uint64_t lib[4], raw[4];
                         float f[4];
                         double g[4];
@@ -153,6 +158,8 @@ static void test_domains_agree(void)
                         udm1_domain_draw_raw(ds[k], 2, two);
                         CHECK(two[0] == lib[0] && two[1] == lib[1]);
                     }
+                    /* a child of the next block is another domain than the child of the first */
+                    CHECK(udm1_domain_child(udm1_domain_next(root, 1), 1).key != udm1_domain_child(root, 1).key);
                     /* a child's values differ from its parent's and its sibling's */
                     uint64_t c0[4], c1[4];
                     udm1_domain_draw_raw(udm1_domain_child(root, 0), 4, c0);
@@ -165,7 +172,7 @@ static void test_domains_agree(void)
     }
     CHECK(inline_seen > 0);
     /* errors */
-    udm1_domain none = {NULL, 1, 0};
+    udm1_domain none = {NULL, 1, 0, 0, 0};
     uint64_t raw[4];
     CHECK_STATUS(udm1_domain_fill_raw(&none, 2, raw), UDM1_ERROR_NULL_ARGUMENT);
     float f = 0;
@@ -178,6 +185,33 @@ static void test_domains_agree(void)
     udm1_domain d = udm1_domain_child(udm1_domain_root(&st, 0), 1);
     CHECK_STATUS(udm1_domain_fill_raw(&d, 5, raw), UDM1_ERROR_DIMENSION);
     CHECK_STATUS(udm1_domain_fill_raw(&d, 0, raw), UDM1_ERROR_DIMENSION);
+    udm1_seq_destroy(s);
+}
+
+/* The derivations as udm1/domain.h documents them (tests/python/test_domains.py pins the values of the
+ * domains they reach against the independent reference) */
+static void test_derivations(void)
+{
+    udm1_seq *s = NULL;
+    CHECK_STATUS(udm1_seq_create("wr", 4, 0, 9, &s), UDM1_OK);
+    udm1_stream st;
+    CHECK_STATUS(udm1_stream_init(&st, s, 42, 0, 8), UDM1_OK);
+    const uint64_t G = UDM1_GOLDEN_GAMMA;
+    udm1_domain root = udm1_domain_root(&st, 7);
+    CHECK(root.key == 0 && root.index == 7 && root.dim == 0);
+    udm1_domain c = udm1_domain_child(root, 5);
+    CHECK(c.key == udm1_mix64(st.key + 6 * G) && c.index == 7 && c.dim == 0);
+    udm1_domain n = udm1_domain_next(c, 2);
+    CHECK(n.key == c.key && n.dim == 8 && n.index == 7);
+    CHECK(udm1_domain_child(n, 1).key == udm1_mix64(c.key + 8 + 2 * G) && udm1_domain_child(n, 1).dim == 0);
+    CHECK(udm1_domain_child(udm1_domain_next(root, 1), 0).key == udm1_mix64(st.key + 4 + G));
+    udm1_domain sp = udm1_domain_split(n, 3, 4, 2);
+    CHECK(sp.key == udm1_mix64(c.key + 8 + 4 * G) && sp.index == 7 * 4 + 2);
+    CHECK(udm1_domain_chain(root, 2, 9).key == udm1_mix64(udm1_mix64(st.key + 3 * G) + 10 * G));
+    CHECK(udm1_domain_next(root, 0x40000000u).dim == 0xFFFFFFFFu); /* kept at the limit, not wrapped */
+    float v[2];
+    udm1_domain_draw_f32(udm1_domain_next(root, 0x40000000u), 2, v);
+    CHECK(isnan(v[0]) && isnan(v[1]));
     udm1_seq_destroy(s);
 }
 
@@ -354,6 +388,7 @@ int main(void)
 {
     test_stream_equals_cursor();
     test_domains_agree();
+    test_derivations();
     test_point_set_permutation();
     test_domain_discrepancy();
     test_domain_decorrelation();

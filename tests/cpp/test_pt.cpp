@@ -36,6 +36,37 @@ static Accumulator run(const Scene &s, const EmbreeScene &rt, Options o)
     return render(s, rt, o, &st);
 }
 
+// The image mean of channel c over `seeds` renders with seeds 1, 2, ..., and its standard error (the spread
+// of the per-seed means over sqrt(seeds)): tests of estimators that agree in the mean compare within a
+// few standard errors, so that a tolerance follows the sampler's noise instead of one realization of it.
+struct Estimate {
+    double mean[3], se[3];
+};
+static Estimate estimate(const Scene &s, const EmbreeScene &rt, Options o, int seeds)
+{
+    std::vector<double> m[3];
+    for (int k = 0; k < seeds; ++k) {
+        o.seed = 1 + (uint64_t)k;
+        Accumulator a = run(s, rt, o);
+        for (int c = 0; c < 3; ++c) m[c].push_back(image_mean(a, c));
+    }
+    Estimate e;
+    for (int c = 0; c < 3; ++c) {
+        double mu = 0, v = 0;
+        for (double x : m[c]) mu += x;
+        mu /= seeds;
+        for (double x : m[c]) v += (x - mu) * (x - mu);
+        e.mean[c] = mu, e.se[c] = std::sqrt(v / (seeds - 1) / seeds);
+    }
+    return e;
+}
+
+// Whether two estimates of one quantity agree: within 5 combined standard errors, or `floor` relative.
+static bool agree(double a, double sa, double b, double sb, double floor)
+{
+    return std::fabs(a - b) <= std::max(5 * std::sqrt(sa * sa + sb * sb), floor * std::fabs(b));
+}
+
 // A closed sphere (or box) whose walls emit 1 on both sides and reflect albedo a (diffuse).
 static Scene furnace(double albedo, const char *name = "furnace")
 {
@@ -721,9 +752,16 @@ static void test_light_sources()
         o.spp = 256, o.max_depth = 20;
         for (Strategy st : {Strategy::Mis, Strategy::Nee, Strategy::Bsdf}) {
             o.strategy = st;
-            std::vector<float> m = run(s, rt, o).mean();
+            // every pixel's mean over 4 seeds (1024 samples): the noise of light sampling is about 0.005 a pixel
+            std::vector<double> m;
+            for (uint64_t seed = 1; seed <= 4; ++seed) {
+                o.seed = seed;
+                std::vector<float> one = run(s, rt, o).mean();
+                m.resize(one.size());
+                for (size_t i = 0; i < one.size(); ++i) m[i] += one[i] / 4;
+            }
             double worst = 0;
-            for (float v : m) worst = std::max(worst, std::fabs(v - 0.8));
+            for (double v : m) worst = std::max(worst, std::fabs(v - 0.8));
             CHECKF(worst < (st == Strategy::Bsdf ? 1e-6 : 0.02), "furnace, strategy %d: a pixel %.5f off 0.8", (int)st, worst);
         }
     }
@@ -790,19 +828,20 @@ static void test_crown_lights_one_by_one()
         for (size_t i = 0; i < s.shapes.size(); ++i) s.shapes[i].light = i == k ? light_of[i] : -1;
         Options o;
         o.width = 50, o.height = 70, o.spp = 64, o.max_depth = 1;
-        double mean[3][3];
+        Estimate e[3];
         int j = 0;
         for (Strategy st : {Strategy::Mis, Strategy::Nee, Strategy::Bsdf}) {
             o.strategy = st;
-            Accumulator a = run(s, rt, o);
-            for (int c = 0; c < 3; ++c) mean[j][c] = image_mean(a, c);
-            ++j;
+            e[j++] = estimate(s, rt, o, 4);
         }
+        // within 5 standard errors or 1 %: the shadow-ray defect this test was written for lost 7-58 %
         for (int c = 0; c < 3; ++c) {
-            CHECKF(std::fabs(mean[1][c] / mean[0][c] - 1) < 0.02, "%s, channel %d: NEE %.5f against MIS %.5f",
-                   s.shapes[k].where.c_str(), c, mean[1][c], mean[0][c]);
-            CHECKF(std::fabs(mean[2][c] / mean[0][c] - 1) < 0.03, "%s, channel %d: BSDF %.5f against MIS %.5f",
-                   s.shapes[k].where.c_str(), c, mean[2][c], mean[0][c]);
+            CHECKF(agree(e[1].mean[c], e[1].se[c], e[0].mean[c], e[0].se[c], 0.01),
+                   "%s, channel %d: NEE %.5f +- %.5f against MIS %.5f +- %.5f", s.shapes[k].where.c_str(), c, e[1].mean[c],
+                   e[1].se[c], e[0].mean[c], e[0].se[c]);
+            CHECKF(agree(e[2].mean[c], e[2].se[c], e[0].mean[c], e[0].se[c], 0.01),
+                   "%s, channel %d: BSDF %.5f +- %.5f against MIS %.5f +- %.5f", s.shapes[k].where.c_str(), c,
+                   e[2].mean[c], e[2].se[c], e[0].mean[c], e[0].se[c]);
         }
     }
     CHECK(lights == 6);

@@ -22,12 +22,13 @@ class Stream(ctypes.Structure):
                 ("point_count", ctypes.c_uint64), ("first", ctypes.c_uint32), ("count", ctypes.c_uint32),
                 ("held", ctypes.c_uint32), ("dimensions", ctypes.c_uint32), ("a_hi", ctypes.c_uint64 * DIMS),
                 ("a_lo", ctypes.c_uint64 * DIMS), ("offset", ctypes.c_uint64 * DIMS),
-                ("domain_base", ctypes.c_uint64 * 4), ("domain_key", ctypes.c_uint64 * 4),
+                ("base", ctypes.c_uint64 * DIMS), ("dim_key", ctypes.c_uint64 * DIMS),
                 ("table", ctypes.c_void_p), ("table_bits", ctypes.c_uint32), ("table_xor", ctypes.c_uint32)]
 
 
 class Domain(ctypes.Structure):
-    _fields_ = [("stream", ctypes.POINTER(Stream)), ("key", ctypes.c_uint64), ("index", ctypes.c_uint64)]
+    _fields_ = [("stream", ctypes.POINTER(Stream)), ("key", ctypes.c_uint64), ("index", ctypes.c_uint64),
+                ("dim", ctypes.c_uint32), ("reserved", ctypes.c_uint32)]
 
 
 lib.udm1_stream_init.argtypes = [ctypes.POINTER(Stream), ctypes.c_void_p, ctypes.c_uint64, ctypes.c_uint32,
@@ -57,23 +58,29 @@ def child_key(parent: int, key: int) -> int:
     return k or ref.GOLDEN_GAMMA
 
 
-def domain_values(alphas, seed, stream, path, index, n):
-    """Raw values of the domain reached from (stream, index) by path: a list of ("child", key),
-    ("split", key, count, i) and ("chain", key, i) steps (a root if empty)."""
-    sk = ref.seed_key(seed)
-    key = 0
+def derive(path, key, index, dim, stream_key):
+    """(key, index, dim) after path's steps: ("child", key), ("next", k), ("split", key, count, i) and
+    ("chain", key, i), as udm1/domain.h defines them."""
     for step in path:
-        base = key or ref.stream_key(sk, stream)
+        base = ((key or stream_key) + dim) & M64
         if step[0] == "child":
-            key = child_key(base, step[1])
+            key, dim = child_key(base, step[1]), 0
+        elif step[0] == "next":
+            dim += 4 * step[1]
         elif step[0] == "split":
-            key = child_key(base, step[1])
-            index = index * step[2] + step[3]
+            key, dim, index = child_key(base, step[1]), 0, (index * step[2] + step[3]) & M64
         else:
-            key = child_key(child_key(base, step[1]), step[2])
+            key, dim = child_key(child_key(base, step[1]), step[2]), 0
+    return key, index, dim
+
+
+def domain_values(alphas, seed, stream, path, index, n):
+    """Raw values of the domain reached from (stream, index) by path (a root if empty)."""
+    sk = ref.seed_key(seed)
+    key, index, dim = derive(path, 0, index, 0, ref.stream_key(sk, stream))
     out = []
-    for j in range(n):
-        if key == 0:  # the root: the stream's own shift and index
+    for j in range(dim, dim + n):
+        if key == 0:  # the root's chain: the stream's own shift and index
             off = ref.shift(seed, stream, j)
             m = index
         else:
@@ -87,7 +94,8 @@ def domain_values(alphas, seed, stream, path, index, n):
 
 
 PATHS = [[], [("child", 0)], [("child", 3)], [("child", 3), ("child", 0)], [("split", 5, 4, 2)],
-         [("chain", 2, 9)], [("child", 2**64 - 1), ("split", 1, 8, 7)]]
+         [("chain", 2, 9)], [("child", 2**64 - 1), ("split", 1, 8, 7)], [("next", 1)], [("next", 2), ("child", 1)],
+         [("child", 1), ("next", 1)]]
 
 
 @pytest.mark.parametrize("preset,d", [("wr", 4), ("rd", 3), ("wr-ao", 2)])
@@ -97,21 +105,14 @@ def test_domains_equal_the_reference(preset, d):
     alphas = [ref.round128(f) for f in ref.preset_fracs(preset, d)]
     for stream in (0, (5 << 32) | 9, M64):
         st = Stream()
-        assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, stream, 0, 8) == 0
+        assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, stream, 0, 12) == 0
         assert st.struct_size == ctypes.sizeof(Stream)  # this mirror of udm1/stream.h is current
         for index in (0, 1, 1000, M32, 1 << 32, (1 << 40) + 17, M64 // 8):
             for path in PATHS:
                 want = domain_values(alphas, seed, stream, path, index, 4)
-                dom = Domain(ctypes.pointer(st), 0, index)
                 # derive as the header does (its inline functions are not callable from ctypes)
-                for step in path:
-                    base = dom.key or st.key
-                    if step[0] == "child":
-                        dom.key = child_key(base, step[1])
-                    elif step[0] == "split":
-                        dom.key, dom.index = child_key(base, step[1]), (dom.index * step[2] + step[3]) & M64
-                    else:
-                        dom.key = child_key(child_key(base, step[1]), step[2])
+                key, idx, dim = derive(path, 0, index, 0, st.key)
+                dom = Domain(ctypes.pointer(st), key, idx, dim, 0)
                 raw = (ctypes.c_uint64 * 4)()
                 assert lib.udm1_domain_fill_raw(ctypes.byref(dom), 4, raw) == 0
                 assert list(raw) == want, (preset, stream, index, path)

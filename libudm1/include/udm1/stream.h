@@ -65,8 +65,8 @@ typedef struct udm1_stream {
     /* per dimension held: with UDM1_STREAM_INLINE, A_j in 0.128 fixed point and O_j in 0.64; otherwise
      * private data of the library's draws (the stream's randomization words of the base-2 kinds) */
     uint64_t a_hi[UDM1_STREAM_DIMS], a_lo[UDM1_STREAM_DIMS], offset[UDM1_STREAM_DIMS];
-    /* for domains (udm1/domain.h), the first four dimensions held: base offsets o_j and dimension keys */
-    uint64_t domain_base[4], domain_key[4];
+    /* for the domains (udm1/domain.h), per dimension held: the base offset o_j and the dimension key K_j */
+    uint64_t base[UDM1_STREAM_DIMS], dim_key[UDM1_STREAM_DIMS];
     /* UDM1_STREAM_PMJ02: the table and ceil(log2 K) */
     const uint32_t *table;
     uint32_t table_bits;

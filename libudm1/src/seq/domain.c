@@ -35,43 +35,45 @@ static udm1_status domain_fill(const char *fn, const udm1_domain *d, uint32_t n,
                          !d ? "d" : !raw ? "raw" : !d->stream ? "d->stream" : "d->stream->seq");
     if (n == 0 || n > 4) return udm1_fail(UDM1_ERROR_DIMENSION, "%s: n = %u is outside 1..4", fn, n);
     const udm1_stream *st = d->stream;
-    if (!d->key) return udm1_stream_fill(fn, st, d->index, 0, n, raw, low_half); /* the root: the stream itself */
+    if (!d->key) return udm1_stream_fill(fn, st, d->index, d->dim, n, raw, low_half); /* the root's chain: the stream */
     const udm1_seq *seq = st->seq;
     if (seq->point_count && d->index >= seq->point_count)
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn,
                          (unsigned long long)d->index, (unsigned long long)seq->point_count);
-    if ((uint64_t)st->first + n > UDM1_DIMENSION_INDEX_LIMIT)
-        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: the stream's first dimension %u passes the index limit", fn,
-                         st->first);
+    uint64_t first64 = (uint64_t)st->first + d->dim;
+    if (first64 + n > UDM1_DIMENSION_INDEX_LIMIT)
+        return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimensions from %llu, %u of them, pass the dimension index limit", fn,
+                         (unsigned long long)first64, n);
+    uint32_t first = (uint32_t)first64;
     uint64_t key = d->key, m = permuted_index(d->index, seq->point_count, (uint32_t)(key >> 32));
-    uint32_t inside = st->first >= seq->dims ? 0 : seq->dims - st->first < n ? seq->dims - st->first : n;
+    uint32_t inside = first >= seq->dims ? 0 : seq->dims - first < n ? seq->dims - first : n;
     if (seq->kind == &udm1_weyl_kind) { /* its own shift; in screen mode after the pixel's segment base */
         for (uint32_t j = 0; j < inside; ++j) {
-            uint32_t dim = st->first + j;
+            uint32_t dim = first + j;
             raw[j] = udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_shift(key, seq->dim_key[dim]),
                                    m + st->index_base);
         }
     } else if (inside && seq->kind->base2) { /* the values, then the domain's words on them */
         uint64_t word[4];
         if (seq->kind->base2_point)
-            seq->kind->base2_point(seq, key, m, st->first, inside, raw);
+            seq->kind->base2_point(seq, key, m, first, inside, raw);
         else
-            for (uint32_t j = 0; j < inside; ++j) raw[j] = seq->kind->base2(seq, key, m, st->first + j);
+            for (uint32_t j = 0; j < inside; ++j) raw[j] = seq->kind->base2(seq, key, m, first + j);
         if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
             for (uint32_t j = 0; j < inside; ++j) word[j] = 0;
         else /* udm1_word of the four dimensions at once */
-            udm1_mix64_many(seq->dim_key + st->first, key, word, inside);
+            udm1_mix64_many(seq->dim_key + first, key, word, inside);
         if (seq->mode == UDM1_MODE_OWEN)
             udm1_owen64_many(raw, word, raw, inside, low_half);
         else
             for (uint32_t j = 0; j < inside; ++j) raw[j] = udm1_randomize_base2(seq->mode, raw[j], word[j]);
     } else if (inside && seq->kind->fill) {
-        seq->kind->fill(seq, key, m, 1, st->first, inside, raw);
+        seq->kind->fill(seq, key, m, 1, first, inside, raw);
     } else {
-        for (uint32_t j = 0; j < inside; ++j) raw[j] = udm1_value_of(seq, key, m, st->first + j);
+        for (uint32_t j = 0; j < inside; ++j) raw[j] = udm1_value_of(seq, key, m, first + j);
     }
     for (uint32_t j = inside; j < n; ++j) /* padding: the cursor's rule, the domain's key as the stream's */
-        raw[j] = udm1_pad(udm1_shift(key, udm1_dim_key(seq->seed_key, st->first + j)), d->index);
+        raw[j] = udm1_pad(udm1_shift(key, udm1_dim_key(seq->seed_key, first + j)), d->index);
     return UDM1_OK;
 }
 

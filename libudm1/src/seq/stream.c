@@ -56,9 +56,9 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
             s.table_xor = seq->mode == UDM1_MODE_PERMUTE;
         }
     }
-    for (uint32_t j = 0; j < 4 && first < seq->dims && j < seq->dims - first; ++j) {
-        s.domain_base[j] = seq->offset[first + j];
-        s.domain_key[j] = seq->dim_key[first + j];
+    for (uint32_t j = 0; j < own; ++j) {
+        s.base[j] = seq->offset[first + j];
+        s.dim_key[j] = seq->dim_key[first + j];
     }
     *st = s;
     return UDM1_OK;
