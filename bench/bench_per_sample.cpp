@@ -9,7 +9,8 @@
 //  - renderer-shaped: P pixels of a W x W image, N samples each, per sample a 2D camera draw and V
 //    vertices of a 4D and a 2D draw (2 + 6 V dimensions); OpenQMC with a pixel sampler per sample and a
 //    domain per decision, udm1 with a stream per pixel (filled once per pixel, timed with the draws)
-//    and its domains or dimensions by index.
+//    and its domains as udm1-pt draws them (a vertex the next block, its 2D a child) or dimensions by
+//    index.
 // Prints one line per (protocol, sampler, way): nanoseconds per dimension drawn, and the matched
 // OpenQMC sampler's time over it. Built and run by bench/bench_per_sample.py with -O3 -march=native
 // and with plain -O3; without OpenQMC (UDM1_NO_OPENQMC) it times udm1 alone.
@@ -161,23 +162,23 @@ struct Udm1 {
                 }
             }
     }
-    // renderer-shaped with domains, as OpenQMC's loop
+    // renderer-shaped with domains, as udm1-pt draws them
     void renderer_domains(int width, int spp, int vertices) const
     {
         for (int y = 0; y < width; ++y)
             for (int x = 0; x < width; ++x) {
                 udm1_stream st;
-                udm1_stream_init(&st, seq, ((uint64_t)y << 32) | (uint32_t)x, 0, 4);
+                udm1_stream_init(&st, seq, ((uint64_t)y << 32) | (uint32_t)x, 0, 4 + 4 * (uint32_t)vertices);
                 for (int i = 0; i < spp; ++i) {
                     udm1_domain px = udm1_domain_root(&st, (uint64_t)i);
                     float s[4];
                     udm1_domain_draw_f32(px, 2, s);
                     save(s);
-                    for (int v = 0; v < vertices; ++v) {
-                        udm1_domain vertex = udm1_domain_child(px, 100 + (uint64_t)v);
+                    for (int v = 0; v < vertices; ++v) {  // as udm1-pt: the vertex the next block, its extras a child
+                        udm1_domain vertex = udm1_domain_next(px, 1 + (uint32_t)v);
                         udm1_domain_draw_f32(vertex, 4, s);
                         save(s);
-                        udm1_domain_draw_f32(udm1_domain_child(vertex, 1), 2, s);
+                        udm1_domain_draw_f32(udm1_domain_child(vertex, 0), 2, s);
                         save(s);
                     }
                 }

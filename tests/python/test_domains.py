@@ -23,7 +23,7 @@ class Stream(ctypes.Structure):
                 ("held", ctypes.c_uint32), ("dimensions", ctypes.c_uint32), ("a_hi", ctypes.c_uint64 * DIMS),
                 ("a_lo", ctypes.c_uint64 * DIMS), ("offset", ctypes.c_uint64 * DIMS),
                 ("base", ctypes.c_uint64 * DIMS), ("dim_key", ctypes.c_uint64 * DIMS),
-                ("table", ctypes.c_void_p), ("table_bits", ctypes.c_uint32), ("table_xor", ctypes.c_uint32)]
+                ("table", ctypes.c_void_p), ("table_bits", ctypes.c_uint32), ("table_mode", ctypes.c_uint32)]
 
 
 class Domain(ctypes.Structure):

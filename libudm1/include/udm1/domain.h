@@ -141,7 +141,7 @@ UDM1_API udm1_status udm1_domain_fill_f32(const udm1_domain *d, uint32_t n, floa
 
 /* udm1_mix64(add + in[j]) of four values at once, where the compiler targets AVX2 (64-bit products from
  * 32-bit ones, or AVX-512's own): the same values. */
-#if defined(__AVX2__)
+#if defined(UDM1_AVX2_)
 static inline __m256i udm1_mul64x4_(__m256i a, uint64_t c)
 {
 #if defined(__AVX512DQ__) && defined(__AVX512VL__)
@@ -164,7 +164,7 @@ static inline __m256i udm1_mix64x4_(uint64_t add, const uint64_t *in)
 
 static inline void udm1_mix64x4(uint64_t add, const uint64_t *in, uint64_t *out)
 {
-#if defined(__AVX2__)
+#if defined(UDM1_AVX2_)
     _mm256_storeu_si256((__m256i *)out, udm1_mix64x4_(add, in));
 #else
     for (int j = 0; j < 4; ++j) out[j] = udm1_mix64(add + in[j]);
@@ -195,7 +195,7 @@ static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint
 {
     uint32_t low = udm1_owen_index32((uint32_t)index, (uint32_t)(key >> 32));
     if (index <= 0xFFFFFFFFu && st->index_base == 0 && dim <= UDM1_STREAM_DIMS - 4) { /* (four lanes in the arrays) */
-#if defined(__AVX2__)
+#if defined(UDM1_AVX2_)
         __m256i O = _mm256_add_epi64(udm1_mix64x4_(key, st->dim_key + dim),
                                      _mm256_loadu_si256((const __m256i *)(st->base + dim)));
         __m256i N = _mm256_set1_epi64x((long long)low);
@@ -247,13 +247,33 @@ static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, i
         do m = udm1_owen_bits(m, (uint32_t)(d->key >> 32), st->table_bits);
         while (m >= K);
     }
-    if (st->table_xor) udm1_mix64x4(d->key, st->dim_key + d->dim, words);
-    udm1_pmj02_values_(st, m, d->dim, n, words, (int)st->table_xor, out_kind, out);
+    if (st->table_mode == 1) udm1_mix64x4(d->key, st->dim_key + d->dim, words);
+    udm1_pmj02_values_(st, m, d->dim, n, words, st->table_mode == 1, out_kind, out);
+}
+
+/* Whether the child domain d of a Sobol stream draws n dimensions inline. */
+static inline int udm1_domain_sobol_(const udm1_domain *d, uint32_t n)
+{
+    const udm1_stream *st = d->stream;
+    return st && d->key && (st->flags & UDM1_STREAM_SOBOL) && n <= 4 && n <= st->held && d->dim <= st->held - n &&
+           d->index <= 0xFFFFFFFFu && d->dim <= UDM1_STREAM_DIMS - 4;
+}
+
+/* A Sobol child domain's values (out_kind as udm1_put_): its index scrambled, its own words. */
+static inline void udm1_domain_sobol_values_(const udm1_domain *d, uint32_t n, int out_kind, void *out)
+{
+    const udm1_stream *st = d->stream;
+    uint32_t m = udm1_owen_index32((uint32_t)d->index, (uint32_t)(d->key >> 32));
+    uint64_t words[4] = {0, 0, 0, 0};
+    if (st->table_mode) udm1_mix64x4(d->key, st->dim_key + d->dim, words);
+    if (out_kind == 1 && st->table_mode == 2) udm1_sobol_owen_f32_(st, m ^ (m >> 1), d->dim, n, words, (float *)out);
+    else
+        for (uint32_t j = 0; j < n; ++j) udm1_put_(out_kind, out, j, udm1_sobol_value_(st, m, d->dim + j, words[j], out_kind != 1));
 }
 
 /* The domain's first n dimensions (1..4) as raw values, floats or doubles. A draw the library refuses
  * gives 0 (raw) or NaN, with udm1_last_error() saying why. */
-static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
+UDM1_DRAW_ void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
 {
     if (!d.key && d.stream) {
         udm1_stream_draw_raw(d.stream, d.index, d.dim, n <= 4 ? n : 4, raw);
@@ -267,11 +287,15 @@ static inline void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw
         udm1_domain_pmj02_values_(&d, n, 0, raw);
         return;
     }
+    if (udm1_domain_sobol_(&d, n)) {
+        udm1_domain_sobol_values_(&d, n, 0, raw);
+        return;
+    }
     if (udm1_domain_fill_raw(&d, n, raw) != UDM1_OK)
         for (uint32_t j = 0; j < n && j < 4; ++j) raw[j] = 0;
 }
 
-static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
+UDM1_DRAW_ void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
 {
     if (d.key && udm1_domain_inline_(&d, n)) {
         udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, 1, out);
@@ -285,11 +309,15 @@ static inline void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
         udm1_domain_pmj02_values_(&d, n, 1, out);
         return;
     }
+    if (udm1_domain_sobol_(&d, n)) {
+        udm1_domain_sobol_values_(&d, n, 1, out);
+        return;
+    }
     if (udm1_domain_fill_f32(&d, n, out) != UDM1_OK)
         for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = (float)NAN;
 }
 
-static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
+UDM1_DRAW_ void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
 {
     uint64_t raw[4];
     if (d.key && udm1_domain_inline_(&d, n)) {
@@ -302,6 +330,10 @@ static inline void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
     }
     if (udm1_domain_pmj02_(&d, n)) {
         udm1_domain_pmj02_values_(&d, n, 2, out);
+        return;
+    }
+    if (udm1_domain_sobol_(&d, n)) {
+        udm1_domain_sobol_values_(&d, n, 2, out);
         return;
     }
     int ok = udm1_domain_fill_raw(&d, n, raw) == UDM1_OK;

@@ -20,6 +20,10 @@ UDM1_HIDDEN extern const udm1_kind udm1_pcg32_kind;
 /* For udm1_stream (UDM1_STREAM_PMJ02): pmj02's table ([pair][K][2], every pair in the order it is read)
  * and its index bits ceil(log2 K); NULL for another kind. */
 UDM1_HIDDEN const uint32_t *udm1_pmj02_stream_table(const udm1_seq_t *seq, uint32_t *bits);
+/* For udm1_stream (UDM1_STREAM_SOBOL): Sobol's byte tables of its first *byte_dims dimensions, [dim][4][256]
+ * (entry [d][k][b] the XOR of the direction numbers 8k + i for the set bits i of b), 64-bit, or with
+ * `reversed` the bit reversal of their top 32 bits; NULL for another kind. */
+UDM1_HIDDEN const void *udm1_sobol_stream_table(const udm1_seq_t *seq, int reversed, uint32_t *byte_dims);
 UDM1_HIDDEN extern const udm1_kind udm1_drand48_kind;
 UDM1_HIDDEN extern const udm1_kind udm1_halton_kind;
 UDM1_HIDDEN extern const udm1_kind udm1_sobol_kind;

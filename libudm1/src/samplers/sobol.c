@@ -27,11 +27,12 @@ extern const uint32_t udm1_sobol_table_m[];
  * first 8, indexed by the subset's bits (the Gray code's low byte), so that a point of up to 256
  * samples is one load a dimension: a loop over the set bits mispredicts its exit about once a
  * dimension, which cost more than the rest of the value */
-enum { TABLE_DIMS = 256, BYTE_DIMS = 16 };
+enum { TABLE_DIMS = 256, BYTE_DIMS = 64 };
 typedef struct sobol {
     uint32_t table_dims, byte_dims;
     uint64_t (*low)[256];
-    uint64_t (*bytes)[3][256]; /* the first BYTE_DIMS dimensions: the subsets of direction numbers 8..31, by byte */
+    uint64_t (*bytes)[4][256]; /* the first BYTE_DIMS dimensions: the subsets of direction numbers 0..31, by byte */
+    uint32_t (*rev)[4][256];   /* the bit reversal of their top 32 bits (udm1_stream's Owen-scrambled draws) */
     uint64_t v[][64];
 } sobol;
 
@@ -40,7 +41,7 @@ typedef struct sobol {
 static inline uint64_t sobol_bytes(const sobol *t, uint32_t dim, uint64_t g)
 {
     uint64_t(*b)[256] = t->bytes[dim];
-    return t->low[dim][g & 255u] ^ b[0][(g >> 8) & 255u] ^ b[1][(g >> 16) & 255u] ^ b[2][(g >> 24) & 255u];
+    return b[0][g & 255u] ^ b[1][(g >> 8) & 255u] ^ b[2][(g >> 16) & 255u] ^ b[3][(g >> 24) & 255u];
 }
 
 static uint64_t sobol_raw(const sobol *t, uint32_t dim, uint64_t n)
@@ -130,12 +131,13 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
     uint32_t td = seq->dims < TABLE_DIMS ? seq->dims : TABLE_DIMS, bd = seq->dims < BYTE_DIMS ? seq->dims : BYTE_DIMS;
     size_t head = sizeof(sobol) + sizeof(uint64_t) * 64 * seq->dims;
     head = (head + 63) / 64 * 64;
-    sobol *t = malloc(head + sizeof(uint64_t) * 256 * (td + 3 * (size_t)bd));
+    sobol *t = malloc(head + sizeof(uint64_t) * 256 * (td + 4 * (size_t)bd) + sizeof(uint32_t) * 256 * 4 * (size_t)bd);
     if (!t) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u dimensions", seq->dims);
     t->table_dims = td;
     t->byte_dims = bd;
     t->low = (uint64_t(*)[256])((char *)t + head);
-    t->bytes = (uint64_t(*)[3][256])((char *)t + head + sizeof(uint64_t) * 256 * td);
+    t->bytes = (uint64_t(*)[4][256])((char *)t + head + sizeof(uint64_t) * 256 * td);
+    t->rev = (uint32_t(*)[4][256])((char *)t->bytes + sizeof(uint64_t) * 256 * 4 * (size_t)bd);
     for (uint32_t j = 0; j < seq->dims; ++j) {
         uint64_t *v = t->v[j];
         uint32_t poly = udm1_sobol_table_poly[j];
@@ -159,11 +161,12 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
         t->low[j][0] = 0;
         for (uint32_t b = 1; b < 256; ++b) t->low[j][b] = t->low[j][b & (b - 1)] ^ t->v[j][__builtin_ctz(b)];
     }
-    for (uint32_t j = 0; j < bd; ++j) /* ... and of numbers 8..15, 16..23, 24..31 */
-        for (int k = 0; k < 3; ++k) {
+    for (uint32_t j = 0; j < bd; ++j) /* ... and of numbers 0..7, 8..15, 16..23, 24..31 */
+        for (int k = 0; k < 4; ++k) {
             t->bytes[j][k][0] = 0;
             for (uint32_t b = 1; b < 256; ++b)
-                t->bytes[j][k][b] = t->bytes[j][k][b & (b - 1)] ^ t->v[j][8 * (k + 1) + __builtin_ctz(b)];
+                t->bytes[j][k][b] = t->bytes[j][k][b & (b - 1)] ^ t->v[j][8 * k + __builtin_ctz(b)];
+            for (uint32_t b = 0; b < 256; ++b) t->rev[j][k][b] = udm1_reverse32((uint32_t)(t->bytes[j][k][b] >> 32));
         }
     seq->data = t;
     return UDM1_OK;
@@ -175,3 +178,11 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
 }
 
 const udm1_kind udm1_sobol_kind = {.name = "sobol", .value = sobol_value, .fill = sobol_fill, .base2 = sobol_base2, .base2_point = sobol_base2_point};
+
+const void *udm1_sobol_stream_table(const udm1_seq_t *seq, int reversed, uint32_t *byte_dims)
+{
+    if (seq->kind != &udm1_sobol_kind) return NULL;
+    const sobol *t = seq->data;
+    *byte_dims = t->byte_dims;
+    return reversed ? (const void *)&t->rev[0][0][0] : (const void *)&t->bytes[0][0][0];
+}

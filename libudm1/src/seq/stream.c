@@ -37,23 +37,37 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
         s.flags = UDM1_STREAM_INLINE;
         s.index_base = udm1_screen_index(seq, skey, 0);
         s.held = own;
+        if (seq->mode == UDM1_MODE_SHIFT) /* the shifts mix64(T + K_j), four at a time */
+            udm1_mix64_many(seq->dim_key + first, skey, s.offset, own);
         for (uint32_t j = 0; j < s.held; ++j) {
             uint32_t dim = first + j;
             s.a_hi[j] = seq->gen[dim].hi;
             s.a_lo[j] = seq->gen[dim].lo;
-            s.offset[j] = seq->offset[dim] + udm1_weyl_shift(seq, skey, dim);
+            s.offset[j] = seq->offset[dim] + (seq->mode == UDM1_MODE_SHIFT ? s.offset[j] : udm1_weyl_shift(seq, skey, dim));
         }
     } else if (seq->kind->base2 || seq->kind == &udm1_weyl_scrambled_kind) {
         /* a base-2 randomization on top of the kind's value: the stream's words found once */
         s.flags = STREAM_WORDS;
         s.held = own;
-        for (uint32_t j = 0; j < s.held; ++j) s.offset[j] = udm1_word(seq, skey, first + j);
-        /* pmj02 without base offsets, unrandomized or digitally shifted: drawn inline from its table */
-        int plain = seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_PERMUTE;
-        for (uint32_t j = 0; plain && j < s.held; ++j) plain = seq->offset[first + j] == 0;
-        if (plain && (s.table = udm1_pmj02_stream_table(seq, &s.table_bits)) != NULL) {
+        if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
+            for (uint32_t j = 0; j < s.held; ++j) s.offset[j] = 0;
+        else /* udm1_word of every dimension held, four at a time */
+            udm1_mix64_many(seq->dim_key + first, skey, s.offset, own);
+        /* pmj02 and Sobol without base offsets, unrandomized or digitally shifted (Sobol also Owen-scrambled):
+         * drawn inline from their tables */
+        int zero = 1;
+        for (uint32_t j = 0; zero && j < s.held; ++j) zero = seq->offset[first + j] == 0;
+        uint32_t mode = seq->mode == UDM1_MODE_NONE ? 0 : seq->mode == UDM1_MODE_PERMUTE ? 1 : seq->mode == UDM1_MODE_OWEN ? 2 : 3;
+        uint32_t byte_dims = 0;
+        const void *sobol = udm1_sobol_stream_table(seq, mode == 2, &byte_dims);
+        if (zero && mode <= 1 && (s.table = udm1_pmj02_stream_table(seq, &s.table_bits)) != NULL) {
             s.flags |= UDM1_STREAM_PMJ02;
-            s.table_xor = seq->mode == UDM1_MODE_PERMUTE;
+            s.table_mode = mode;
+        } else if (zero && mode <= 2 && sobol && first + s.held <= byte_dims) {
+            s.flags |= UDM1_STREAM_SOBOL;
+            s.table = sobol;
+            s.table_bits = byte_dims;
+            s.table_mode = mode;
         }
     }
     for (uint32_t j = 0; j < own; ++j) {
