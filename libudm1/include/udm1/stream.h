@@ -63,8 +63,9 @@
  * compiled against this header then draws through the library instead.
  *   UDM1_STREAM_INLINE  a Weyl sequence: a_hi, a_lo, offset (the contract's arithmetic)
  *   UDM1_STREAM_PMJ02   pmj02 without randomization or with its digital shift: `table` holds the (0,2)
- *                       coordinates as [pair][K][2] 32-bit fractions, each pair in the order its indices
- *                       read it, then XORed with the word in offset
+ *                       coordinates as 32-bit fractions in blocks of four dimensions, [blocks][K][4]
+ *                       (blocks = ceil(dimensions / 4); a point's four side by side; each pair in the
+ *                       order its indices read it), then XORed with the word in offset
  *   UDM1_STREAM_SOBOL   Sobol (Gray-code order) of the sequence's first table_dims dimensions and indices
  *                       below 2^32: `table` holds [dim][4][256] 64-bit words, the XOR of the direction
  *                       numbers 8k .. 8k + 7 selected by byte k of the Gray code; then the randomization
@@ -266,7 +267,7 @@ static inline uint64_t udm1_pmj02_value_(const udm1_stream *st, uint64_t index, 
 {
     uint32_t d = st->first + dim;
     const uint32_t *xy = (const uint32_t *)st->table;
-    return ((uint64_t)xy[((uint64_t)(d / 2) * st->point_count + index) * 2 + (d & 1)] << 32) ^ word;
+    return ((uint64_t)xy[((d / 4) * st->point_count + index) * 4 + d % 4] << 32) ^ word;
 }
 
 /* The bit-reversed top 32 bits of Sobol dimension d (UDM1_STREAM_SOBOL, table_mode 2) at Gray code g. */
@@ -349,6 +350,21 @@ static inline int udm1_stream_sobol_(const udm1_stream *st, uint64_t index, uint
 static inline void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
                                       const uint64_t *words, int xor_words, int out_kind, void *out)
 {
+#if defined(UDM1_X86_)
+    uint32_t d = st->first + dim;
+    if (out_kind == 1 && n <= 4 && d % 4 == 0 && dim <= UDM1_STREAM_DIMS - 4) {
+        /* floats of a point's block of four coordinates: one load, the words' high halves, one convert */
+        __m128i x = _mm_loadu_si128((const __m128i *)((const uint32_t *)st->table + ((d / 4) * st->point_count + index) * 4));
+        if (xor_words) {
+            __m128i w0 = _mm_loadu_si128((const __m128i *)words), w1 = _mm_loadu_si128((const __m128i *)(words + 2));
+            x = _mm_xor_si128(x, _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(w0), _mm_castsi128_ps(w1), 0xDD)));
+        }
+        float f[4];
+        _mm_storeu_ps(f, _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)));
+        for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f[j];
+        return;
+    }
+#endif
     for (uint32_t j = 0; j < n; ++j) {
         uint64_t v = udm1_pmj02_value_(st, index, dim + j, xor_words ? words[j] : 0);
         if (out_kind == 1) ((float *)out)[j] = udm1_raw_to_f32(v);

@@ -159,7 +159,8 @@ static int build(uint32_t *xs, uint32_t *ys, uint32_t K, uint64_t key)
 typedef struct pmj02 {
     uint32_t pairs;
     uint32_t bits;  /* m with 2^m >= K */
-    uint32_t xy[1]; /* pairs x K x 2: pair k's point at index i is xy[k][i] (pairs k >= 1 stored shuffled) */
+    uint32_t xy[1]; /* blocks of 4 dimensions x K x 4: dimension d of point i is xy[d / 4][i][d % 4] (pairs
+                     * after the first stored shuffled; an odd last pair's block padded with zeros) */
 } pmj02;
 
 /* Pairs k >= 1 read their points in a shuffled order: the index, as an m-bit
@@ -183,7 +184,7 @@ static uint64_t pmj02_base2(const udm1_seq_t *seq, uint64_t skey, uint64_t index
 {
     (void)skey;
     const pmj02 *t = seq->data;
-    uint64_t v = (uint64_t)t->xy[((dim / 2) * seq->point_count + index) * 2 + (dim & 1)] << 32;
+    uint64_t v = (uint64_t)t->xy[((dim / 4) * seq->point_count + index) * 4 + dim % 4] << 32;
     return v + seq->offset[dim];
 }
 
@@ -195,7 +196,7 @@ static void pmj02_base2_point(const udm1_seq_t *seq, uint64_t skey, uint64_t ind
     const pmj02 *t = seq->data;
     for (uint32_t j = 0; j < m; ++j) {
         uint32_t dim = dim0 + j;
-        raw[j] = ((uint64_t)t->xy[((dim / 2) * seq->point_count + index) * 2 + (dim & 1)] << 32) + seq->offset[dim];
+        raw[j] = ((uint64_t)t->xy[((dim / 4) * seq->point_count + index) * 4 + dim % 4] << 32) + seq->offset[dim];
     }
 }
 
@@ -212,7 +213,7 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
         return udm1_fail(UDM1_ERROR_POINT_COUNT,
                          "udm1_seq_create: pmj02 takes K <= 2^20 and K x pairs <= 2^24, got K = %llu with %u pairs",
                          (unsigned long long)K, pairs);
-    pmj02 *t = malloc(sizeof(pmj02) + sizeof(uint32_t) * 2 * K * pairs);
+    pmj02 *t = calloc(1, sizeof(pmj02) + sizeof(uint32_t) * 4 * K * ((pairs + 1) / 2));
     uint32_t *xs = malloc(sizeof(uint32_t) * K), *ys = malloc(sizeof(uint32_t) * K);
     int ok = t && xs && ys;
     uint32_t bits = 0;
@@ -222,8 +223,8 @@ udm1_status udm1_init_pmj02(udm1_seq_t *seq)
         uint32_t key = udm1_key32(seq->seed_key, 0x504D4A53u, p);
         for (uint64_t i = 0; ok && i < K; ++i) {
             uint64_t at = p ? shuffled(bits, K, key, i) : i;
-            t->xy[(p * K + i) * 2] = xs[at];
-            t->xy[(p * K + i) * 2 + 1] = ys[at];
+            t->xy[((p / 2) * K + i) * 4 + (p % 2) * 2] = xs[at];
+            t->xy[((p / 2) * K + i) * 4 + (p % 2) * 2 + 1] = ys[at];
         }
     }
     free(xs);

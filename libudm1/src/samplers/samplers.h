@@ -17,7 +17,7 @@ UDM1_HIDDEN udm1_status udm1_init_grps(udm1_seq_t *seq);       /* grps.c */
 UDM1_HIDDEN udm1_status udm1_init_pmj02(udm1_seq_t *seq);      /* pmj02.c */
 
 UDM1_HIDDEN extern const udm1_kind udm1_pcg32_kind;
-/* For udm1_stream (UDM1_STREAM_PMJ02): pmj02's table ([pair][K][2], every pair in the order it is read)
+/* For udm1_stream (UDM1_STREAM_PMJ02): pmj02's table ([blocks of 4 dimensions][K][4], every pair in the order it is read)
  * and its index bits ceil(log2 K); NULL for another kind. */
 UDM1_HIDDEN const uint32_t *udm1_pmj02_stream_table(const udm1_seq_t *seq, uint32_t *bits);
 /* For udm1_stream (UDM1_STREAM_SOBOL): Sobol's byte tables of its first *byte_dims dimensions, [dim][4][256]
