@@ -62,7 +62,7 @@ template <class Sampler> struct Oqmc {
             auto domain = Sampler(0, 0, 0, i, cache.data());
             for (int j = 0; j < dims; j += 4) {
                 domain = domain.newDomain(0);
-                float s[4];
+                float s[4] = {0, 0, 0, 0};
                 domain.template drawSample<4>(s);
                 save(s);
             }
@@ -75,7 +75,7 @@ template <class Sampler> struct Oqmc {
             for (int x = 0; x < width; ++x)
                 for (int i = 0; i < spp; ++i) {
                     auto px = Sampler(x, y, 0, i, cache.data());
-                    float s[4];
+                    float s[4] = {0, 0, 0, 0};
                     px.newDomain(0).template drawSample<2>(s);
                     save(s);
                     for (int v = 0; v < vertices; ++v) {
@@ -114,18 +114,71 @@ struct Udm1 {
             udm1_domain d = udm1_domain_root(&st, (uint64_t)i);
             for (int j = 0; j < ndims; j += 4) {
                 d = udm1_domain_child(d, 0);
-                float s[4];
+                float s[4] = {0, 0, 0, 0};
                 udm1_domain_draw_f32(d, 4, s);
                 save(s);
             }
         }
     }
+    // The domain design's alternatives, measured in the same protocol (a Weyl sequence's child chain, 4D
+    // floats), each written with the AVX2 code the header's inline draw uses (built with -march=native
+    // only). Variant 1: the domains as shipped, spelled out (a check of the spelling: it must time like
+    // "domains"); 2: a child key of one multiply, (k ^ k >> 32) M, instead of the 64-bit finalizer, the
+    // index scramble's seed then hashed off the chain; 3: the four shifts from one hash times per-dimension
+    // odd constants (dependent shifts); 4 and 5 measure costs, not designs: without the index scramble
+    // (siblings' samples would pair on lines), without the per-draw shift hashes (siblings would share
+    // shifts).
+#if defined(__AVX2__)
+    void domain_variant(int variant, int samples, int ndims, const udm1_stream &st) const
+    {
+        const uint64_t G = UDM1_GOLDEN_GAMMA, M = 0xD6E8FEB86659FD93ull;
+        const __m256i H = _mm256_loadu_si256((const __m256i *)st.a_hi), L = _mm256_loadu_si256((const __m256i *)st.a_lo);
+        const __m256i B = _mm256_loadu_si256((const __m256i *)st.base), K = _mm256_loadu_si256((const __m256i *)st.dim_key);
+        const __m256i S = _mm256_loadu_si256((const __m256i *)st.offset);
+        for (int i = 0; i < samples; ++i) {
+            uint64_t key = st.key;
+            for (int j = 0; j < ndims; j += 4) {
+                uint64_t seed_src;
+                if (variant == 2) {
+                    uint64_t k = key + G;
+                    key = (k ^ (k >> 32)) * M;
+                    seed_src = udm1_mix64(key);
+                } else {
+                    key = udm1_mix64(key + G);
+                    seed_src = key;
+                }
+                uint32_t low = variant == 4 ? (uint32_t)i : udm1_owen_index32((uint32_t)i, (uint32_t)(seed_src >> 32));
+                __m256i O;
+                if (variant == 5)
+                    O = S;
+                else
+                    O = _mm256_add_epi64(udm1_mix64x4_(key, st.dim_key), B);
+                if (variant == 3) { /* h times odd per-dimension constants: lane products of 64 bits */
+                    __m256i h = _mm256_set1_epi64x((long long)udm1_mix64(key)), c = _mm256_or_si256(K, _mm256_set1_epi64x(1));
+                    __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(h, 32), c),
+                                                     _mm256_mul_epu32(h, _mm256_srli_epi64(c, 32)));
+                    O = _mm256_add_epi64(B, _mm256_add_epi64(_mm256_mul_epu32(h, c), _mm256_slli_epi64(cross, 32)));
+                }
+                __m256i N = _mm256_set1_epi64x((long long)low);
+                __m256i h0 = _mm256_mul_epu32(N, H), h1 = _mm256_mul_epu32(N, _mm256_srli_epi64(H, 32));
+                __m256i l0 = _mm256_mul_epu32(N, L), l1 = _mm256_mul_epu32(N, _mm256_srli_epi64(L, 32));
+                __m256i carry = _mm256_srli_epi64(_mm256_add_epi64(l1, _mm256_srli_epi64(l0, 32)), 32);
+                __m256i v = _mm256_add_epi64(_mm256_add_epi64(O, _mm256_add_epi64(h0, _mm256_slli_epi64(h1, 32))), carry);
+                __m256i top = _mm256_srli_epi64(v, 40);
+                __m128i lo32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(top, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6)));
+                float s[4] = {0, 0, 0, 0};
+                _mm_storeu_ps(s, _mm_mul_ps(_mm_cvtepi32_ps(lo32), _mm_set1_ps(1.0f / 16777216.0f)));
+                save(s);
+            }
+        }
+    }
+#endif
     // the same dimensions by index through streams of 64 dimensions (filled once, outside the timing)
     void streams(int samples, int ndims, const std::vector<udm1_stream> &st) const
     {
         for (int i = 0; i < samples; ++i)
             for (int j = 0; j < ndims; j += 4) {
-                float s[4];
+                float s[4] = {0, 0, 0, 0};
                 udm1_stream_draw_f32(&st[j / UDM1_STREAM_DIMS], (uint64_t)i, j % UDM1_STREAM_DIMS, 4, s);
                 save(s);
             }
@@ -136,7 +189,7 @@ struct Udm1 {
             udm1_cursor c;
             udm1_cursor_start(&c, seq, 0, (uint64_t)i, 0);
             for (int j = 0; j < ndims; j += 4) {
-                float s[4];
+                float s[4] = {0, 0, 0, 0};
                 udm1_cursor_fill(&c, 4, s);
                 save(s);
             }
@@ -150,7 +203,7 @@ struct Udm1 {
                 udm1_stream st;
                 udm1_stream_init(&st, seq, ((uint64_t)y << 32) | (uint32_t)x, 0, 2 + 6 * (uint32_t)vertices);
                 for (int i = 0; i < spp; ++i) {
-                    float s[4];
+                    float s[4] = {0, 0, 0, 0};
                     udm1_stream_draw_f32(&st, (uint64_t)i, 0, 2, s);
                     save(s);
                     for (int v = 0; v < vertices; ++v) {
@@ -171,7 +224,7 @@ struct Udm1 {
                 udm1_stream_init(&st, seq, ((uint64_t)y << 32) | (uint32_t)x, 0, 4 + 4 * (uint32_t)vertices);
                 for (int i = 0; i < spp; ++i) {
                     udm1_domain px = udm1_domain_root(&st, (uint64_t)i);
-                    float s[4];
+                    float s[4] = {0, 0, 0, 0};
                     udm1_domain_draw_f32(px, 2, s);
                     save(s);
                     for (int v = 0; v < vertices; ++v) {  // as udm1-pt: the vertex the next block, its extras a child
@@ -276,6 +329,18 @@ int main(int argc, char **argv)
         rows.push_back({"renderer", p.udm1, "stream", p.anchor, renderer_values, 1e30, 0,
                         [=] { u->renderer_streams(W, N, V); }});
     }
+#if defined(__AVX2__)
+    // the domain design's alternatives (wr; Udm1::domain_variant)
+    {
+        Udm1 *u = seqs[0];
+        const udm1_stream *st0 = &streams[0][0];
+        int S = o.samples, D = o.dims;
+        static const char *names[] = {"", "d:spelled", "d:1mulkey", "d:1hash", "c:noindex", "c:noshift"};
+        for (int v = 1; v <= 5; ++v)
+            rows.push_back({"openqmc", "wr", names[v], "lattice", (double)S * D, 1e30, 0,
+                            [=] { u->domain_variant(v, S, D, *st0); }});
+    }
+#endif
     // screen-space randomization against OpenQMC's blue-noise variants (wr)
     {
         udm1_seq_desc desc;

@@ -271,6 +271,18 @@ static inline void udm1_domain_sobol_values_(const udm1_domain *d, uint32_t n, i
         for (uint32_t j = 0; j < n; ++j) udm1_put_(out_kind, out, j, udm1_sobol_value_(st, m, d->dim + j, words[j], out_kind != 1));
 }
 
+/* A draw through the library (out_kind as udm1_put_), out of line: a refused draw gives 0 (raw) or NaN. */
+UDM1_COLD_ void udm1_domain_library_(udm1_domain d, uint32_t n, int out_kind, void *out)
+{
+    uint64_t raw[4];
+    udm1_status s = out_kind == 1 ? udm1_domain_fill_f32(&d, n, (float *)out) : udm1_domain_fill_raw(&d, n, raw);
+    for (uint32_t j = 0; j < n && j < 4; ++j) {
+        if (out_kind == 0) ((uint64_t *)out)[j] = s == UDM1_OK ? raw[j] : 0;
+        else if (out_kind == 2) ((double *)out)[j] = s == UDM1_OK ? udm1_raw_to_f64(raw[j]) : (double)NAN;
+        else if (s != UDM1_OK) ((float *)out)[j] = (float)NAN;
+    }
+}
+
 /* The domain's first n dimensions (1..4) as raw values, floats or doubles. A draw the library refuses
  * gives 0 (raw) or NaN, with udm1_last_error() saying why. */
 UDM1_DRAW_ void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
@@ -291,8 +303,7 @@ UDM1_DRAW_ void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
         udm1_domain_sobol_values_(&d, n, 0, raw);
         return;
     }
-    if (udm1_domain_fill_raw(&d, n, raw) != UDM1_OK)
-        for (uint32_t j = 0; j < n && j < 4; ++j) raw[j] = 0;
+    udm1_domain_library_(d, n, 0, raw);
 }
 
 UDM1_DRAW_ void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
@@ -313,13 +324,11 @@ UDM1_DRAW_ void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
         udm1_domain_sobol_values_(&d, n, 1, out);
         return;
     }
-    if (udm1_domain_fill_f32(&d, n, out) != UDM1_OK)
-        for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = (float)NAN;
+    udm1_domain_library_(d, n, 1, out);
 }
 
 UDM1_DRAW_ void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
 {
-    uint64_t raw[4];
     if (d.key && udm1_domain_inline_(&d, n)) {
         udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, 2, out);
         return;
@@ -336,8 +345,7 @@ UDM1_DRAW_ void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
         udm1_domain_sobol_values_(&d, n, 2, out);
         return;
     }
-    int ok = udm1_domain_fill_raw(&d, n, raw) == UDM1_OK;
-    for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = ok ? udm1_raw_to_f64(raw[j]) : NAN;
+    udm1_domain_library_(d, n, 2, out);
 }
 
 #ifdef __cplusplus
