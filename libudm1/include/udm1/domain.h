@@ -49,8 +49,8 @@
  * decisions (measurably lower error for the Weyl sets than independent domains); child() for what has
  * no place in the chain (optional decisions, splits, other subsystems), so that adding or removing one
  * never shifts the dimensions of another. A point set's index permutation stays inside its K points.
- * Domains of a sequence other than a Weyl sequence without a transform or pmj02 (see udm1/stream.h)
- * draw through one library call, udm1_domain_fill_raw.
+ * Domains of a sequence other than a Weyl sequence without a transform, Sobol or pmj02 (the cases
+ * udm1/stream.h draws inline) draw through one library call, udm1_domain_fill_raw.
  */
 #ifndef UDM1_DOMAIN_H
 #define UDM1_DOMAIN_H
