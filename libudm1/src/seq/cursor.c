@@ -93,7 +93,11 @@ void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
 {
     const udm1_seq *seq = c->seq;
     uint32_t k = 0;
-    if (!seq->kind->step && seq->kind->fill && c->dimension < seq->dims) {
+    if (seq->kind == &udm1_weyl_kind) { /* the Weyl values in one loop (its bulk kernel costs more for one row) */
+        uint32_t inside = c->dimension >= seq->dims ? 0 : seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
+        for (; k < inside; ++k) raw[k] = udm1_weyl_shifted_raw(seq, c->key, c->index, c->dimension + k);
+        c->dimension += inside;
+    } else if (!seq->kind->step && seq->kind->fill && c->dimension < seq->dims) {
         uint32_t inside = seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
         seq->kind->fill(seq, c->key, c->index, 1, c->dimension, inside, raw);
         c->dimension += inside;
@@ -102,10 +106,6 @@ void udm1_cursor_raw(udm1_cursor *c, uint32_t n, uint64_t *raw)
         uint32_t inside = seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
         uint64_t skey = stream_key_of(c, 0);
         for (; k < inside; ++k) raw[k] = seq->kind->step(seq, skey, &c->key, c->dimension + k);
-        c->dimension += inside;
-    } else if (seq->kind == &udm1_weyl_kind) { /* the Weyl values in one loop, without the generic step */
-        uint32_t inside = c->dimension >= seq->dims ? 0 : seq->dims - c->dimension < n ? seq->dims - c->dimension : n;
-        for (; k < inside; ++k) raw[k] = udm1_weyl_shifted_raw(seq, c->key, c->index, c->dimension + k);
         c->dimension += inside;
     }
     for (; k < n; ++k) raw[k] = cursor_next(c);
