@@ -2,10 +2,12 @@
 defined by the values it gives. The library's udm1_stream_fill_raw and udm1_domain_fill_raw (which the
 header's inline draws equal bit for bit: tests/c/test_stream.c) against reference.py's exact arithmetic,
 the documented hash and an independent transcription of the index scramble, for the root, children,
-chains, splits, indices below and above 2^32, and padding past the sequence's dimensions."""
+chains, splits, indices below and above 2^32, and padding past the sequence's dimensions; Sobol and PMJ02
+domains against their unrandomized values and the documented words, index permutation and scrambling."""
 
 import ctypes
 
+import numpy as np
 import pytest
 
 import reference as ref
@@ -116,6 +118,62 @@ def test_domains_equal_the_reference(preset, d):
                 raw = (ctypes.c_uint64 * 4)()
                 assert lib.udm1_domain_fill_raw(ctypes.byref(dom), 4, raw) == 0
                 assert list(raw) == want, (preset, stream, index, path)
+
+
+def owen64(v: int, r: int) -> int:
+    """Owen scrambling of a 0.64 value as udm1/stream.h documents it: the top 32 bits by the nested hash
+    keyed by the word's low half, the low 32 a hash of the scrambled top and the word's high half."""
+    top = reverse32(owen_hash32(reverse32(v >> 32), r & M32))
+    return (top << 32) | (ref.mix64(((top << 32) | (r >> 32)) ^ 0x4F57454E00000000) & M32)
+
+
+def permuted(index: int, K: int, seed: int) -> int:
+    """A child's index: the low 32 bits Owen-scrambled; in a K-point set the scramble of ceil(log2 K) bits
+    cycle-walked back into [0, K)."""
+    if not K:
+        return (index & ~M32) | reverse32(owen_hash32(reverse32(index & M32), seed))
+    k = max(K - 1, 0).bit_length()
+    v = index & M32
+    while True:
+        v = 0 if k == 0 else reverse32(owen_hash32(reverse32(v) >> (32 - k), seed) & ((1 << k) - 1)) >> (32 - k)
+        if v < K:
+            return v
+
+
+@pytest.mark.parametrize("preset,d,K,mode", [("sobol-owen", 6, 0, "owen"), ("sobol", 5, 0, "xor"),
+                                             ("pmj02", 6, 256, "xor"), ("pmj02", 4, 100, "xor")])
+def test_base2_domains_equal_the_reference(preset, d, K, mode):
+    """Sobol and PMJ02 domains (drawn inline by the header for these randomizations): the sequence's own
+    unrandomized values at the domain's index (the root's own, a child's permuted one), randomized by the
+    domain's words mix64(key + K_j) - the root's the stream's - with the preset's randomization, written
+    out here from the documentation."""
+    seed = 9
+    seq = udm1.Sequence(preset, d, point_count=K, seed=seed)
+    plain = udm1.Sequence(preset, d, point_count=K, seed=seed, randomize=False)
+    sk = ref.seed_key(seed)
+
+    def base(index):
+        return [int(v) for v in plain.points(1, index, dtype=np.uint64)[0]]
+
+    for stream in (0, (5 << 32) | 9):
+        st = Stream()
+        assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, stream, 0, d) == 0
+        for index in ((0, 1, 77, K - 1) if K else (0, 1, 1000, M32, (1 << 32) + 5)):
+            for path in PATHS:
+                key, idx, dim = derive(path, 0, index, 0, st.key)
+                n = min(4, d - dim)
+                if n <= 0 or (K and idx >= K):
+                    continue
+                if key == 0:
+                    m, words = idx, [ref.shift(seed, stream, dim + j) for j in range(n)]
+                else:
+                    m, words = permuted(idx, K, key >> 32), [ref.mix64(key + ref.dim_key(sk, dim + j)) for j in range(n)]
+                v = base(m)[dim:dim + n]
+                want = [owen64(v[j], words[j]) if mode == "owen" else v[j] ^ words[j] for j in range(n)]
+                dom = Domain(ctypes.pointer(st), key, idx, dim, 0)
+                raw = (ctypes.c_uint64 * 4)()
+                assert lib.udm1_domain_fill_raw(ctypes.byref(dom), n, raw) == 0
+                assert list(raw)[:n] == want, (preset, stream, index, path)
 
 
 def test_stream_values_and_padding_equal_the_reference():
