@@ -97,7 +97,7 @@ struct Tracer {
             if (depth == max_depth) break;
             // this vertex's values (integrator.h): always drawn, so that nothing depends on what happens
             double u[DIMS_PER_VERTEX];
-            vertex_values(sample, depth, u);
+            vertex_values(sample.stream, sample.index, depth, u);
             const double u_lp[2] = {u[0], u[1]}, u_lobe = u[2], u_rr = u[3], u_dir[2] = {u[4], u[5]};
 
             const udm1scene::Shape &shape = scene.shapes[h.shape];
@@ -158,15 +158,6 @@ struct Tracer {
 
 }  // namespace
 
-void vertex_values(udm1_domain sample, int depth, double u[6])
-{
-    udm1_domain vertex = udm1_domain_next(sample, 1 + (uint32_t)depth);
-    double a[4], b[2];
-    udm1_domain_draw_f64(vertex, 4, a);                        // light (a[0], a[1]), BSDF direction (a[2], a[3])
-    udm1_domain_draw_f64(udm1_domain_child(vertex, 0), 2, b);  // lobe, roulette
-    u[0] = a[0], u[1] = a[1], u[2] = b[0], u[3] = b[1], u[4] = a[2], u[5] = a[3];
-}
-
 Sequence make_sequence(const Options &opt, uint32_t dims)
 {
     // at least 2 dimensions, at most the preset's own (the domains pad the rest)
@@ -193,12 +184,12 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
     Lights lights(scene, opt.near_light);
 
-    uint32_t path_dims = 4 + 4 * (uint32_t)max_depth;  // the chain of next(); the lobe and roulette are children
+    uint32_t path_dims = 4 + 8 * (uint32_t)max_depth;  // the chain of next()
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
     udm1app::check_pixel_bounds(bounds, view.width, view.height);  // before anything is allocated
-    Sequence seq_owner = make_sequence(opt, 4 + 4 * (uint32_t)max_depth);  // freed on every path
+    Sequence seq_owner = make_sequence(opt, path_dims);  // freed on every path
     udm1_seq *seq = seq_owner.get();
     Accumulator acc;
     acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1], {"R", "G", "B"},

@@ -498,7 +498,7 @@ void Wavefront::Batch::sample(int depth)
     const size_t n = n_;
     // this vertex's 6 values for every live path (the domains of integrator.h)
     for (size_t m = 0; m < n; ++m)
-        vertex_values(udm1_domain_root(&streams_[P.pixel[m]], P.index[m]), depth, &u[DIMS_PER_VERTEX * m]);
+        vertex_values(&streams_[P.pixel[m]], P.index[m], depth, &u[DIMS_PER_VERTEX * m]);
     if (w_.choice_.cdf.size() <= 16) {
         choose_lights(n, u.data(), V, w_.choice_);
     } else {  // many lights: Lights::choose's binary search, path by path
