@@ -184,7 +184,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
     Lights lights(scene, opt.near_light);
 
-    uint32_t path_dims = 4 + 8 * (uint32_t)max_depth;  // the chain of next()
+    uint32_t path_dims = 4 + 4 * (uint32_t)max_depth;  // the chain of next(); the lobe and roulette are children
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
