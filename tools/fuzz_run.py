@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = ["api", "noise", "scene", "mesh"]
+TARGETS = ["api", "noise", "scene", "mesh", "stream"]
 
 
 def run_target(fuzzer: Path, corpus: Path, work: Path, seconds: int) -> dict:
