@@ -108,6 +108,9 @@ bench)
     udm1_log "udm1-pt against pbrt-v4 on every shared and test scene (bench/bench_accuracy.py; pbrt-v4 is built once"
     udm1_log "from ../shared/anchors into build/anchors, about 10 minutes; skipped with a message where it is absent)"
     "$PY" bench/bench_accuracy.py --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/accuracy"
+    udm1_log "the paper's experiment inside pbrt-v4: its samplers and udm1's (Sampler \"udm1\") on the Crown and veach-mis"
+    udm1_log "(bench/bench_pbrt_samplers.py, about 20 minutes; skipped with a message where ../shared is absent)"
+    "$PY" bench/bench_pbrt_samplers.py --out "$ROOT/build/bench_pbrt"
     udm1_log "scale-out: udm1.distributed on 1 and 2 local Dask workers against the tools alone (bench/bench_distributed.py)"
     UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_distributed.py --tool "$ROOT/build/bin/udm1-pt" \
         --out "$ROOT/build/bench_distributed"
