@@ -3,8 +3,11 @@ given error.
 
 1. Throughput: paths/s and rays/s of udm1-pt on the built-in Cornell box (the wavefront loop, and
    the scalar loop for comparison) and on the shared pbrt-v4 scenes (cornell-box, veach-mis; skipped
-   with a message where ../shared is absent), and Mitsuba 3 (PyPI `mitsuba`, variant scalar_rgb, its
-   `path` integrator) on the same Cornell box at the same spp.
+   with a message where ../shared is absent), and Mitsuba 3 (PyPI `mitsuba`, its `path` integrator) on
+   the same Cornell box at the same spp, in its scalar_rgb variant and in llvm_ad_rgb, its vectorized
+   JIT-compiled CPU variant (the one a speed-minded user picks; it needs libllvm19 on Debian 12, and is
+   skipped with a message without it). A JIT variant's kernels are compiled by an untimed render of the
+   same configuration first, and its time includes evaluating the image (its render is lazy).
 2. Equal spp: RMSE (root of the MSE averaged over --seeds renders; time averaged too) against one
    common reference (udm1-pt, sobol-owen at --ref-spp, cached) for every udm1 sampler and every
    Mitsuba sampler at each spp, the renders interleaved (per spp: a udm1-pt sampler, a Mitsuba
@@ -46,6 +49,17 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
+
+# Mitsuba's llvm_ad_rgb needs an LLVM that Dr.Jit can drive: on Debian 12 libllvm19 (14 is refused, 15 and 16
+# fail in code generation on AVX-512 machines)
+LLVM_PATH = os.environ.get("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1")
+
+
+def llvm_available() -> bool:
+    if not Path(LLVM_PATH).exists():
+        return False
+    os.environ["DRJIT_LIBLLVM_PATH"] = LLVM_PATH
+    return True
 SHARED = ROOT.parent / "shared" / "scenes"
 OURS = ["pcg32", "halton", "sobol", "sobol-owen", "pmj02", "cmj", "wr", "wmmr", "hwmmr", "rd"]
 THEIRS = ["independent", "stratified", "multijitter", "orthogonal", "ldsampler"]  # every sampler Mitsuba 3 has
@@ -136,6 +150,8 @@ def main(argv=None) -> int:
     ap.add_argument("--ref-spp", type=int, default=8192)
     ap.add_argument("--samplers", default=",".join(OURS))
     ap.add_argument("--mitsuba-samplers", default=",".join(THEIRS))
+    ap.add_argument("--mitsuba-variants", default="scalar_rgb,llvm_ad_rgb",
+                    help="Mitsuba variants (llvm_ad_rgb: its vectorized JIT variant; skipped with a message without LLVM)")
     ap.add_argument("--seeds", type=int, default=3, help="renders per point, MSE and time averaged (default 3)")
     ap.add_argument("--throughput-spp", type=int, default=64)
     ap.add_argument("--out", default=str(ROOT / "build" / "bench_pt"))
@@ -144,6 +160,10 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if args.estimators:
         return estimators(args)
+    variants = [v for v in args.mitsuba_variants.split(",") if v]
+    if "llvm_ad_rgb" in variants and not llvm_available():  # (before Dr.Jit starts: it reads the path once)
+        log(f"Mitsuba's llvm_ad_rgb skipped: no LLVM library ({LLVM_PATH}; Debian: apt-get install libllvm19)")
+        variants.remove("llvm_ad_rgb")
     try:
         import mitsuba as mi
     except ImportError:
@@ -156,7 +176,9 @@ def main(argv=None) -> int:
     tool, out = args.tool, Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     spps = [int(s) for s in args.spps.split(",")]
-    ours, theirs = args.samplers.split(","), args.mitsuba_samplers.split(",")
+    ours = args.samplers.split(",")
+    # Mitsuba's entries: a sampler in its scalar_rgb variant by name, in another variant as "variant:sampler"
+    theirs = [s if v == "scalar_rgb" else f"{v}:{s}" for v in variants for s in args.mitsuba_samplers.split(",")]
     w, h = (int(v) for v in args.size.split("x"))
     results: dict = {"machine": f"{platform.machine()}, {os.cpu_count()} logical cores, {platform.platform()}",
                      "mitsuba": mi.__version__, "size": args.size, "spps": spps, "ref_spp": args.ref_spp}
@@ -187,6 +209,14 @@ def main(argv=None) -> int:
     results["throughput"].append({"renderer": "Mitsuba 3 scalar_rgb independent", "scene": "builtin:cornell",
                                   "size": args.size, "spp": args.throughput_spp, "seconds": secs, "paths": paths,
                                   "rays": None, "paths_per_second": paths / secs, "rays_per_second": None})
+    for variant in (v for v in variants if v != "scalar_rgb"):
+        mi.set_variant(variant)
+        mitsuba_scene.render(scene_dir, args.throughput_spp, "independent", 0)  # its kernels compiled, not timed
+        img, secs = mitsuba_scene.render(scene_dir, args.throughput_spp, "independent", 1)
+        results["throughput"].append({"renderer": f"Mitsuba 3 {variant} independent", "scene": "builtin:cornell",
+                                      "size": args.size, "spp": args.throughput_spp, "seconds": secs, "paths": paths,
+                                      "rays": None, "paths_per_second": paths / secs, "rays_per_second": None})
+        mi.set_variant("scalar_rgb")
 
     # 2. equal spp
     ref = out / f"ref-cornell-{args.size}-{args.ref_spp}.exr"
@@ -210,11 +240,17 @@ def main(argv=None) -> int:
                              "seconds": float(np.mean([float(r["seconds"]) for r in recs])),
                              "rmse": float(np.sqrt(np.mean([float(r["rmse"]) ** 2 for r in recs])))})
                 continue
+            variant, _, sampler = s.rpartition(":")
+            mi.set_variant(variant or "scalar_rgb")
+            if variant:  # a JIT variant compiles its kernels at the first render of a configuration: not timed
+                mitsuba_scene.render(scene_dir, spp, sampler, 0)
             secs, mse, counts = [], [], []
             for seed in range(1, args.seeds + 1):
-                img, t = mitsuba_scene.render(scene_dir, spp, s, seed, counts)
+                img, t = mitsuba_scene.render(scene_dir, spp, sampler, seed, counts)
                 exr = out / f"mitsuba-{s}-{spp}-{seed}.exr"
+                mi.set_variant("scalar_rgb")
                 mi.util.write_bitmap(str(exr), img.astype("float32"), write_async=False)
+                mi.set_variant(variant or "scalar_rgb")
                 secs.append(t)
                 mse.append(rmse_of(tool, exr, ref) ** 2)
                 exr.unlink()
@@ -243,17 +279,19 @@ def main(argv=None) -> int:
     (out / "bench_pt.json").write_text(json.dumps(results, indent=1))
 
     # report
-    print(f"# udm1-pt against Mitsuba 3 {mi.__version__} (scalar_rgb), {results['machine']}\n")
+    print(f"# udm1-pt against Mitsuba 3 {mi.__version__} ({', '.join(variants)}), {results['machine']}\n")
     print(f"## Throughput ({args.throughput_spp} spp)\n")
     print("| renderer | scene | size | paths/s | rays/s | rays/path |\n|---|---|---|---|---|---|")
     for r in results["throughput"]:
         rays = f"{r['rays_per_second']:.3g}" if r["rays"] else "n/a"
         rpp = f"{r['rays'] / r['paths']:.2f}" if r["rays"] else "n/a"
         print(f"| {r['renderer']} | {r['scene']} | {r['size']} | {r['paths_per_second']:.3g} | {rays} | {rpp} |")
-    base = results["throughput"][-1]["paths_per_second"]
-    print(f"\nudm1-pt / Mitsuba paths per second on the same Cornell box: "
-          f"{results['throughput'][0]['paths_per_second'] / base:.2f} "
-          f"(scalar loop: {results['throughput'][1]['paths_per_second'] / base:.2f})\n")
+    for m in (r for r in results["throughput"] if r["renderer"].startswith("Mitsuba")):
+        base = m["paths_per_second"]
+        print(f"\nudm1-pt / {m['renderer']} paths per second on the same Cornell box: "
+              f"{results['throughput'][0]['paths_per_second'] / base:.2f} "
+              f"(scalar loop: {results['throughput'][1]['paths_per_second'] / base:.2f})")
+    print()
     print(f"## Equal spp: RMSE against udm1-pt sobol-owen {args.ref_spp} spp, {args.size}, {args.seeds} seeds "
           "(seconds in brackets)\n")
     print("| renderer | sampler | " + " | ".join(f"{n} spp" for n in spps) + " |")

@@ -1,5 +1,5 @@
-"""Build a scene exported by `udm1-pt export DIR` in Mitsuba 3 (PyPI `mitsuba`, variant
-scalar_rgb), so that udm1-pt and Mitsuba render one parse of the same file.
+"""Build a scene exported by `udm1-pt export DIR` in Mitsuba 3 (PyPI `mitsuba`; the variant set by the
+caller, scalar_rgb when none is), so that udm1-pt and Mitsuba render one parse of the same file.
 
 How the scenes are matched: the same triangles (world-space PLY files written by udm1-pt,
 face normals, the winding pbrt's emitting side implies), the same spheres, the same RGB
@@ -75,10 +75,14 @@ def render(dir, spp: int, sampler: str = "independent", seed: int = 0, counts: l
     import mitsuba as mi
     import numpy as np
 
+    import drjit as dr
+
     scene = load(dir, spp, sampler, seed)
     n = scene.sensors()[0].sampler().sample_count()
     t0 = time.perf_counter()
     img = mi.render(scene, spp=n, seed=seed)
+    dr.eval(img)  # the JIT variants (llvm_*) return a lazy image: the render ends when it is evaluated
+    dr.sync_thread()
     seconds = time.perf_counter() - t0
     if counts is not None:
         counts.append(n)
