@@ -83,6 +83,7 @@ test)
     ;;
 bench)
     shift || true
+    UDM1_DEBIAN_PACKAGES+=(libllvm19)  # Mitsuba 3's llvm_ad_rgb variant, the fast anchor of bench_pt.py
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
     udm1_log "C throughput (bench/bench_seq.c)"
