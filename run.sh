@@ -102,7 +102,7 @@ bench)
     udm1_log "udm1-pt's scalar loop against a bare Embree replay of its own rays: Embree's share of its time (bench/bench_pt_embree.cpp)"
     ./build/bin/udm1_bench_pt_embree --spp 64
     ./build/bin/udm1_bench_pt_embree --spp 64 --sampler sobol-owen
-    udm1_log "udm1-pt against Mitsuba 3: throughput, equal spp, equal error (bench/bench_pt.py, about 15 minutes)"
+    udm1_log "udm1-pt against Mitsuba 3 scalar_rgb and llvm_ad_rgb: throughput, equal spp, equal error (bench/bench_pt.py, about 17 minutes)"
     "$PY" bench/bench_pt.py --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/bench_pt"
     udm1_log "udm1-pt's estimator choices: roulette depth, solid-angle light sampling (bench/bench_pt.py --estimators)"
     "$PY" bench/bench_pt.py --estimators --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/bench_pt"
