@@ -184,12 +184,11 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
     Lights lights(scene, opt.near_light);
 
-    uint32_t path_dims = 4 + 4 * (uint32_t)max_depth;  // the chain of next(); the lobe and roulette are children
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
     udm1app::check_pixel_bounds(bounds, view.width, view.height);  // before anything is allocated
-    Sequence seq_owner = make_sequence(opt, path_dims);  // freed on every path
+    Sequence seq_owner = make_sequence(opt, path_dims(max_depth));  // freed on every path
     udm1_seq *seq = seq_owner.get();
     Accumulator acc;
     acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1], {"R", "G", "B"},
@@ -243,7 +242,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     stats->paths = (uint64_t)acc.width * acc.height * count;
     stats->rays = rays;
     stats->dimensions = udm1_seq_dimensions(seq);
-    stats->path_dimensions = path_dims;
+    stats->path_dimensions = path_dims(max_depth);
     stats->wavefront = wavefront != nullptr;
     return acc;
 }

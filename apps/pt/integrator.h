@@ -40,11 +40,14 @@ namespace udm1pt {
 // reused only when it matches).
 constexpr int LAYOUT_VERSION = 7;
 
-// The dimensions a pixel's stream holds for a maximum depth: the chain of next(), at most UDM1_STREAM_DIMS
-// (farther ones draw through the library).
+// The dimensions a path of a maximum depth draws: the chain of next() (the lobe and roulette are children).
+inline uint32_t path_dims(int max_depth) { return 4 + 4 * (uint32_t)max_depth; }
+
+// The dimensions a pixel's stream holds: the path's, at most UDM1_STREAM_DIMS (farther ones draw through
+// the library).
 inline uint32_t stream_dims(int max_depth)
 {
-    uint32_t d = 4 + 4 * (uint32_t)max_depth;
+    uint32_t d = path_dims(max_depth);
     return d < UDM1_STREAM_DIMS ? d : UDM1_STREAM_DIMS;
 }
 
