@@ -12,10 +12,12 @@
 #  define UDM1_HIDDEN __attribute__((visibility("hidden")))
 #  define UDM1_LIKELY(x) __builtin_expect(!!(x), 1)
 #  define UDM1_UNLIKELY(x) __builtin_expect(!!(x), 0)
+#  define UDM1_NOINLINE_COLD __attribute__((noinline, cold))
 #else
 #  define UDM1_HIDDEN
 #  define UDM1_LIKELY(x) (x)
 #  define UDM1_UNLIKELY(x) (x)
+#  define UDM1_NOINLINE_COLD
 #endif
 
 /* ---- error reporting (status.c) ---- */

@@ -40,36 +40,54 @@ static inline uint64_t stream_key_of(const udm1_cursor *c, int for_padding)
     return seq->mode == UDM1_MODE_NONE && !for_padding ? 0 : udm1_seq_stream_key(seq, c->stream);
 }
 
-static inline uint64_t cursor_next(udm1_cursor *c)
+/* The next value of a cursor inside the sequence's dimensions */
+static inline uint64_t inside_next(udm1_cursor *c)
 {
     const udm1_seq *seq = c->seq;
     uint32_t dim = c->dimension++;
-    if (UDM1_LIKELY(dim < seq->dims)) {
-        if (seq->kind->step) return seq->kind->step(seq, stream_key_of(c, 0), &c->key, dim); /* a step, no seek */
-        return udm1_value_of(seq, c->key, c->index, dim);
-    }
+    if (seq->kind == &udm1_weyl_kind) return udm1_weyl_shifted_raw(seq, c->key, c->index, dim);
+    if (seq->kind->step) return seq->kind->step(seq, stream_key_of(c, 0), &c->key, dim); /* a step, no seek */
+    return seq->kind->value(seq, c->key, c->index, dim);
+}
+
+static inline uint64_t cursor_next(udm1_cursor *c)
+{
+    const udm1_seq *seq = c->seq;
+    if (UDM1_LIKELY(c->dimension < seq->dims)) return inside_next(c);
+    uint32_t dim = c->dimension++;
     ++c->padded;
     /* padding: an independent uniform value of (seed, stream, index, dim) */
     return udm1_pad(udm1_shift(stream_key_of(c, 1), udm1_dim_key(seq->seed_key, dim)), c->index);
 }
 
-/* Whether the cursor can draw (else the message for udm1_last_error) */
-static int can_draw(const udm1_cursor *c, const char *fn)
+/* The message for udm1_last_error of a draw the cursor cannot make (out of line: the draws stay small) */
+static UDM1_NOINLINE_COLD int cannot_draw(const udm1_cursor *c, const char *fn)
 {
-    if (UDM1_LIKELY(c && c->seq && c->dimension < UDM1_DIMENSION_INDEX_LIMIT)) return 1;
     if (!c) udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: cursor is NULL", fn);
     else if (!c->seq) udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: the cursor was not started (udm1_cursor_start)", fn);
     else udm1_fail(UDM1_ERROR_DIMENSION, "%s: the cursor is exhausted (dimension index limit 2^32 - 1)", fn);
     return 0;
 }
 
+/* Whether the cursor can draw (else the message for udm1_last_error) */
+static inline int can_draw(const udm1_cursor *c, const char *fn)
+{
+    if (UDM1_LIKELY(c && c->seq && c->dimension < UDM1_DIMENSION_INDEX_LIMIT)) return 1;
+    return cannot_draw(c, fn);
+}
+
+/* Whether the next draw is inside the sequence's dimensions (then it can draw: dims < the index limit) */
+static inline int draws_inside(const udm1_cursor *c) { return c && c->seq && c->dimension < c->seq->dims; }
+
 float udm1_cursor_1d(udm1_cursor *cursor)
 {
+    if (UDM1_LIKELY(draws_inside(cursor))) return udm1_to_f32(inside_next(cursor));
     return can_draw(cursor, "udm1_cursor_1d") ? udm1_to_f32(cursor_next(cursor)) : NAN;
 }
 
 double udm1_cursor_1d_f64(udm1_cursor *cursor)
 {
+    if (UDM1_LIKELY(draws_inside(cursor))) return udm1_to_f64(inside_next(cursor));
     return can_draw(cursor, "udm1_cursor_1d_f64") ? udm1_to_f64(cursor_next(cursor)) : NAN;
 }
 
