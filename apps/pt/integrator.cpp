@@ -4,7 +4,8 @@
 #include "udm1app/sampler.h"
 
 #include "estimator.h"
-#include "wavefront.h"
+#include "wavefront_diffuse.h"
+#include "wavefront_general.h"
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -91,17 +92,25 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     acc.spp = opt.spp, acc.first = opt.first, acc.count = count;
     const udm1scene::CameraRays camera(view);
     const Estimator estimator(scene, lights, materials, max_depth, opt.strategy, opt.roulette, opt.rr_depth);
-    std::string why = opt.loop == Loop::Scalar ? "scalar loop asked for" : wavefront_unsupported(scene, opt);
-    if (opt.loop == Loop::Wavefront && !why.empty()) throw std::runtime_error("no wavefront loop: " + why);
-    std::unique_ptr<Wavefront> wavefront;
-    if (why.empty()) wavefront = std::make_unique<Wavefront>(scene, rt, materials, lights, max_depth, opt.roulette, opt.rr_depth);
+    std::unique_ptr<DiffuseWavefront> diffuse;
+    std::unique_ptr<GeneralWavefront> general;
+    if (opt.loop != Loop::Scalar) {
+        if (diffuse_wavefront_unsupported(scene, opt).empty())
+            diffuse = std::make_unique<DiffuseWavefront>(scene, rt, materials, lights, max_depth, opt.roulette, opt.rr_depth);
+        else
+            general = std::make_unique<GeneralWavefront>(rt, estimator);
+    }
     std::atomic<uint64_t> rays{0}, nonfinite{0}, clamped{0};
     auto t0 = std::chrono::steady_clock::now();
     tbb::parallel_for(tbb::blocked_range2d<int>(bounds[1], bounds[3], 8, bounds[0], bounds[2], 8), [&](const tbb::blocked_range2d<int> &r) {
-        if (wavefront) {
-            Wavefront::Counts n;
-            wavefront->render(seq, camera, r.cols().begin(), r.cols().end(), r.rows().begin(), r.rows().end(), opt.first,
-                              count, scene.film_scale, &acc, &n);
+        if (diffuse || general) {
+            LoopCounts n;
+            if (diffuse)
+                diffuse->render(seq, camera, r.cols().begin(), r.cols().end(), r.rows().begin(), r.rows().end(), opt.first,
+                                count, scene.film_scale, &acc, &n);
+            else
+                general->render(seq, max_depth, camera, r.cols().begin(), r.cols().end(), r.rows().begin(),
+                                r.rows().end(), opt.first, count, scene.film_scale, &acc, &n);
             rays += n.rays, nonfinite += n.nonfinite, clamped += n.clamped;
             return;
         }
@@ -139,7 +148,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     stats->rays = rays;
     stats->dimensions = udm1_seq_dimensions(seq);
     stats->path_dimensions = path_dims(max_depth);
-    stats->wavefront = wavefront != nullptr;
+    stats->loop = diffuse ? "wavefront" : general ? "wavefront-general" : "scalar";
     return acc;
 }
 

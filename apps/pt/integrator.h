@@ -1,9 +1,10 @@
 // integrator.h - unidirectional path tracing with next-event estimation and
 // multiple importance sampling (power heuristic), Russian roulette and a maximum
-// depth, as pbrt-v4's "path" integrator, in RGB. Two loops trace it: the scalar loop
-// here (one path at a time, in double, every material and light) and, for the scenes of
-// its subset, the wavefront loop (wavefront.h: many paths at a time, in float); the same
-// estimator and sampler points in both (Options::loop chooses).
+// depth, as pbrt-v4's "path" integrator, in RGB. Loops of two kinds trace it, with the same estimator and
+// sampler points (Options::loop chooses): the scalar loop (one path and one Embree query at a time, in
+// double, estimator.h) and the wavefront loop (many paths at a time, one Embree stream per bounce). The
+// wavefront loop shades in float SIMD where the scene is in the diffuse subset (wavefront_diffuse.h) and
+// otherwise through the scalar loop's own estimator, path by path (wavefront_general.h).
 //
 // The sampler's values: one udm1 domain tree per path (udm1/domain.h), so that no dimension is counted by
 // hand. Sample i of pixel p is the root domain udm1_domain_root(stream of p, i):
@@ -38,7 +39,7 @@ namespace udm1pt {
 
 // Changes whenever the estimator or the dimension layout above changes (cached references are
 // reused only when it matches).
-constexpr int LAYOUT_VERSION = 7;
+constexpr int LAYOUT_VERSION = 8;
 
 // The dimensions a path of a maximum depth draws: the chain of next() (the lobe and roulette are children).
 inline uint32_t path_dims(int max_depth) { return 4 + 4 * (uint32_t)max_depth; }
@@ -68,9 +69,13 @@ inline void vertex_values(const udm1_stream *pixel, uint64_t index, int depth, d
 // How light is found: both (MIS), light sampling only, BSDF sampling only (which cannot find point, spot
 // and distant lights: with Bsdf they are left out).
 enum class Strategy { Mis, Nee, Bsdf };
-// Which path loop traces: the wavefront loop where the scene and options are in its subset (Auto), or
-// one of the two by force (Wavefront throws for a scene outside the subset). See wavefront.h.
+// Which path loop traces: the wavefront loop (Auto, Wavefront) or the scalar loop, its reference (Scalar).
 enum class Loop { Auto, Scalar, Wavefront };
+
+// What a loop counts while it renders.
+struct LoopCounts {
+    uint64_t rays = 0, nonfinite = 0, clamped = 0;
+};
 
 struct Options {
     std::string sampler = "sobol-owen";
@@ -101,7 +106,7 @@ struct Stats {
     uint64_t paths = 0, rays = 0;  // camera paths; all rays (camera, continuation, shadow)
     uint32_t dimensions = 0;       // the sampler's own dimensions (the rest padded)
     uint32_t path_dimensions = 0;  // what a path of maximum depth uses
-    bool wavefront = false;        // which loop traced
+    const char *loop = "scalar";   // which loop traced: scalar, wavefront (diffuse, float SIMD), wavefront-general
 };
 
 // The sampler of a render: opt's preset, seed and randomization, min(dims, the preset's maximum)

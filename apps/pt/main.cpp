@@ -54,8 +54,9 @@ const char *USAGE =
     "  --rr-depth N      roulette from vertex N on (default 3; pbrt-v4's rule is 1)\n"
     "  --solid-angle S   near|always|never: triangle lights sampled by solid angle near the light (default),\n"
     "                    wherever possible (as pbrt-v4), or never (always by area)\n"
-    "  --loop L          auto|scalar|wavefront: the path loop (default auto: wavefront where the scene is in its\n"
-    "                    subset - triangles, diffuse, area lights, pinhole, MIS - else scalar)\n"
+    "  --loop L          auto|scalar|wavefront: the path loop (default auto = wavefront: many paths at a time,\n"
+    "                    shading in float SIMD for the diffuse subset - triangles, diffuse, area lights, pinhole,\n"
+    "                    MIS - else the scalar loop's estimator path by path; scalar: one path at a time)\n"
     "  --threads N       default: all cores\n";
 
 const char *strategy_name(udm1pt::Strategy s)
@@ -177,7 +178,7 @@ public:
                     "seconds %.4f paths %llu rays %llu paths_per_second %.4g rays_per_second %.4g mean %s\n",
                     s.sampler.c_str(), s.spp, (unsigned long long)part.first, (unsigned long long)(part.first + part.count),
                     part.width, part.height, part.full_width, part.full_height, part.x0, part.y0, st.dimensions,
-                    st.path_dimensions, st.wavefront ? "wavefront" : "scalar", st.seconds, (unsigned long long)st.paths,
+                    st.path_dimensions, st.loop, st.seconds, (unsigned long long)st.paths,
                     (unsigned long long)st.rays, st.paths / std::max(st.seconds, 1e-9), st.rays / std::max(st.seconds, 1e-9),
                     mean_text(part).c_str());
         struct rusage ru;

@@ -107,20 +107,27 @@ bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit)
                          rh.ray.tnear, rh.ray.tfar, false});
     rtcIntersect1(scene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit->t = rh.ray.tfar;
-    hit->shape = shape_of_geom_[rh.hit.geomID];
-    hit->prim = rh.hit.primID;
-    hit->u = rh.hit.u;
-    hit->v = rh.hit.v;
-    hit->p = o + d * hit->t;
-    const Shape &s = src_.shapes[hit->shape];
-    if (s.kind == Shape::Sphere) {
-        hit->ng = normalize(hit->p - s.center);
-    } else {
-        hit->ng = normals_[first_normal_[hit->shape] + hit->prim];
-    }
-    if (s.kind == Shape::Sphere && s.reverse_orientation) hit->ng = -hit->ng;
+    *hit = hit_of(o, d, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v);
     return true;
+}
+
+Hit EmbreeScene::hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v) const
+{
+    Hit hit;
+    hit.t = tfar;
+    hit.shape = shape_of_geom_[geom_id];
+    hit.prim = prim_id;
+    hit.u = u;
+    hit.v = v;
+    hit.p = o + d * hit.t;
+    const Shape &s = src_.shapes[hit.shape];
+    if (s.kind == Shape::Sphere) {
+        hit.ng = normalize(hit.p - s.center);
+        if (s.reverse_orientation) hit.ng = -hit.ng;
+    } else {
+        hit.ng = normals_[first_normal_[hit.shape] + hit.prim];
+    }
+    return hit;
 }
 
 bool EmbreeScene::occluded(Vec3 o, Vec3 d, double tnear, double tfar) const

@@ -54,6 +54,9 @@ public:
 
     bool intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit) const;
     bool occluded(Vec3 o, Vec3 d, double tnear, double tfar) const;
+    // The hit that Embree reported for the ray o + t d (given to it in float) as intersect() makes it: for
+    // loops that hand Embree many rays at once (rtcIntersectNp) and must find what intersect() finds.
+    Hit hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v) const;
     // The origin for rays leaving hit h on side n (the side `incoming` came from): offset along n and
     // back along the incoming ray, so that a hit on an edge or in a concave corner starts strictly on
     // the visible side of both faces (offsetting along n alone leaves it on the other face's plane).

@@ -1,4 +1,4 @@
-// wavefront.h - udm1-pt's path loop for the scenes of the common subset, many paths at a time: the
+// wavefront_diffuse.h - udm1-pt's path loop for the scenes of the common subset, many paths at a time: the
 // same estimator, dimension layout and sampler points as the scalar loop (integrator.h), traced in
 // batches of up to 4096 paths with one Embree SOA stream per bounce for the closest hits (over the
 // paths' own origin and direction arrays; camera rays flagged coherent) and one for the shadow rays,
@@ -29,22 +29,19 @@ namespace udm1pt {
 
 // Why the wavefront loop cannot render (scene, opt), in a few words naming the first shape, material
 // or option outside its subset; empty if it can.
-std::string wavefront_unsupported(const udm1scene::Scene &scene, const Options &opt);
+std::string diffuse_wavefront_unsupported(const udm1scene::Scene &scene, const Options &opt);
 
-class Wavefront {
+class DiffuseWavefront {
 public:
-    // The scene must be in the subset (wavefront_unsupported() empty).
-    Wavefront(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
+    // The scene must be in the subset (diffuse_wavefront_unsupported() empty).
+    DiffuseWavefront(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
               const Lights &lights, int max_depth, bool roulette, int rr_depth);
 
-    struct Counts {
-        uint64_t rays = 0, nonfinite = 0, clamped = 0;
-    };
     // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them,
     // scaled by film_scale, to acc's fixed-point sums (as the scalar loop does). Safe from many
     // threads at once for disjoint pixels.
     void render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
-                uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const;
+                uint64_t first, uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts) const;
 
     // Per triangle (its geometry's first entry + the triangle's index) and per light: what the loop reads.
     struct Triangles {

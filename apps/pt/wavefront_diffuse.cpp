@@ -1,5 +1,5 @@
-// wavefront.cpp - see wavefront.h.
-#include "wavefront.h"
+// wavefront_diffuse.cpp - see wavefront_diffuse.h.
+#include "wavefront_diffuse.h"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@ using udm1scene::Hit;
 using udm1scene::Scene;
 using udm1scene::Shape;
 
-std::string wavefront_unsupported(const Scene &scene, const Options &opt)
+std::string diffuse_wavefront_unsupported(const Scene &scene, const Options &opt)
 {
     if (opt.strategy != Strategy::Mis) return "only MIS (--strategy mis) has a wavefront loop";
     if (scene.camera.lens_radius > 0) return "the camera has a thin lens";
@@ -144,7 +144,7 @@ struct Shading {
 // floats, and whether the light may be near enough for solid-angle sampling (a test with a margin
 // that never misses a near light: Lights::by_area then decides).
 __attribute__((target_clones("avx2", "default"))) void choose_lights(size_t n, const double *__restrict u, Vertices &V,
-                                                                     const Wavefront::LightChoice &C)
+                                                                     const DiffuseWavefront::LightChoice &C)
 {
     float *__restrict f0 = V.u[0].data(), *__restrict f1 = V.u[1].data(), *__restrict f2 = V.u[2].data();
     float *__restrict f3 = V.u[3].data(), *__restrict f4 = V.u[4].data(), *__restrict f5 = V.u[5].data();
@@ -178,7 +178,7 @@ __attribute__((target_clones("avx2", "default"))) void choose_lights(size_t n, c
 // would-be contribution), the BSDF sample (cosine-weighted), throughput, roulette and the next ray.
 // alive[j] = 0 ends path j. Every lane does the same float operations, whatever its neighbours.
 __attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P, Vertices &V,
-                                                             const Wavefront::LightArrays &F, Shading sh)
+                                                             const DiffuseWavefront::LightArrays &F, Shading sh)
 {
     // plain pointers, so that the compiler sees the arrays do not alias (the vectors' own fields would)
     float *__restrict ox = P.ox.data(), *__restrict oy = P.oy.data(), *__restrict oz = P.oz.data();
@@ -270,7 +270,7 @@ __attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P,
 
 }  // namespace
 
-Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
+DiffuseWavefront::DiffuseWavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
                      const Lights &lights, int max_depth, bool roulette, int rr_depth)
     : scene_(scene), rt_(rt), lights_(lights), max_depth_(max_depth), rr_depth_(rr_depth), roulette_(roulette)
 {
@@ -327,10 +327,10 @@ Wavefront::Wavefront(const Scene &scene, const udm1scene::EmbreeScene &rt, const
 // per vertex trace() (closest hits), gather() (emission; ended paths retired; the rest compacted),
 // sample() (the sampler's values, the light choice, solid-angle light samples in double), shade_all()
 // (the vectorized shading) and shadows() (occlusion, the light samples that arrive; ended paths retired).
-class Wavefront::Batch {
+class DiffuseWavefront::Batch {
 public:
-    Batch(const Wavefront &w, const udm1_seq *seq, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
-          double film_scale, Accumulator *acc, Counts *counts)
+    Batch(const DiffuseWavefront &w, const udm1_seq *seq, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
+          double film_scale, Accumulator *acc, LoopCounts *counts)
         : w_(w), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count),
           film_scale_(film_scale), acc_(acc), counts_(counts), b_(buffers())
     {
@@ -369,19 +369,19 @@ private:
     }
     void finish(size_t j);
 
-    const Wavefront &w_;
+    const DiffuseWavefront &w_;
     int x0_, y0_, W_;
     uint64_t first_, count_;
     double film_scale_;
     Accumulator *acc_;
-    Counts *counts_;
+    LoopCounts *counts_;
     Buffers &b_;
     std::vector<udm1_stream> streams_;  // the tile's pixels', by pixel
     size_t n_ = 0;  // live paths
     RTCIntersectContext ctx_;
 };
 
-void Wavefront::Batch::finish(size_t j)  // path j ends: its radiance into its pixel's fixed-point sums
+void DiffuseWavefront::Batch::finish(size_t j)  // path j ends: its radiance into its pixel's fixed-point sums
 {
     const Paths &P = b_.paths;
     int p = P.pixel[j];
@@ -398,7 +398,7 @@ void Wavefront::Batch::finish(size_t j)  // path j ends: its radiance into its p
     }
 }
 
-void Wavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64_t start, size_t n)
+void DiffuseWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64_t start, size_t n)
 {
     Paths &P = b_.paths;
     n_ = n;
@@ -431,7 +431,7 @@ void Wavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64_t star
     }
 }
 
-void Wavefront::Batch::trace(int depth)
+void DiffuseWavefront::Batch::trace(int depth)
 {
     Paths &P = b_.paths;
     Stream &S = b_.hits;
@@ -449,7 +449,7 @@ void Wavefront::Batch::trace(int depth)
     counts_->rays += n;
 }
 
-void Wavefront::Batch::gather(int depth)
+void DiffuseWavefront::Batch::gather(int depth)
 {
     Paths &P = b_.paths;
     Vertices &V = b_.vertices;
@@ -489,7 +489,7 @@ void Wavefront::Batch::gather(int depth)
     n_ = m;
 }
 
-void Wavefront::Batch::sample(int depth)
+void DiffuseWavefront::Batch::sample(int depth)
 {
     Paths &P = b_.paths;
     Vertices &V = b_.vertices;
@@ -539,7 +539,7 @@ void Wavefront::Batch::sample(int depth)
     }
 }
 
-void Wavefront::Batch::shade_all(int depth)
+void DiffuseWavefront::Batch::shade_all(int depth)
 {
     Vertices &V = b_.vertices;
     shade(n_, b_.paths, V, w_.lights_f_, Shading{depth, w_.rr_depth_, w_.roulette_});
@@ -549,7 +549,7 @@ void Wavefront::Batch::shade_all(int depth)
     }
 }
 
-void Wavefront::Batch::shadows()
+void DiffuseWavefront::Batch::shadows()
 {
     Paths &P = b_.paths;
     Vertices &V = b_.vertices;  // Embree's stream takes non-const arrays
@@ -582,8 +582,8 @@ void Wavefront::Batch::shadows()
     n_ = keep;
 }
 
-void Wavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
-                       uint64_t first, uint64_t count, double film_scale, Accumulator *acc, Counts *counts) const
+void DiffuseWavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
+                       uint64_t first, uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts) const
 {
     Batch batch(*this, seq, x0, x1, y0, y1, first, count, film_scale, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
