@@ -1,13 +1,24 @@
 """Build a scene exported by `udm1-pt export DIR` in Mitsuba 3 (PyPI `mitsuba`; the variant set by the
 caller, scalar_rgb when none is), so that udm1-pt and Mitsuba render one parse of the same file.
 
-How the scenes are matched: the same triangles (world-space PLY files written by udm1-pt,
-face normals, the winding pbrt's emitting side implies), the same spheres, the same RGB
-reflectances (diffuse only) and area-light radiance (L * scale, one- or two-sided), the same
+How the scenes are matched: the same triangles (world-space PLY files written by udm1-pt, with
+their vertex normals where the mesh has them, else face normals; the winding pbrt's emitting side
+implies), the same spheres, the same area-light radiance (L * scale, one- or two-sided), the same
 camera (eye, target, up; fov along the shorter axis), a box pixel filter, and Mitsuba's path
 integrator with max_depth = pbrt's maxdepth + 1 (Mitsuba counts the camera segment). pbrt's
 camera space is left-handed, Mitsuba's right-handed: the sensor is mirrored in x so that the
 images line up pixel for pixel.
+
+Materials, pbrt-v4's by Mitsuba's nearest (RGB parameters, untextured): diffuse as a two-sided
+diffuse; dielectric (one index) as dielectric or roughdielectric; conductor (RGB eta and k, or
+pbrt-v4's named metal spectra, metal-Au-eta and the like, as Mitsuba's material of that name;
+pbrt-v4's default copper) as conductor or roughconductor; coateddiffuse as plastic or roughplastic
+(two-sided; Mitsuba's plastic is an analytic model where pbrt-v4's coated diffuse is a stochastic
+random walk through its layers, so the two render alike but not equally: compare each renderer with
+its own reference). Roughness becomes GGX alpha as pbrt-v4 makes it (sqrt(roughness) unless
+remaproughness is false). Anything else (textures, mixes, bump maps, spectra given by samples,
+anisotropic roughness) raises ValueError naming the shape and parameter: such a scene is not given
+to Mitsuba.
 
     python bench/mitsuba_scene.py DIR --spp 64 -o mitsuba.exr   (prints the mean RGB and the time)
 """
@@ -16,6 +27,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
+import re
 import sys
 import time
 from pathlib import Path
@@ -48,13 +61,8 @@ def load(dir: str | Path, spp: int = 16, sampler: str = "independent", seed: int
             sp = s["sphere"]
             shape = {"type": "sphere", "center": sp["center"], "radius": sp["radius"], "flip_normals": sp["flip_normals"]}
         else:
-            shape = {"type": "ply", "filename": str(d / s["ply"]), "face_normals": True}
-        m = s.get("material", {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5]})
-        if m["type"] != "diffuse":
-            raise ValueError(f"shape {k}: material '{m['type']}' has no Mitsuba counterpart here (diffuse only)")
-        # pbrt's diffuse reflects on both sides; Mitsuba's on the front side only
-        shape["bsdf"] = {"type": "twosided", "bsdf": {"type": "diffuse",
-                                                      "reflectance": {"type": "rgb", "value": m.get("reflectance", [0.5] * 3)}}}
+            shape = {"type": "ply", "filename": str(d / s["ply"]), "face_normals": not s.get("normals", False)}
+        shape["bsdf"] = bsdf_of(k, s.get("material", {"type": "diffuse", "reflectance": [0.5, 0.5, 0.5]}))
         if "emission" in s:
             e = s["emission"]
             shape["emitter"] = {"type": "area", "radiance": {"type": "rgb", "value": e["L"]}}
@@ -66,6 +74,67 @@ def load(dir: str | Path, spp: int = 16, sampler: str = "independent", seed: int
                 scene[f"shape{k}_back"] = back
         scene[f"shape{k}"] = shape
     return mi.load_dict(scene)
+
+
+# pbrt-v4's named metal spectra and Mitsuba's conductor materials of the same metal
+METALS = {"Ag": "Ag", "Al": "Al", "Au": "Au", "Cu": "Cu", "CuZn": "CuZn", "MgO": "MgO", "TiO2": "TiO2"}
+
+
+def bsdf_of(k: int, m: dict) -> dict:
+    """Mitsuba's BSDF for pbrt-v4 material m of shape k (see the module's docstring)."""
+    kind = m["type"]
+    known = {"diffuse": {"reflectance"}, "coateddiffuse": {"reflectance", "roughness", "remaproughness", "eta",
+                                                           "thickness", "maxdepth", "nsamples"},
+             "dielectric": {"eta", "roughness", "remaproughness"},
+             "conductor": {"eta", "k", "roughness", "remaproughness"}}
+    if kind not in known:
+        raise ValueError(f"shape {k}: material '{kind}' has no Mitsuba counterpart here")
+    for name, value in m.items():
+        if name == "type":
+            continue
+        if name not in known[kind] or isinstance(value, dict):
+            raise ValueError(f"shape {k}: material '{kind}': parameter '{name}' = {value!r} has no Mitsuba counterpart here")
+
+    def rgb(name, default):
+        v = m.get(name, default)
+        return {"type": "rgb", "value": [v] * 3 if isinstance(v, (int, float)) else v}
+
+    def alpha():
+        r = m.get("roughness", 0.0)
+        return math.sqrt(r) if m.get("remaproughness", True) else r
+
+    def index(default):
+        e = m.get("eta", default)
+        if not isinstance(e, (int, float)):
+            raise ValueError(f"shape {k}: material '{kind}': eta {e!r} is not one index")
+        return e
+
+    a = alpha()
+    if kind == "diffuse":  # pbrt's diffuse reflects on both sides; Mitsuba's on the front side only
+        return {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb("reflectance", 0.5)}}
+    if kind == "coateddiffuse":
+        b = {"type": "plastic" if a < 1e-3 else "roughplastic", "int_ior": index(1.5),
+             "diffuse_reflectance": rgb("reflectance", 0.5)}
+        if a >= 1e-3:
+            b.update(distribution="ggx", alpha=a)
+        return {"type": "twosided", "bsdf": b}
+    if kind == "dielectric":
+        b = {"type": "dielectric" if a < 1e-3 else "roughdielectric", "int_ior": index(1.5)}
+        if a >= 1e-3:
+            b.update(distribution="ggx", alpha=a)
+        return b
+    eta, kk = m.get("eta", "metal-Cu-eta"), m.get("k", "metal-Cu-k")  # pbrt-v4's default conductor: copper
+    b = {"type": "conductor" if a < 1e-3 else "roughconductor"}
+    if isinstance(eta, str) or isinstance(kk, str):
+        metal = re.fullmatch(r"metal-(\w+)-eta", str(eta))
+        if not metal or kk != f"metal-{metal.group(1)}-k" or metal.group(1) not in METALS:
+            raise ValueError(f"shape {k}: conductor eta {eta!r}, k {kk!r}: not a metal Mitsuba names")
+        b["material"] = METALS[metal.group(1)]
+    else:
+        b["eta"], b["k"] = rgb("eta", 1.0), rgb("k", 0.0)
+    if a >= 1e-3:
+        b.update(distribution="ggx", alpha=a)
+    return {"type": "twosided", "bsdf": b}
 
 
 def render(dir, spp: int, sampler: str = "independent", seed: int = 0, counts: list | None = None):

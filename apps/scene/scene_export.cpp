@@ -87,7 +87,7 @@ void export_scene(const udm1scene::Scene &scene, int width, int height, int max_
         } else {
             std::string file = "shape_" + std::to_string(k) + ".ply";
             write_ply(dir + "/" + file, s);
-            js << "\"ply\": " << quoted(file);
+            js << "\"ply\": " << quoted(file) << ", \"normals\": " << (s.N.empty() ? "false" : "true");
         }
         if (s.material >= 0) {
             const udm1scene::Material &mat = scene.materials[s.material];
@@ -95,7 +95,13 @@ void export_scene(const udm1scene::Scene &scene, int width, int height, int max_
             for (const udm1scene::Param &p : mat.params.params) {
                 if (p.name == "type") continue;
                 js << ", " << quoted(p.name) << ": ";
-                if (!p.numbers.empty()) {
+                if (p.type == "texture" && !p.strings.empty()) {  // a texture by name: {"texture": name}
+                    js << "{\"texture\": " << quoted(p.strings[0]) << "}";
+                } else if ((p.type == "spectrum" || p.type == "blackbody") && !p.numbers.empty()) {
+                    js << "{\"" << p.type << "\": [";  // sampled or blackbody spectra as written
+                    for (size_t i = 0; i < p.numbers.size(); ++i) js << (i ? ", " : "") << num(p.numbers[i]);
+                    js << "]}";
+                } else if (!p.numbers.empty()) {
                     if (p.numbers.size() == 1) js << num(p.numbers[0]);
                     else js << vec(Vec3(p.numbers[0], p.numbers[1], p.numbers.size() > 2 ? p.numbers[2] : 0));
                 } else if (!p.strings.empty()) {

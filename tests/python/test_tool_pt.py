@@ -4,6 +4,7 @@ images across runs, thread counts and merged sample ranges, merge refusing what 
 not belong together, the shared pbrt-v4 scenes, and every bad input failing with one
 line (file and line for scene files), a non-zero exit and no file."""
 
+import json
 import os
 import pathlib
 import re
@@ -190,6 +191,51 @@ def test_cornell_box_mean_matches_mitsuba(tmp_path):
     # a LightSource has no place in scene.json: refused, naming it, nothing written
     fails_cleanly(run, ["export", "out", "--scene", str(ROOT / "tests" / "scenes" / "lights.pbrt")],
                   "lights.pbrt:8: export writes area lights only", tmp_path, code=1)
+
+
+def test_export_maps_materials_to_mitsuba(tmp_path):
+    """scene.json keeps each material's parameters with their kind (a texture by name, a sampled spectrum as
+    its numbers, vertex normals flagged); bench/mitsuba_scene.py gives Mitsuba the nearest BSDF of each
+    material it can, and refuses what it cannot, naming the shape and the parameter."""
+    sys.path.insert(0, str(ROOT / "bench"))
+    import mitsuba_scene
+
+    scene = tmp_path / "m.pbrt"
+    scene.write_text('''LookAt 0 1 5  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 40 ]
+Film "rgb" "integer xresolution" [ 16 ] "integer yresolution" [ 16 ]
+WorldBegin
+AttributeBegin
+  AreaLightSource "diffuse" "rgb L" [ 4 4 4 ]
+  Shape "trianglemesh" "integer indices" [ 0 1 2 ] "point3 P" [ -1 3 0  1 3 0  0 3 1 ]
+AttributeEnd
+Material "coateddiffuse" "rgb reflectance" [ 0.2 0.3 0.4 ] "float roughness" [ 0.04 ]
+Shape "trianglemesh" "integer indices" [ 0 1 2 ] "point3 P" [ -2 0 -2  2 0 -2  0 0 2 ]
+  "normal N" [ 0 1 0  0 1 0  0 1 0 ]
+Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float roughness" [ 0 ]
+Shape "sphere" "float radius" [ 0.3 ]
+Texture "checks" "spectrum" "imagemap" "string filename" "tex.png"
+Material "diffuse" "texture reflectance" "checks"
+Shape "trianglemesh" "integer indices" [ 0 1 2 ] "point3 P" [ -2 0 -3  2 0 -3  0 1 -3 ]
+''')
+    (tmp_path / "tex.png").write_bytes((ROOT / "tests" / "scenes" / "sky-map.png").read_bytes())  # any image
+    ok("export", str(tmp_path / "out"), "--scene", str(scene))
+    js = json.loads((tmp_path / "out" / "scene.json").read_text())
+    shapes = js["shapes"]
+    assert shapes[1]["normals"] is True and shapes[0]["normals"] is False
+    assert shapes[3]["material"]["reflectance"] == {"texture": "checks"}
+    coated = mitsuba_scene.bsdf_of(1, shapes[1]["material"])
+    assert coated["type"] == "twosided" and coated["bsdf"]["type"] == "roughplastic"
+    assert abs(coated["bsdf"]["alpha"] - 0.2) < 1e-12 and coated["bsdf"]["int_ior"] == 1.5  # sqrt(0.04), pbrt's eta
+    gold = mitsuba_scene.bsdf_of(2, shapes[2]["material"])
+    assert gold["bsdf"] == {"type": "conductor", "material": "Au"}
+    with pytest.raises(ValueError, match=r"shape 3: .*'reflectance'"):
+        mitsuba_scene.bsdf_of(3, shapes[3]["material"])
+    for m, words in (({"type": "mix", "amount": 0.5}, "'mix'"),
+                     ({"type": "dielectric", "eta": {"spectrum": [400, 1.5, 700, 1.4]}}, "'eta'"),
+                     ({"type": "conductor", "eta": "metal-Xx-eta", "k": "metal-Xx-k"}, "not a metal")):
+        with pytest.raises(ValueError, match=words):
+            mitsuba_scene.bsdf_of(0, m)
 
 
 @pytest.mark.skipif(not SCENES.is_dir(), reason=f"{SCENES} is absent: the shared test scenes are not here")
