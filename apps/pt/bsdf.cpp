@@ -209,11 +209,14 @@ bool Dielectric::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, uns
     if (!(lobes & Transmit)) T = 0;
     if (R == 0 && T == 0) return false;
     s->specular = false;
+    // the microfacet terms once: D(wm) and lambda(wo) serve both the density and the value
+    const double D = mf.D(wm), lambda_o = mf.lambda(wo);
+    const double pdf_wm = 1 / (1 + lambda_o) / std::fabs(wo.z) * D * std::fabs(udm1scene::dot(wo, wm));  // mf.pdf(wo, wm)
     if (uc < R / (R + T)) {
         Vec3 wi = reflect(wo, wm);
         if (!same_hemisphere(wo, wi)) return false;
-        s->pdf = mf.pdf(wo, wm) / (4 * std::fabs(udm1scene::dot(wo, wm))) * R / (R + T);
-        double v = mf.D(wm) * mf.G(wo, wi) * R / (4 * wi.z * wo.z);
+        s->pdf = pdf_wm / (4 * std::fabs(udm1scene::dot(wo, wm))) * R / (R + T);
+        double v = D * (1 / (1 + lambda_o + mf.lambda(wi))) * R / (4 * wi.z * wo.z);
         s->wi = wi, s->f = Vec3(v, v, v), s->reflection = true;
         return s->pdf > 0;
     }
@@ -222,8 +225,8 @@ bool Dielectric::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, uns
     if (!refract(wo, wm, eta, &etap, &wi) || same_hemisphere(wo, wi) || wi.z == 0) return false;
     double denom = sqr(udm1scene::dot(wi, wm) + udm1scene::dot(wo, wm) / etap);
     double dwm_dwi = std::fabs(udm1scene::dot(wi, wm)) / denom;
-    s->pdf = mf.pdf(wo, wm) * dwm_dwi * T / (R + T);
-    double v = T * mf.D(wm) * mf.G(wo, wi) *
+    s->pdf = pdf_wm * dwm_dwi * T / (R + T);
+    double v = T * D * (1 / (1 + lambda_o + mf.lambda(wi))) *
                std::fabs(udm1scene::dot(wi, wm) * udm1scene::dot(wo, wm) / (wi.z * wo.z * denom));
     if (mode == Mode::Radiance) v /= etap * etap;
     s->wi = wi, s->f = Vec3(v, v, v), s->reflection = false, s->eta = etap;
@@ -301,10 +304,11 @@ bool Conductor::sample(Vec3 wo, double u1, double u2, Sample *s) const
     Vec3 wm = mf.sample_wm(wo, u1, u2);
     Vec3 wi = reflect(wo, wm);
     if (!same_hemisphere(wo, wi)) return false;
-    s->pdf = mf.pdf(wo, wm) / (4 * std::fabs(udm1scene::dot(wo, wm)));
+    const double D = mf.D(wm), lambda_o = mf.lambda(wo);  // once, for the density and the value
+    s->pdf = 1 / (1 + lambda_o) / std::fabs(wo.z) * D * std::fabs(udm1scene::dot(wo, wm)) / (4 * std::fabs(udm1scene::dot(wo, wm)));
     double co = std::fabs(wo.z), ci = std::fabs(wi.z);
     if (ci == 0 || co == 0 || !(s->pdf > 0)) return false;
-    s->f = fresnel(std::fabs(udm1scene::dot(wo, wm))) * (mf.D(wm) * mf.G(wo, wi) / (4 * ci * co));
+    s->f = fresnel(std::fabs(udm1scene::dot(wo, wm))) * (D * (1 / (1 + lambda_o + mf.lambda(wi))) / (4 * ci * co));
     s->wi = wi, s->specular = false, s->reflection = true;
     return true;
 }
