@@ -197,7 +197,7 @@ def main(argv=None) -> int:
         r = throughput(tool, scene, size, args.throughput_spp)
         r.update(renderer=f"udm1-pt sobol-owen ({r['loop']} loop)", scene=name, size=size, spp=args.throughput_spp)
         results["throughput"].append(r)
-        if name == "builtin:cornell":  # the same render through the scalar loop (pt/wavefront.h)
+        if name == "builtin:cornell":  # the same render through the scalar loop (apps/pt/integrator.h)
             r = throughput(tool, scene, size, args.throughput_spp, "--loop", "scalar")
             r.update(renderer="udm1-pt sobol-owen (scalar loop)", scene=name, size=size, spp=args.throughput_spp)
             results["throughput"].append(r)

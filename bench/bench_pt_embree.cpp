@@ -1,7 +1,7 @@
 // bench_pt_embree.cpp - how much of udm1-pt's render time is Embree's: udm1-pt's scalar loop
 // (--loop scalar, one query at a time through EmbreeScene, which records them) against a bare replay
 // of its own rays, side by side in one run. The measurement that led to the wavefront loop
-// (pt/wavefront.h), which udm1-pt now uses on this scene by default.
+// (apps/pt/wavefront_diffuse.h), which udm1-pt now uses on this scene by default.
 //
 // The render is run once with one thread while EmbreeScene records every query (origin, direction,
 // tnear, tfar, intersect or occluded, in float, exactly as handed to Embree). Then, alternating, best
