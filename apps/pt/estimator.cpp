@@ -56,7 +56,7 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
         if (p.depth == 0 || p.specular_bounce || strategy_ == Strategy::Bsdf) {
             p.L = p.L + mul(p.beta, Le);
         } else if (strategy_ == Strategy::Mis) {
-            double p_l = lights_.pdf(p.prev_p, h);
+            double p_l = lights_.pdf(p.prev_p, p.prev_n, h);
             p.L = p.L + mul(p.beta, Le) * power_heuristic(p.p_b, p_l);
         }
     }
@@ -75,7 +75,7 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
     if (wo_l.z == 0) return false;
     if (strategy_ != Strategy::Bsdf && bsdf.has_non_specular()) {  // next-event estimation
         LightSample ls;
-        if (lights_.sample(h.p, u_lp[0], u_lp[1], &ls)) {
+        if (lights_.sample(h.p, h.ng, u_lp[0], u_lp[1], &ls)) {
             Vec3 wi_l = frame.to_local(ls.wi);
             Vec3 f = bsdf.f(wo_l, wi_l) * std::fabs(wi_l.z);
             if (nonzero(f)) {
@@ -102,7 +102,7 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
     p.p_b = bs.pdf_is_proportional ? bsdf.pdf(wo_l, bs.wi) : bs.pdf;
     p.specular_bounce = bs.specular;
     if (!bs.reflection) p.eta_scale *= bs.eta * bs.eta;
-    p.prev_p = h.p;
+    p.prev_p = h.p, p.prev_n = h.ng;
     if (!(max_component(p.beta) > 0) || !std::isfinite(max_component(p.beta))) return false;
     if (roulette_ && p.depth >= rr_depth_) {  // when the throughput is below 1
         double rr = max_component(p.beta) * p.eta_scale;

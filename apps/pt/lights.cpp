@@ -17,6 +17,9 @@ using udm1scene::normalize;
 namespace {
 const double PI = 3.14159265358979323846;
 inline double luminance(Vec3 c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; }
+inline double max_component(Vec3 c) { return std::max({c.x, c.y, c.z}); }
+inline Vec3 min3(Vec3 a, Vec3 b) { return Vec3(std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)); }
+inline Vec3 max3(Vec3 a, Vec3 b) { return Vec3(std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)); }
 
 // pbrt-v4's bounds for sampling a triangle by solid angle: below, the spherical triangle is too
 // thin for the arithmetic; above, nearly a hemisphere
@@ -218,11 +221,11 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
             power = 2 * PI * luminance(l.L) * ((1 - l.cos_start) + (l.cos_start - l.cos_end) / 2);
             break;
         case udm1scene::LightSource::Distant:
-            l.kind = Light::Distant, l.axis = src.direction;
+            l.kind = Light::Distant, l.axis = src.direction, l.at_infinity = true;
             power = PI * r * r * luminance(l.L);
             break;
         case udm1scene::LightSource::Infinite: {
-            l.kind = Light::Infinite;
+            l.kind = Light::Infinite, l.at_infinity = true;
             l.world_from_light = src.world_from_light;
             src.world_from_light.inverse(&l.light_from_world);  // (the parser refused a singular one)
             double mean = luminance(l.L);
@@ -257,14 +260,176 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
         double power = l.kind == Light::Triangle || l.kind == Light::Sphere
                            ? luminance(l.L) * l.area * PI * (l.twosided ? 2 : 1)
                            : extra_power[next_extra++];
-        sum += power > 0 ? power : 0;
+        power_.push_back(power > 0 ? power : 0);
+        sum += power_.back();
         cdf_.push_back(sum);
     }
     prob_.assign(lights_.size(), 0.0);
-    if (sum > 0)
+    if (sum > 0) {
         for (size_t i = 0; i < lights_.size(); ++i) prob_[i] = (cdf_[i] - (i ? cdf_[i - 1] : 0)) / sum;
-    else
-        lights_.clear(), cdf_.clear(), prob_.clear(), first_of_shape_.assign(scene.shapes.size(), -1), environments_.clear();
+    } else {
+        lights_.clear(), cdf_.clear(), prob_.clear(), power_.clear(), environments_.clear();
+        first_of_shape_.assign(scene.shapes.size(), -1);
+    }
+    make_groups();
+}
+
+// The groups of the lights not at infinity (lights.h) and their bounds, pbrt-v4's for each kind of light
+// (DiffuseAreaLight, PointLight, SpotLight::Bounds), a shape's over its triangles.
+void Lights::make_groups()
+{
+    for (size_t i = 0; i < lights_.size();) {
+        Light &l = lights_[i];
+        if (l.at_infinity) {
+            if (power_[i] > 0) infinite_.push_back((int)i);
+            ++i;
+            continue;
+        }
+        Group g;
+        g.first = i, g.count = 1;
+        if (l.kind == Light::Triangle)  // the shape's triangles
+            while (i + g.count < lights_.size() && lights_[i + g.count].kind == Light::Triangle &&
+                   lights_[i + g.count].shape == l.shape)
+                ++g.count;
+        double sum = 0;
+        for (size_t k = i; k < i + g.count; ++k) g.cdf.push_back(sum += power_[k]), lights_[k].group = (int)groups_.size();
+        if (l.kind == Light::Triangle) {
+            g.lo = g.hi = l.p0;
+            Vec3 axis;
+            for (size_t k = i; k < i + g.count; ++k) {
+                const Light &t = lights_[k];
+                for (Vec3 v : {t.p0, t.p1, t.p2}) g.lo = min3(g.lo, v), g.hi = max3(g.hi, v);
+                axis = axis + t.n * t.area;
+                g.phi += max_component(t.L) * t.area * PI;
+            }
+            double len = length(axis);
+            g.w = len > 0 ? axis * (1 / len) : Vec3(0, 0, 1), g.cos_o = len > 0 ? 1 : -1;
+            for (size_t k = i; k < i + g.count && len > 0; ++k)
+                if (lights_[k].area > 0) g.cos_o = std::min(g.cos_o, dot(g.w, lights_[k].n));
+            g.twosided = l.twosided;
+        } else if (l.kind == Light::Sphere) {  // its normals: every direction
+            Vec3 r(l.radius, l.radius, l.radius);
+            g.lo = l.center - r, g.hi = l.center + r, g.w = Vec3(0, 0, 1), g.cos_o = -1;
+            g.phi = max_component(l.L) * l.area * PI, g.twosided = l.twosided;
+        } else if (l.kind == Light::Point) {
+            g.lo = g.hi = l.center, g.w = Vec3(0, 0, 1), g.cos_o = -1, g.phi = 4 * PI * max_component(l.L);
+        } else {  // a spot
+            g.lo = g.hi = l.center, g.w = l.axis, g.cos_o = l.cos_start, g.phi = 4 * PI * max_component(l.L);
+            g.cos_e = std::cos(std::acos(std::clamp(l.cos_end, -1.0, 1.0)) - std::acos(std::clamp(l.cos_start, -1.0, 1.0)));
+            if (g.cos_e == 1 && l.cos_end != l.cos_start) g.cos_e = 0.999;  // (pbrt-v4's slop for round-off)
+        }
+        if (sum > 0) groups_.push_back(std::move(g));
+        else
+            for (size_t k = i; k < i + g.count; ++k) lights_[k].group = -1;
+        i += g.count;
+    }
+    by_importance_ = groups_.size() <= MAX_BY_IMPORTANCE;
+}
+
+// pbrt-v4's LightBounds::Importance of group g at the point p with unit normal n (zero: none).
+double Lights::importance(const Group &g, Vec3 p, Vec3 n) const
+{
+    auto cos_sub = [](double sin_a, double cos_a, double sin_b, double cos_b) {  // cos(max(0, a - b))
+        return cos_a > cos_b ? 1.0 : cos_a * cos_b + sin_a * sin_b;
+    };
+    auto sin_sub = [](double sin_a, double cos_a, double sin_b, double cos_b) {  // sin(max(0, a - b))
+        return cos_a > cos_b ? 0.0 : sin_a * cos_b - cos_a * sin_b;
+    };
+    Vec3 pc = (g.lo + g.hi) * 0.5;
+    double dc2 = dot(p - pc, p - pc);
+    double d2 = std::max(dc2, length(g.hi - g.lo) / 2);  // (pbrt-v4 clamps the squared distance so)
+    Vec3 wi = dc2 > 0 ? (p - pc) * (1 / std::sqrt(dc2)) : Vec3(0, 0, 1);
+    double cos_w = dot(g.w, wi);
+    if (g.twosided) cos_w = std::fabs(cos_w);
+    double sin_w = safe_sqrt(1 - cos_w * cos_w);
+    // the cone of directions from p that the box subtends (its bounding sphere's)
+    double r2 = dot(g.hi - pc, g.hi - pc);
+    double cos_b = dc2 < r2 ? -1 : safe_sqrt(1 - r2 / dc2), sin_b = safe_sqrt(1 - cos_b * cos_b);
+    double sin_o = safe_sqrt(1 - g.cos_o * g.cos_o);
+    double cos_x = cos_sub(sin_w, cos_w, sin_o, g.cos_o), sin_x = sin_sub(sin_w, cos_w, sin_o, g.cos_o);
+    double cos_p = cos_sub(sin_x, cos_x, sin_b, cos_b);
+    if (cos_p <= g.cos_e) return 0;
+    double imp = g.phi * cos_p / d2;
+    if (n.x != 0 || n.y != 0 || n.z != 0) {
+        double cos_i = std::fabs(dot(wi, n)), sin_i = safe_sqrt(1 - cos_i * cos_i);
+        imp *= cos_sub(sin_i, cos_i, sin_b, cos_b);
+    }
+    return imp > 0 ? imp : 0;
+}
+
+double Lights::importances(Vec3 p, Vec3 n, double *imp) const
+{
+    double sum = 0;
+    for (size_t k = 0; k < groups_.size(); ++k) sum += imp[k] = importance(groups_[k], p, n);
+    return sum;
+}
+
+double Lights::infinite_probability() const
+{
+    return infinite_.empty() ? 0 : 1.0 / (double)(infinite_.size() + (groups_.empty() ? 0 : 1));
+}
+
+double Lights::group_probability(size_t g, Vec3 p, Vec3 n) const
+{
+    double rest = 1 - infinite_.size() * infinite_probability();
+    if (groups_.size() == 1) return rest;
+    double imp[MAX_BY_IMPORTANCE], sum = importances(p, n, imp);
+    return sum > 0 ? rest * (imp[g] / sum) : 0;
+}
+
+bool Lights::choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, double *probability) const
+{
+    const double ONE_MINUS_EPS = 0x1.fffffffffffffp-1;
+    // the interval of [0, cdf.back()) that target falls in, skipping empty ones, and target rescaled to it
+    auto pick = [&](const double *cdf, size_t count, double target, double *u) {
+        size_t k = 0;
+        while (k + 1 < count && cdf[k] <= target) ++k;
+        while (k > 0 && cdf[k] == cdf[k - 1]) --k;  // (rounding past the last non-empty interval)
+        double lo = k ? cdf[k - 1] : 0.0;
+        *u = std::clamp((target - lo) / (cdf[k] - lo), 0.0, ONE_MINUS_EPS);
+        return k;
+    };
+    if (!by_importance_) {  // by power: cdf_, the same at every point
+        size_t i = std::upper_bound(cdf_.begin(), cdf_.end(), u1 * cdf_.back()) - cdf_.begin();
+        if (i >= lights_.size()) i = lights_.size() - 1;
+        while (prob_[i] == 0 && i > 0) --i;  // (only with a zero-power light at the very end)
+        double lo = i ? cdf_[i - 1] : 0.0, u = std::min((u1 * cdf_.back() - lo) / (cdf_[i] - lo), ONE_MINUS_EPS);
+        *light = i, *rescaled = u >= 0 ? u : 0, *probability = prob_[i];
+        return prob_[i] > 0;
+    }
+    double p_inf = infinite_.size() * infinite_probability();
+    if (u1 < p_inf) {  // a light at infinity, each as likely
+        double t = u1 / p_inf * (double)infinite_.size();
+        size_t k = std::min((size_t)t, infinite_.size() - 1);
+        *light = (size_t)infinite_[k], *rescaled = std::clamp(t - (double)k, 0.0, ONE_MINUS_EPS);
+        *probability = infinite_probability();
+        return true;
+    }
+    double u = std::min((u1 - p_inf) / (1 - p_inf), ONE_MINUS_EPS), pg = 1 - p_inf;
+    size_t g = 0;
+    if (groups_.size() > 1) {  // a group by importance
+        double imp[MAX_BY_IMPORTANCE], sum = importances(p, n, imp);
+        if (!(sum > 0)) return false;
+        double acc[MAX_BY_IMPORTANCE], a = 0;
+        for (size_t k = 0; k < groups_.size(); ++k) acc[k] = a += imp[k];
+        g = pick(acc, groups_.size(), u * sum, &u);
+        pg *= imp[g] / sum;
+    }
+    const Group &G = groups_[g];  // then a light of it by power
+    size_t k = pick(G.cdf.data(), G.count, u * G.cdf.back(), &u);
+    *light = G.first + k, *rescaled = u;
+    *probability = pg * ((G.cdf[k] - (k ? G.cdf[k - 1] : 0.0)) / G.cdf.back());
+    return true;
+}
+
+double Lights::probability(size_t i, Vec3 p, Vec3 n) const
+{
+    if (!by_importance_) return prob_[i];
+    if (lights_[i].at_infinity) return infinite_probability();
+    if (power_[i] == 0 || lights_[i].group < 0) return 0;
+    const Group &G = groups_[lights_[i].group];
+    size_t k = i - G.first;
+    return group_probability((size_t)lights_[i].group, p, n) * ((G.cdf[k] - (k ? G.cdf[k - 1] : 0.0)) / G.cdf.back());
 }
 
 int Lights::light_of(const udm1scene::Hit &h) const
@@ -312,7 +477,8 @@ Vec3 Lights::environment(Vec3 d) const
 double Lights::environment_pdf(Vec3 d) const
 {
     double pdf = 0;
-    for (int i : environments_) pdf += prob_[i] * environment_pdf_of(lights_[i], d);
+    for (int i : environments_)
+        pdf += (by_importance_ ? infinite_probability() : prob_[i]) * environment_pdf_of(lights_[i], d);
     return pdf;
 }
 
@@ -386,21 +552,23 @@ double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
     return c > 0 ? d2 / (c * l.area) : 0;
 }
 
-double Lights::pdf(Vec3 p, const udm1scene::Hit &h) const
+double Lights::pdf(Vec3 p, Vec3 n, const udm1scene::Hit &h) const
 {
     int i = light_of(h);
     if (i < 0) return 0;
-    return prob_[i] * pdf_light(lights_[i], p, h.p, h.ng);
+    double prob = probability((size_t)i, p, n);
+    return prob > 0 ? prob * pdf_light(lights_[i], p, h.p, h.ng) : 0;
 }
 
-bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
+bool Lights::sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const
 {
-    if (lights_.empty()) return false;
-    size_t i = choose(u1, &u1);
+    size_t i;
+    double prob;
+    if (lights_.empty() || !choose(u1, p, n, &i, &u1, &prob)) return false;
     const Light &l = lights_[i];
     s->shape = l.shape, s->sphere = l.kind == Light::Sphere;
     s->delta = s->infinite = false;
-    if (l.kind != Light::Triangle && l.kind != Light::Sphere) return sample_source(l, prob_[i], p, u1, u2, s);
+    if (l.kind != Light::Triangle && l.kind != Light::Sphere) return sample_source(l, prob, p, u1, u2, s);
     Vec3 q, nq;
     double omega = 0;
     bool spherical = false;  // a triangle sampled by solid angle
@@ -429,7 +597,7 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
             s->wi = d * (1 / s->dist);
             s->L = radiance(l, nq, -s->wi);
             s->q = q, s->n = nq;
-            s->pdf = prob_[i] / (2 * PI * one_minus_cos_max);
+            s->pdf = prob / (2 * PI * one_minus_cos_max);
             return s->pdf > 0 && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
         }
         // inside the sphere: by area
@@ -456,7 +624,7 @@ bool Lights::sample(Vec3 p, double u1, double u2, LightSample *s) const
     s->L = radiance(l, nq, -s->wi);
     // the density pdf_light() gives, without deciding the sampling method again
     double c = std::fabs(dot(nq, d)) / s->dist;
-    s->pdf = prob_[i] * (spherical ? 1 / omega : c > 0 ? d2 / (c * l.area) : 0);
+    s->pdf = prob * (spherical ? 1 / omega : c > 0 ? d2 / (c * l.area) : 0);
     return s->pdf > 0 && std::isfinite(s->pdf) && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
 }
 

@@ -1,8 +1,17 @@
-// lights.h - the scene's lights for the path tracer, chosen in proportion to their power: every
-// emitting triangle and sphere (pbrt-v4's diffuse area light: radiance L * scale on the side the surface
-// normal faces, or on both sides if twosided) and pbrt-v4's LightSources: point and spot lights,
-// distant lights, and environments ("infinite": uniform, or an equal-area octahedral image,
-// importance-sampled by its pixels). Triangles near the shading point (area > 0.25 distance^2) are
+// lights.h - the scene's lights for the path tracer: every emitting triangle and sphere (pbrt-v4's
+// diffuse area light: radiance L * scale on the side the surface normal faces, or on both sides if
+// twosided) and pbrt-v4's LightSources: point and spot lights, distant lights, and environments
+// ("infinite": uniform, or an equal-area octahedral image, importance-sampled by its pixels).
+// A light is chosen for a shading point (p, n) in two steps. First a group: each light at infinity
+// (distant, environment) is one with probability 1 / (lights at infinity + 1); the others are grouped, an
+// emitting shape (all its triangles) or a point or spot light a group, and chosen in proportion to their
+// importance at (p, n) (pbrt-v4's LightBounds::Importance: power over squared distance, bounded by the
+// angles between the group's emission cone, the direction to it and the surface normal), all groups at
+// once as pbrt-v4's exhaustive light sampler does; a single group is always chosen (where its importance
+// is 0 it sends no light: the same estimate, without the importance). Then a light of the group in
+// proportion to its power. pbrt-v4 weighs each triangle by its own importance; a shape's triangles share
+// it here, so that a mesh light costs one importance, not one per triangle. Above MAX_BY_IMPORTANCE groups
+// every light is chosen by power alone, the same at every point. Triangles near the shading point (area > 0.25 distance^2) are
 // sampled as pbrt-v4 samples them, by the solid angle they subtend (Arvo's spherical triangle sampling,
 // for solid angles in 3e-4..6.22 sr), which keeps the estimate bounded where area sampling's 1/r^2
 // gives fireflies; farther away by area, which is as good there and cheaper. Spheres seen from outside
@@ -58,28 +67,17 @@ public:
     bool empty() const { return lights_.empty(); }
     size_t count() const { return lights_.size(); }
 
-    // Sample a light for point p from one 2D point (u1, u2): u1 picks the light by power and,
-    // rescaled to [0, 1) within the light's interval, gives with u2 the point on it (sample reuse,
-    // so that a stratified 2D point stays stratified over all the lights together).
-    bool sample(Vec3 p, double u1, double u2, LightSample *s) const;
+    static constexpr size_t MAX_BY_IMPORTANCE = 64;  // groups
 
-    // The light that sample() picks with u1 (by power), and u1 rescaled to [0, 1) within its interval.
-    size_t choose(double u1, double *rescaled) const
-    {
-        double target = u1 * cdf_.back();
-        size_t i = 0;
-        if (cdf_.size() <= 16) {  // upper_bound without its unpredictable branches: the count of cdf <= target
-            for (double c : cdf_) i += c <= target;
-        } else {
-            i = std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin();
-        }
-        if (i >= lights_.size()) i = lights_.size() - 1;
-        while (prob_[i] == 0 && i > 0) --i;  // (only with a zero-power light at the very end)
-        double lo = i ? cdf_[i - 1] : 0.0;
-        double u = std::min((target - lo) / (cdf_[i] - lo), 0x1.fffffffffffffp-1);  // reuse: uniform in [0, 1) again
-        *rescaled = u >= 0 ? u : 0;
-        return i;
-    }
+    // Sample a light for the shading point p with unit geometric normal n (zero: none) from one 2D point
+    // (u1, u2): u1 picks the light (choose()) and, rescaled to [0, 1) within the light's interval, gives
+    // with u2 the point on it (sample reuse, so that a stratified 2D point stays stratified over all the
+    // lights together). False if no light reaches p (every importance 0) or the sample carries nothing.
+    bool sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const;
+
+    // The light that sample() picks at (p, n) with u1, u1 rescaled to [0, 1) within its interval, and the
+    // probability of that choice; false if no light has importance there.
+    bool choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, double *probability) const;
     // Whether sample() takes triangle light i at p by area (not by solid angle; false for other kinds).
     bool by_area(size_t i, Vec3 p) const
     {
@@ -101,10 +99,32 @@ public:
         int map = -1;                      // environment: its image (maps_), or -1 for a uniform one
         udm1scene::Mat4 light_from_world;  // environment: the map's frame
         udm1scene::Mat4 world_from_light;
+        bool at_infinity = false;  // distant and environment lights
+        int group = -1;            // its group (the others), or -1
+    };
+    // A group of lights chosen together (above): lights_[first, first + count), their powers cumulated
+    // (the choice within the group), and pbrt-v4's LightBounds of the group: its box, the axis and cones
+    // of its emission (cos_o: normals around the axis; cos_e: emission around a normal), a bound of its power.
+    struct Group {
+        size_t first = 0, count = 0;
+        std::vector<double> cdf;
+        Vec3 lo, hi, w;
+        double phi = 0, cos_o = 1, cos_e = 0;
+        bool twosided = false;
     };
     const Light &light(size_t i) const { return lights_[i]; }
-    double probability(size_t i) const { return prob_[i]; }  // of choosing light i
-    const std::vector<double> &cdf() const { return cdf_; }  // choose()'s power CDF, one entry per light
+    double power(size_t i) const { return power_[i]; }       // light i's power (0 for a triangle of no area)
+    // The probability that choose() picks light i at (p, n).
+    double probability(size_t i, Vec3 p, Vec3 n) const;
+    bool by_importance() const { return by_importance_; }
+    // Whether choose() does not depend on the point (one group and no light at infinity, or by power), and
+    // then the lights it chooses from, lights [*first, *first + cdf.size()), with the power CDF it uses.
+    bool fixed_choice(size_t *first, const std::vector<double> **cdf) const
+    {
+        if (!by_importance_) return *first = 0, *cdf = &cdf_, true;
+        if (groups_.size() != 1 || !infinite_.empty()) return false;
+        return *first = groups_[0].first, *cdf = &groups_[0].cdf, true;
+    }
     double near() const { return near_; }                    // the constructor's near
     bool has_environment() const { return !environments_.empty(); }
     bool only_area_lights() const { return only_area_; }
@@ -116,15 +136,20 @@ public:
     Vec3 environment(Vec3 d) const;
     double environment_pdf(Vec3 d) const;
 
-    // The density (solid angle, including the choice) with which sample() would give the direction
-    // from p to the light point h.
-    double pdf(Vec3 p, const udm1scene::Hit &h) const;
+    // The density (solid angle, including the choice) with which sample() at (p, n) would give the
+    // direction from p to the light point h.
+    double pdf(Vec3 p, Vec3 n, const udm1scene::Hit &h) const;
 
     // The light of a hit, or -1.
     int light_of(const udm1scene::Hit &h) const;
 
 private:
     Vec3 radiance(const Light &l, Vec3 n, Vec3 w) const;
+    double importance(const Group &g, Vec3 p, Vec3 n) const;      // pbrt-v4's LightBounds::Importance
+    double importances(Vec3 p, Vec3 n, double *imp) const;        // of every group; their sum
+    double infinite_probability() const;                          // of each light at infinity (by importance)
+    double group_probability(size_t g, Vec3 p, Vec3 n) const;     // of choosing group g at (p, n)
+    void make_groups();
     bool sample_source(const Light &l, double prob, Vec3 p, double u1, double u2, LightSample *s) const;
     Vec3 environment_of(const Light &l, Vec3 d) const;  // radiance along direction d (world)
     double environment_pdf_of(const Light &l, Vec3 d) const;  // without the choice
@@ -139,8 +164,12 @@ private:
     double near_;
     bool only_area_ = true;                  // no LightSource
     std::vector<Light> lights_;
-    std::vector<double> cdf_;                // power CDF
-    std::vector<double> prob_;               // choice probability of each light
+    std::vector<double> cdf_;                // power CDF (choice by power)
+    std::vector<double> prob_;               // choice probability of each light (by power)
+    std::vector<double> power_;
+    bool by_importance_ = false;             // the choice by importance (else by power)
+    std::vector<Group> groups_;              // the lights not at infinity, by group
+    std::vector<int> infinite_;              // the lights at infinity
     std::vector<int> first_of_shape_;        // light index of a shape's first triangle, or -1
     std::vector<int> environments_;          // the lights that are environments
     std::vector<EnvironmentMap> maps_;

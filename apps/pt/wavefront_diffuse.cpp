@@ -65,20 +65,22 @@ inline void sincos_2pi_f(float u, float *s, float *c)
 }
 
 // The live paths of a batch, structure of arrays: ray, throughput, radiance so far, the BSDF
-// sample's density and the vertex it left (for MIS at the light it may hit), pixel (in the tile), and the
-// sample index.
+// sample's density and the vertex it left (for MIS at the light it may hit; its normal only where the
+// light choice depends on the point: `normals`), pixel (in the tile), and the sample index.
 struct Paths {
-    std::vector<float> ox, oy, oz, dx, dy, dz, br, bg, bb, lr, lg, lb, pb, qx, qy, qz;
+    std::vector<float> ox, oy, oz, dx, dy, dz, br, bg, bb, lr, lg, lb, pb, qx, qy, qz, qnx, qny, qnz;
     std::vector<int> pixel;
     std::vector<uint64_t> index;
+    bool normals = true;
     void resize(size_t n)
     {
         for (auto *v : floats()) v->resize(n);
-        pixel.resize(n), index.resize(n);
+        qnx.resize(n), qny.resize(n), qnz.resize(n), pixel.resize(n), index.resize(n);
     }
     void move(size_t to, size_t from)  // compaction: path `from` into slot `to`
     {
         for (auto *v : floats()) (*v)[to] = (*v)[from];
+        if (normals) qnx[to] = qnx[from], qny[to] = qny[from], qnz[to] = qnz[from];
         pixel[to] = pixel[from], index[to] = index[from];
     }
 
@@ -94,6 +96,7 @@ struct Vertices {
     std::vector<float> px, py, pz, nx, ny, nz, t, u[DIMS_PER_VERTEX];  // hit, geometric normal, distance, sampler
     std::vector<float> ra, ga, ba;                                     // reflectance / pi at the hit
     std::vector<int> light;                                            // the light chosen for NEE
+    std::vector<float> prob;                                           // the probability of that choice (0: none)
     std::vector<float> sx, sy, sz, sdx, sdy, sdz, slen, cr, cg, cb;    // shadow ray and its contribution
     std::vector<uint8_t> alive, maybe_near;  // maybe_near: Lights::by_area decides
     void resize(size_t n)
@@ -101,7 +104,7 @@ struct Vertices {
         for (auto *v : {&px, &py, &pz, &nx, &ny, &nz, &t, &u[0], &u[1], &u[2], &u[3], &u[4], &u[5], &ra, &ga, &ba, &sx,
                         &sy, &sz, &sdx, &sdy, &sdz, &slen, &cr, &cg, &cb})
             v->resize(n);
-        light.resize(n), alive.resize(n), maybe_near.resize(n);
+        light.resize(n), prob.resize(n), alive.resize(n), maybe_near.resize(n);
     }
 };
 
@@ -139,35 +142,39 @@ struct Shading {
     bool roulette;
 };
 
-// For live paths [0, n) with their DIMS_PER_VERTEX sampler values u: the light each samples
-// (Lights::choose: the same double operations, so the same light and rescaled u), the values as
-// floats, and whether the light may be near enough for solid-angle sampling (a test with a margin
-// that never misses a near light: Lights::by_area then decides).
+// For live paths [0, n) with their DIMS_PER_VERTEX sampler values u, where the light choice does not
+// depend on the point (LightChoice::fixed): the light each samples (Lights::choose's double operations,
+// so the same light, rescaled u and probability), the values as floats, and whether the light may be
+// near enough for solid-angle sampling (a test with a margin that never misses a near light:
+// Lights::by_area then decides).
 __attribute__((target_clones("avx2", "default"))) void choose_lights(size_t n, const double *__restrict u, Vertices &V,
-                                                                     const DiffuseWavefront::LightChoice &C)
+                                                                     const DiffuseWavefront::LightChoice &C,
+                                                                     const DiffuseWavefront::LightNear &N)
 {
     float *__restrict f0 = V.u[0].data(), *__restrict f1 = V.u[1].data(), *__restrict f2 = V.u[2].data();
     float *__restrict f3 = V.u[3].data(), *__restrict f4 = V.u[4].data(), *__restrict f5 = V.u[5].data();
+    float *__restrict prob = V.prob.data();
     const float *__restrict hpx = V.px.data(), *__restrict hpy = V.py.data(), *__restrict hpz = V.pz.data();
     int *__restrict light = V.light.data();
     uint8_t *__restrict maybe_near = V.maybe_near.data();
     const double *__restrict cdf = C.cdf.data(), *__restrict lo = C.lo.data(), *__restrict hi = C.hi.data();
+    const float *__restrict lprob = C.prob.data();
     const int *__restrict pick = C.pick.data();
-    const double *__restrict cx = C.cx.data(), *__restrict cy = C.cy.data(), *__restrict cz = C.cz.data();
-    const double *__restrict area = C.area.data();
-    const int count = (int)C.cdf.size();
-    const double total = C.cdf.back(), near = C.near;
+    const double *__restrict cx = N.cx.data(), *__restrict cy = N.cy.data(), *__restrict cz = N.cz.data();
+    const double *__restrict area = N.area.data();
+    const int count = (int)C.cdf.size(), first = (int)C.first;
+    const double total = C.cdf.back(), near = N.near;
 #pragma omp simd
     for (size_t j = 0; j < n; ++j) {
         const double *um = u + DIMS_PER_VERTEX * j;
         double target = um[0] * total;
         int i = 0;
         for (int c = 0; c < count; ++c) i += cdf[c] <= target;
-        int l = pick[i];
-        double r = std::min((target - lo[l]) / (hi[l] - lo[l]), 0x1.fffffffffffffp-1);
+        int k = pick[i], l = first + k;
+        double r = std::min((target - lo[k]) / (hi[k] - lo[k]), 0x1.fffffffffffffp-1);
         f0[j] = unit_float(r >= 0 ? r : 0), f1[j] = unit_float(um[1]), f2[j] = unit_float(um[2]);
         f3[j] = unit_float(um[3]), f4[j] = unit_float(um[4]), f5[j] = unit_float(um[5]);
-        light[j] = l;
+        light[j] = l, prob[j] = lprob[k];
         // Lights::far's test in double (as it), with a 1 % margin for its different rounding
         double dx = cx[l] - hpx[j], dy = cy[l] - hpy[j], dz = cz[l] - hpz[j];
         maybe_near[j] = area[l] >= 0.99 * near * (dx * dx + dy * dy + dz * dz);
@@ -185,7 +192,8 @@ __attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P,
     float *__restrict dxs = P.dx.data(), *__restrict dys = P.dy.data(), *__restrict dzs = P.dz.data();
     float *__restrict br = P.br.data(), *__restrict bg = P.bg.data(), *__restrict bbs = P.bb.data();
     float *__restrict pbs = P.pb.data(), *__restrict qxs = P.qx.data(), *__restrict qys = P.qy.data();
-    float *__restrict qzs = P.qz.data();
+    float *__restrict qzs = P.qz.data(), *__restrict qnxs = P.qnx.data(), *__restrict qnys = P.qny.data();
+    float *__restrict qnzs = P.qnz.data();
     const float *__restrict hpx = V.px.data(), *__restrict hpy = V.py.data(), *__restrict hpz = V.pz.data();
     const float *__restrict hnx = V.nx.data(), *__restrict hny = V.ny.data(), *__restrict hnz = V.nz.data();
     const float *__restrict ht = V.t.data(), *__restrict u0 = V.u[0].data(), *__restrict u1 = V.u[1].data();
@@ -201,7 +209,7 @@ __attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P,
     const float *__restrict lx1 = F.x1.data(), *__restrict ly1 = F.y1.data(), *__restrict lz1 = F.z1.data();
     const float *__restrict lx2 = F.x2.data(), *__restrict ly2 = F.y2.data(), *__restrict lz2 = F.z2.data();
     const float *__restrict lnxs = F.nx.data(), *__restrict lnys = F.ny.data(), *__restrict lnzs = F.nz.data();
-    const float *__restrict lprob = F.prob.data(), *__restrict larea = F.area.data();
+    const float *__restrict lprob = V.prob.data(), *__restrict larea = F.area.data();
     const float *__restrict ler = F.er.data(), *__restrict leg = F.eg.data(), *__restrict leb = F.eb.data();
     const int *__restrict ltwo = F.twosided.data();
     const bool may_roulette = sh.roulette && sh.depth >= sh.rr_depth;
@@ -220,7 +228,7 @@ __attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P,
         float wx = ex / dist, wy = ey / dist, wz = ez / dist;
         float cl = lnxs[l] * wx + lnys[l] * wy + lnzs[l] * wz;  // the light's normal against the direction to it
         bool emits = (ltwo[l] != 0) | (cl < 0);
-        float pdf_l = lprob[l] * d2 / (std::fabs(cl) * larea[l]);
+        float pdf_l = lprob[j] * d2 / (std::fabs(cl) * larea[l]);
         float cos_i = nx * wx + ny * wy + nz * wz;
         bool same = cos_i * cos_o > 0;  // (bitwise & and | below: no branches in the loop)
         float pdf_b = std::fabs(cos_i) * (1 / PI_F);
@@ -263,7 +271,7 @@ __attribute__((target_clones("avx2", "default"))) void shade(size_t n, Paths &P,
         float side2 = nx * dx + ny * dy + nz * dz > 0 ? 1.0f : -1.0f;
         ox[j] = px + side2 * nx * off, oy[j] = py + side2 * ny * off, oz[j] = pz + side2 * nz * off;
         dxs[j] = dx, dys[j] = dy, dzs[j] = dz;
-        qxs[j] = px, qys[j] = py, qzs[j] = pz;
+        qxs[j] = px, qys[j] = py, qzs[j] = pz, qnxs[j] = nx, qnys[j] = ny, qnzs[j] = nz;
         alive[j] = live;
     }
 }
@@ -296,20 +304,28 @@ DiffuseWavefront::DiffuseWavefront(const Scene &scene, const udm1scene::EmbreeSc
         }
     }
     for (unsigned g = 0; g < rt.geometry_count(); ++g) T.first.push_back(first_of_shape[rt.shape_of_geometry(g)]);
-    LightChoice &C = choice_;
-    C.cdf = lights.cdf();
+    LightNear &C = near_;
     for (size_t i = 0; i < lights.count(); ++i) {
-        C.lo.push_back(i ? C.cdf[i - 1] : 0.0), C.hi.push_back(C.cdf[i]);
         const Lights::Light &l = lights.light(i);
         C.cx.push_back(l.centroid.x), C.cy.push_back(l.centroid.y), C.cz.push_back(l.centroid.z);
         C.area.push_back(l.area);
     }
-    for (size_t i = 0; i <= lights.count(); ++i) {  // as Lights::choose: clamped, then past lights of no power
-        size_t k = std::min(i, lights.count() - 1);
-        while (lights.probability(k) == 0 && k > 0) --k;
-        C.pick.push_back((int)k);
-    }
     C.near = lights.near();
+    LightChoice &F = choice_;
+    const std::vector<double> *cdf = nullptr;
+    F.fixed = lights.fixed_choice(&F.first, &cdf);
+    if (F.fixed) {
+        F.cdf = *cdf;
+        for (size_t k = 0; k < F.cdf.size(); ++k) {
+            double lo = k ? F.cdf[k - 1] : 0.0;
+            F.lo.push_back(lo), F.hi.push_back(F.cdf[k]), F.prob.push_back((float)((F.cdf[k] - lo) / F.cdf.back()));
+        }
+        for (size_t i = 0; i <= F.cdf.size(); ++i) {  // as Lights::choose: clamped, then past lights of no power
+            size_t k = std::min(i, F.cdf.size() - 1);
+            while (k > 0 && F.cdf[k] == F.cdf[k - 1]) --k;
+            F.pick.push_back((int)k);
+        }
+    }
     LightArrays &L = lights_f_;
     for (size_t i = 0; i < lights.count(); ++i) {
         const Lights::Light &l = lights.light(i);
@@ -317,7 +333,7 @@ DiffuseWavefront::DiffuseWavefront(const Scene &scene, const udm1scene::EmbreeSc
         L.x1.push_back((float)l.p1.x), L.y1.push_back((float)l.p1.y), L.z1.push_back((float)l.p1.z);
         L.x2.push_back((float)l.p2.x), L.y2.push_back((float)l.p2.y), L.z2.push_back((float)l.p2.z);
         L.nx.push_back((float)l.n.x), L.ny.push_back((float)l.n.y), L.nz.push_back((float)l.n.z);
-        L.prob.push_back((float)lights.probability(i)), L.area.push_back((float)l.area);
+        L.area.push_back((float)l.area);
         L.er.push_back((float)l.L.x), L.eg.push_back((float)l.L.y), L.eb.push_back((float)l.L.z);
         L.twosided.push_back(l.twosided);
     }
@@ -334,6 +350,7 @@ public:
         : w_(w), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count),
           film_scale_(film_scale), acc_(acc), counts_(counts), b_(buffers())
     {
+        b_.paths.normals = !w.choice_.fixed;
         // the tile's pixels' streams, once: every path's domains draw from its pixel's (integrator.h)
         streams_.resize((size_t)W_ * (size_t)(y1 - y0));
         for (int y = y0; y < y1; ++y)
@@ -471,7 +488,9 @@ void DiffuseWavefront::Batch::gather(int depth)
                 Hit h;
                 h.shape = w_.rt_.shape_of_geometry(S.geom[j]), h.prim = S.prim[j], h.t = t;
                 h.p = Vec3(hx, hy, hz), h.ng = Vec3(nx, ny, nz);
-                float pl = (float)w_.lights_.pdf(Vec3(P.qx[j], P.qy[j], P.qz[j]), h), pb = P.pb[j];
+                Vec3 qn = P.normals ? Vec3(P.qnx[j], P.qny[j], P.qnz[j]) : Vec3();  // (a fixed choice ignores it)
+                float pl = (float)w_.lights_.pdf(Vec3(P.qx[j], P.qy[j], P.qz[j]), qn, h);
+                float pb = P.pb[j];
                 w = pb * pb / (pb * pb + pl * pl);
             }
             P.lr[j] += P.br[j] * F.er[li] * w, P.lg[j] += P.bg[j] * F.eg[li] * w, P.lb[j] += P.bb[j] * F.eb[li] * w;
@@ -499,17 +518,22 @@ void DiffuseWavefront::Batch::sample(int depth)
     // this vertex's 6 values for every live path (the domains of integrator.h)
     for (size_t m = 0; m < n; ++m)
         vertex_values(&streams_[P.pixel[m]], P.index[m], depth, &u[DIMS_PER_VERTEX * m]);
-    if (w_.choice_.cdf.size() <= 16) {
-        choose_lights(n, u.data(), V, w_.choice_);
-    } else {  // many lights: Lights::choose's binary search, path by path
-        for (size_t m = 0; m < n; ++m) {
-            const double *um = &u[DIMS_PER_VERTEX * m];
-            for (int d = 0; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(um[d]);
-            double reuse;
-            V.light[m] = (int)lights.choose(um[0], &reuse);
-            V.u[0][m] = unit_float(reuse);
-            V.maybe_near[m] = 1;
-        }
+    // the light each path samples (Lights::choose at its point and normal: the same light, rescaled u and
+    // probability as the scalar loop's, in double), the values as floats, and whether the light may be
+    // near enough for solid-angle sampling (Lights::far's test with a 1 % margin for its rounding:
+    // Lights::by_area then decides)
+    const LightNear &C = w_.near_;
+    if (w_.choice_.fixed) choose_lights(n, u.data(), V, w_.choice_, C);
+    for (size_t m = 0; m < n && !w_.choice_.fixed; ++m) {
+        const double *um = &u[DIMS_PER_VERTEX * m];
+        for (int d = 1; d < DIMS_PER_VERTEX; ++d) V.u[d][m] = unit_float(um[d]);
+        size_t l = 0;
+        double reuse = 0, prob = 0;
+        Vec3 p(V.px[m], V.py[m], V.pz[m]), ng(V.nx[m], V.ny[m], V.nz[m]);
+        bool chosen = lights.choose(um[0], p, ng, &l, &reuse, &prob);
+        V.light[m] = (int)l, V.u[0][m] = unit_float(reuse), V.prob[m] = chosen ? (float)prob : 0.0f;
+        double dx = C.cx[l] - p.x, dy = C.cy[l] - p.y, dz = C.cz[l] - p.z;
+        V.maybe_near[m] = chosen && C.area[l] >= 0.99 * C.near * (dx * dx + dy * dy + dz * dz);
     }
     b_.near.clear();
     for (size_t m = 0; m < n; ++m) {
@@ -522,7 +546,7 @@ void DiffuseWavefront::Batch::sample(int depth)
         NearSample ns{m, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
         LightSample ls;
         Vec3 ng(V.nx[m], V.ny[m], V.nz[m]), wo(-P.dx[m], -P.dy[m], -P.dz[m]);
-        bool ok = lights.sample(p, um[0], um[1], &ls);
+        bool ok = lights.sample(p, ng, um[0], um[1], &ls);
         double cos_i = ok ? udm1scene::dot(ng, ls.wi) : 0, cos_o = udm1scene::dot(ng, wo);
         if (ok && cos_i * cos_o > 0) {
             double pdf_b = std::fabs(cos_i) / M_PI;

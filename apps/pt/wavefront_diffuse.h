@@ -3,7 +3,7 @@
 // batches of up to 4096 paths with one Embree SOA stream per bounce for the closest hits (over the
 // paths' own origin and direction arrays; camera rays flagged coherent) and one for the shadow rays,
 // the sampler's values from each path's domains (one stream per pixel of the tile), the light choice
-// (Lights::choose's double operations, as tables) and the shading (light sample, MIS, BSDF sample,
+// (Lights::choose, path by path) and the shading (light sample, MIS, BSDF sample,
 // roulette, next ray) in loops over the live paths that the compiler vectorizes.
 //
 // The subset: triangle meshes without vertex normals, untextured diffuse materials without bump maps,
@@ -50,15 +50,23 @@ public:
         std::vector<int> light;                      // the triangle's light (Lights' index), or -1
     };
     struct LightArrays {  // triangle lights, structure of arrays, in float
-        std::vector<float> x0, y0, z0, x1, y1, z1, x2, y2, z2, nx, ny, nz, prob, area, er, eg, eb;
+        std::vector<float> x0, y0, z0, x1, y1, z1, x2, y2, z2, nx, ny, nz, area, er, eg, eb;
         std::vector<int> twosided;
     };
 
-    struct LightChoice {  // Lights::choose as tables: CDF, the light of each count of CDF entries <= target
-        std::vector<double> cdf, lo, hi;  // per light: its CDF interval [lo, hi)
-        std::vector<int> pick;            // count (0 .. lights) -> light
-        std::vector<double> cx, cy, cz, area;  // centroid and area, for the near-light test
-        double near = 0;                       // Lights::near()
+    struct LightNear {  // per light: centroid and area, for the test of whether Lights may sample it by solid angle
+        std::vector<double> cx, cy, cz, area;
+        double near = 0;  // Lights::near()
+    };
+    // Lights::choose as tables where it does not depend on the point (Lights::fixed_choice): the lights
+    // [first, first + cdf.size()), their power CDF, each one's interval [lo, hi) and probability, and the
+    // light of each count of CDF entries <= target (past the lights of no power)
+    struct LightChoice {
+        bool fixed = false;
+        size_t first = 0;
+        std::vector<double> cdf, lo, hi;
+        std::vector<float> prob;
+        std::vector<int> pick;
     };
 
 private:
@@ -70,6 +78,7 @@ private:
     bool roulette_;
     Triangles tri_;
     LightArrays lights_f_;
+    LightNear near_;
     LightChoice choice_;
 };
 
