@@ -15,6 +15,8 @@ terminal, and records what each did in OUT/steps.json:
     crown       with --full, where ../shared has it: the same protocol on the paper's Crown at 100 x 140
     accuracy    with --full: udm1-pt against pbrt-v4 on every shared and test scene (bench/bench_accuracy.py;
                 pbrt-v4 built once from ../shared/anchors, skipped with a message where it is absent)
+    renderers   with --full: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes
+                (bench/bench_pt_scenes.py; skipped with a message where ../shared is absent)
 
 then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
 the steps (a failed step is shown failed, with its error, and its numbers are not shown), the paper's
@@ -114,7 +116,8 @@ def plan(args, out: Path) -> list[Step]:
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
              [[py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]], ["screen.json"],
              "screen.html"),
-    ] + crown_step(args, py, tools["pt"], out) + accuracy_step(args, py, tools["pt"], out)
+    ] + crown_step(args, py, tools["pt"], out) + accuracy_step(args, py, tools["pt"], out) + \
+        renderers_step(args, py, tools["pt"], out)
 
 
 def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
@@ -137,6 +140,15 @@ def accuracy_step(args, py: str, pt: str, out: Path) -> list[Step]:
     return [Step("accuracy", "Path tracing: udm1-pt against pbrt-v4 on the same scene files (image means)",
                  [[py, str(ROOT / "bench" / "bench_accuracy.py"), "--tool", pt, "--out", str(out / "accuracy")]],
                  ["accuracy/accuracy.json"], "accuracy/accuracy.md")]
+
+
+def renderers_step(args, py: str, pt: str, out: Path) -> list[Step]:
+    """--full: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error (the tool skips, saying why, what is absent)."""
+    if not args.full:
+        return []
+    return [Step("renderers", "Path tracing: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes",
+                 [[py, str(ROOT / "bench" / "bench_pt_scenes.py"), "--tool", pt, "--out", str(out / "renderers")]],
+                 ["renderers/pt_scenes.json"], "renderers/pt_scenes.md")]
 
 
 def file_digest(path: str) -> str:

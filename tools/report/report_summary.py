@@ -459,6 +459,39 @@ def accuracy_section(doc, out: Path, state):
             doc.image(f"accuracy/{r['scene']}/compare.png", f"{r['scene']}: pbrt-v4, udm1-pt, difference")
 
 
+def renderers_section(doc, out: Path, state):
+    doc.heading(2, "udm1-pt against pbrt-v4 and Mitsuba 3 at equal error", "renderers")
+    if not_shown(doc, state, "renderers"):
+        return
+    res = load(out, "renderers/pt_scenes.json")
+    if res.get("skipped"):
+        doc.para(f"**Not measured**: {res['skipped']}.")
+        return
+    doc.para("Each renderer against its own converged reference; the seconds each renderer's best sampler needs to "
+             "reach the errors pbrt-v4's default sampler (zsobol) reaches, and the fastest other renderer's time over "
+             "udm1-pt's (above 1: udm1-pt faster). Every sampler's errors and times: "
+             "[renderers/pt_scenes.md](renderers/pt_scenes.md).")
+    rows = []
+    for sc in res["scenes"]:
+        for rec in sc["equal_error"]:
+            best = rec["best"]
+            rows.append({"scene": f"{sc['scene']} {sc['size'][0]}x{sc['size'][1]}", "rmse": rec["rmse"],
+                         **{k: (best[k][0] if best.get(k) else None) for k in best},
+                         "fastest": rec.get("fastest_other", ""), "speedup": rec.get("speedup")})
+    names = []
+    for sc in res["scenes"]:
+        for n, _ in sc["renderers"]:
+            if n not in names:
+                names.append(n)
+    doc.table("renderers", "seconds to an error", [("scene", "scene", ""), ("rmse", "target RMSE", ".5f")] +
+              [(n, f"{n} (s)", ".3g") for n in names] +
+              [("fastest", "fastest other", ""), ("speedup", "fastest other / udm1-pt", ".2f")], rows)
+    for sc in res["scenes"]:
+        if sc.get("mitsuba"):
+            doc.para(f"**{sc['scene']}**: {sc['mitsuba']}.")
+        doc.image(f"renderers/{sc['scene']}_error_vs_time.png", f"{sc['scene']}: error against time")
+
+
 def ratio(a: float, b: float) -> float:
     """a / b, with an exact (zero-error) b shown as an infinite gain rather than dropped."""
     if b == 0:
@@ -557,4 +590,6 @@ def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
         guarded(doc, pt_section, out, state, "crown", "crown/")
     if "accuracy" in state:
         guarded(doc, accuracy_section, out, state)
+    if "renderers" in state:
+        guarded(doc, renderers_section, out, state)
     return figures
