@@ -56,7 +56,7 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
         if (p.depth == 0 || p.specular_bounce || strategy_ == Strategy::Bsdf) {
             p.L = p.L + mul(p.beta, Le);
         } else if (strategy_ == Strategy::Mis) {
-            double p_l = lights_.pdf(p.prev_p, p.prev_n, h);
+            double p_l = lights_.pdf(p.prev_p, p.prev_n, h, p.importance_sum);
             p.L = p.L + mul(p.beta, Le) * power_heuristic(p.p_b, p_l);
         }
     }
@@ -73,9 +73,12 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
     Frame frame(ns);
     Vec3 wo_l = frame.to_local(wo);
     if (wo_l.z == 0) return false;
+    double importance_sum = NAN;  // (for MIS at a light the next ray may hit)
     if (strategy_ != Strategy::Bsdf && bsdf.has_non_specular()) {  // next-event estimation
         LightSample ls;
-        if (lights_.sample(h.p, h.ng, u_lp[0], u_lp[1], &ls)) {
+        bool sampled = lights_.sample(h.p, h.ng, u_lp[0], u_lp[1], &ls);
+        importance_sum = ls.importance_sum;
+        if (sampled) {
             Vec3 wi_l = frame.to_local(ls.wi);
             Vec3 f = bsdf.f(wo_l, wi_l) * std::fabs(wi_l.z);
             if (nonzero(f)) {
@@ -102,7 +105,7 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
     p.p_b = bs.pdf_is_proportional ? bsdf.pdf(wo_l, bs.wi) : bs.pdf;
     p.specular_bounce = bs.specular;
     if (!bs.reflection) p.eta_scale *= bs.eta * bs.eta;
-    p.prev_p = h.p, p.prev_n = h.ng;
+    p.prev_p = h.p, p.prev_n = h.ng, p.importance_sum = importance_sum;
     if (!(max_component(p.beta) > 0) || !std::isfinite(max_component(p.beta))) return false;
     if (roulette_ && p.depth >= rr_depth_) {  // when the throughput is below 1
         double rr = max_component(p.beta) * p.eta_scale;

@@ -23,6 +23,7 @@ struct PathState {
     Vec3 o, d;                           // the next ray
     Vec3 L, beta{1, 1, 1};               // radiance so far, throughput
     Vec3 prev_p, prev_n;                 // the last vertex and its geometric normal (MIS at a light the next ray hits)
+    double importance_sum = NAN;         // the lights' importances at the last vertex, if its light sample made them
     double p_b = 0;                      // the BSDF sample's density there
     double eta_scale = 1;                // the product of eta^2 over transmissions: roulette sees beta without it (pbrt)
     bool specular_bounce = false;

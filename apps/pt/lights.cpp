@@ -318,6 +318,8 @@ void Lights::make_groups()
             g.cos_e = std::cos(std::acos(std::clamp(l.cos_end, -1.0, 1.0)) - std::acos(std::clamp(l.cos_start, -1.0, 1.0)));
             if (g.cos_e == 1 && l.cos_end != l.cos_start) g.cos_e = 0.999;  // (pbrt-v4's slop for round-off)
         }
+        g.center = (g.lo + g.hi) * 0.5, g.half_diagonal = length(g.hi - g.lo) / 2;
+        g.radius2 = dot(g.hi - g.center, g.hi - g.center), g.sin_o = safe_sqrt(1 - g.cos_o * g.cos_o);
         if (sum > 0) groups_.push_back(std::move(g));
         else
             for (size_t k = i; k < i + g.count; ++k) lights_[k].group = -1;
@@ -335,17 +337,20 @@ double Lights::importance(const Group &g, Vec3 p, Vec3 n) const
     auto sin_sub = [](double sin_a, double cos_a, double sin_b, double cos_b) {  // sin(max(0, a - b))
         return cos_a > cos_b ? 0.0 : sin_a * cos_b - cos_a * sin_b;
     };
-    Vec3 pc = (g.lo + g.hi) * 0.5;
-    double dc2 = dot(p - pc, p - pc);
-    double d2 = std::max(dc2, length(g.hi - g.lo) / 2);  // (pbrt-v4 clamps the squared distance so)
-    Vec3 wi = dc2 > 0 ? (p - pc) * (1 / std::sqrt(dc2)) : Vec3(0, 0, 1);
+    Vec3 v = p - g.center;
+    double dc2 = dot(v, v);
+    double d2 = std::max(dc2, g.half_diagonal);  // (pbrt-v4 clamps the squared distance so)
+    Vec3 wi = dc2 > 0 ? v * (1 / std::sqrt(dc2)) : Vec3(0, 0, 1);
     double cos_w = dot(g.w, wi);
     if (g.twosided) cos_w = std::fabs(cos_w);
     double sin_w = safe_sqrt(1 - cos_w * cos_w);
     // the cone of directions from p that the box subtends (its bounding sphere's)
-    double r2 = dot(g.hi - pc, g.hi - pc);
-    double cos_b = dc2 < r2 ? -1 : safe_sqrt(1 - r2 / dc2), sin_b = safe_sqrt(1 - cos_b * cos_b);
-    double sin_o = safe_sqrt(1 - g.cos_o * g.cos_o);
+    double cos_b = -1, sin_b = 0;
+    if (dc2 >= g.radius2 && dc2 > 0) {
+        double sin2 = g.radius2 / dc2;
+        cos_b = safe_sqrt(1 - sin2), sin_b = std::sqrt(sin2);
+    }
+    const double sin_o = g.sin_o;
     double cos_x = cos_sub(sin_w, cos_w, sin_o, g.cos_o), sin_x = sin_sub(sin_w, cos_w, sin_o, g.cos_o);
     double cos_p = cos_sub(sin_x, cos_x, sin_b, cos_b);
     if (cos_p <= g.cos_e) return 0;
@@ -369,15 +374,19 @@ double Lights::infinite_probability() const
     return infinite_.empty() ? 0 : 1.0 / (double)(infinite_.size() + (groups_.empty() ? 0 : 1));
 }
 
-double Lights::group_probability(size_t g, Vec3 p, Vec3 n) const
+double Lights::group_probability(size_t g, Vec3 p, Vec3 n, double sum) const
 {
     double rest = 1 - infinite_.size() * infinite_probability();
     if (groups_.size() == 1) return rest;
-    double imp[MAX_BY_IMPORTANCE], sum = importances(p, n, imp);
-    return sum > 0 ? rest * (imp[g] / sum) : 0;
+    if (std::isnan(sum)) {
+        double imp[MAX_BY_IMPORTANCE];
+        sum = importances(p, n, imp);
+    }
+    return sum > 0 ? rest * (importance(groups_[g], p, n) / sum) : 0;
 }
 
-bool Lights::choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, double *probability) const
+bool Lights::choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, double *probability,
+                    double *importance_sum) const
 {
     const double ONE_MINUS_EPS = 0x1.fffffffffffffp-1;
     // the interval of [0, cdf.back()) that target falls in, skipping empty ones, and target rescaled to it
@@ -409,6 +418,7 @@ bool Lights::choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, 
     size_t g = 0;
     if (groups_.size() > 1) {  // a group by importance
         double imp[MAX_BY_IMPORTANCE], sum = importances(p, n, imp);
+        if (importance_sum) *importance_sum = sum;
         if (!(sum > 0)) return false;
         double acc[MAX_BY_IMPORTANCE], a = 0;
         for (size_t k = 0; k < groups_.size(); ++k) acc[k] = a += imp[k];
@@ -422,14 +432,15 @@ bool Lights::choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, 
     return true;
 }
 
-double Lights::probability(size_t i, Vec3 p, Vec3 n) const
+double Lights::probability(size_t i, Vec3 p, Vec3 n, double importance_sum) const
 {
     if (!by_importance_) return prob_[i];
     if (lights_[i].at_infinity) return infinite_probability();
     if (power_[i] == 0 || lights_[i].group < 0) return 0;
     const Group &G = groups_[lights_[i].group];
     size_t k = i - G.first;
-    return group_probability((size_t)lights_[i].group, p, n) * ((G.cdf[k] - (k ? G.cdf[k - 1] : 0.0)) / G.cdf.back());
+    return group_probability((size_t)lights_[i].group, p, n, importance_sum) *
+           ((G.cdf[k] - (k ? G.cdf[k - 1] : 0.0)) / G.cdf.back());
 }
 
 int Lights::light_of(const udm1scene::Hit &h) const
@@ -552,11 +563,11 @@ double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
     return c > 0 ? d2 / (c * l.area) : 0;
 }
 
-double Lights::pdf(Vec3 p, Vec3 n, const udm1scene::Hit &h) const
+double Lights::pdf(Vec3 p, Vec3 n, const udm1scene::Hit &h, double importance_sum) const
 {
     int i = light_of(h);
     if (i < 0) return 0;
-    double prob = probability((size_t)i, p, n);
+    double prob = probability((size_t)i, p, n, importance_sum);
     return prob > 0 ? prob * pdf_light(lights_[i], p, h.p, h.ng) : 0;
 }
 
@@ -564,7 +575,7 @@ bool Lights::sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const
 {
     size_t i;
     double prob;
-    if (lights_.empty() || !choose(u1, p, n, &i, &u1, &prob)) return false;
+    if (lights_.empty() || !choose(u1, p, n, &i, &u1, &prob, &s->importance_sum)) return false;
     const Light &l = lights_[i];
     s->shape = l.shape, s->sphere = l.kind == Light::Sphere;
     s->delta = s->infinite = false;

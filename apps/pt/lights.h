@@ -22,6 +22,7 @@
 #include "scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <vector>
 
@@ -30,6 +31,7 @@ namespace udm1pt {
 using udm1scene::Vec3;
 
 struct LightSample {
+    double importance_sum = NAN;  // the groups' importances at the point, summed (NaN: not computed), for pdf()
     Vec3 wi;          // unit direction from the shading point to the light
     Vec3 L;           // radiance arriving along -wi (a point or spot light: intensity / distance^2)
     double pdf = 0;   // solid-angle density, including the choice of the light (a delta light: the choice)
@@ -77,7 +79,8 @@ public:
 
     // The light that sample() picks at (p, n) with u1, u1 rescaled to [0, 1) within its interval, and the
     // probability of that choice; false if no light has importance there.
-    bool choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, double *probability) const;
+    bool choose(double u1, Vec3 p, Vec3 n, size_t *light, double *rescaled, double *probability,
+                double *importance_sum = nullptr) const;
     // Whether sample() takes triangle light i at p by area (not by solid angle; false for other kinds).
     bool by_area(size_t i, Vec3 p) const
     {
@@ -111,11 +114,13 @@ public:
         Vec3 lo, hi, w;
         double phi = 0, cos_o = 1, cos_e = 0;
         bool twosided = false;
+        Vec3 center;                              // of the box (made once, for importance())
+        double half_diagonal = 0, radius2 = 0, sin_o = 0;
     };
     const Light &light(size_t i) const { return lights_[i]; }
     double power(size_t i) const { return power_[i]; }       // light i's power (0 for a triangle of no area)
     // The probability that choose() picks light i at (p, n).
-    double probability(size_t i, Vec3 p, Vec3 n) const;
+    double probability(size_t i, Vec3 p, Vec3 n, double importance_sum = NAN) const;
     bool by_importance() const { return by_importance_; }
     // Whether choose() does not depend on the point (one group and no light at infinity, or by power), and
     // then the lights it chooses from, lights [*first, *first + cdf.size()), with the power CDF it uses.
@@ -137,8 +142,9 @@ public:
     double environment_pdf(Vec3 d) const;
 
     // The density (solid angle, including the choice) with which sample() at (p, n) would give the
-    // direction from p to the light point h.
-    double pdf(Vec3 p, Vec3 n, const udm1scene::Hit &h) const;
+    // direction from p to the light point h. importance_sum: a sample's at (p, n) if there was one (the
+    // same density, without the other groups' importances again).
+    double pdf(Vec3 p, Vec3 n, const udm1scene::Hit &h, double importance_sum = NAN) const;
 
     // The light of a hit, or -1.
     int light_of(const udm1scene::Hit &h) const;
@@ -148,7 +154,8 @@ private:
     double importance(const Group &g, Vec3 p, Vec3 n) const;      // pbrt-v4's LightBounds::Importance
     double importances(Vec3 p, Vec3 n, double *imp) const;        // of every group; their sum
     double infinite_probability() const;                          // of each light at infinity (by importance)
-    double group_probability(size_t g, Vec3 p, Vec3 n) const;     // of choosing group g at (p, n)
+    double group_probability(size_t g, Vec3 p, Vec3 n, double sum) const;  // of group g at (p, n) (sum: NaN or
+                                                                            // the importances' there)
     void make_groups();
     bool sample_source(const Light &l, double prob, Vec3 p, double u1, double u2, LightSample *s) const;
     Vec3 environment_of(const Light &l, Vec3 d) const;  // radiance along direction d (world)
