@@ -112,13 +112,17 @@ int main(void)
                  UDM1_ERROR_INVALID_ARGUMENT);
     CHECKF(strstr(udm1_last_error(), "struct_size 52"), "message: %s", udm1_last_error());
 
-    /* the noise descriptor of 1.5, and a longer one */
-    struct { noise_desc_1_5 known; uint64_t appended; } nd;
+    /* the noise descriptor of 1.5 (read as if period_w were 0), today's, and a longer one */
+    noise_desc_1_5 nd_old;
+    memset(&nd_old, 0, sizeof nd_old);
+    nd_old.struct_size = (uint32_t)sizeof nd_old;
+    nd_old.seed = 3;
+    struct { udm1_noise_desc known; uint64_t appended; } nd;
     memset(&nd, 0, sizeof nd);
-    nd.known.struct_size = (uint32_t)sizeof nd.known;
+    udm1_noise_desc_init(&nd.known);
     nd.known.seed = 3;
     udm1_noise *n_old = NULL, *n_new = NULL, *n_next = NULL;
-    CHECK_STATUS(udm1_noise_create((const udm1_noise_desc *)(const void *)&nd, &n_old), UDM1_OK);
+    CHECK_STATUS(udm1_noise_create((const udm1_noise_desc *)(const void *)&nd_old, &n_old), UDM1_OK);
     udm1_noise_desc cur;
     udm1_noise_desc_init(&cur);
     cur.seed = 3;
@@ -127,7 +131,8 @@ int main(void)
     CHECK_STATUS(udm1_noise_create((const udm1_noise_desc *)(const void *)&nd, &n_next), UDM1_OK);
     if (n_old && n_new && n_next)
         CHECK(udm1_noise_3d(n_old, 0.3, 1.7, 2.2) == udm1_noise_3d(n_new, 0.3, 1.7, 2.2) &&
-              udm1_noise_3d(n_next, 0.3, 1.7, 2.2) == udm1_noise_3d(n_new, 0.3, 1.7, 2.2));
+              udm1_noise_3d(n_next, 0.3, 1.7, 2.2) == udm1_noise_3d(n_new, 0.3, 1.7, 2.2) &&
+              udm1_noise_4d(n_old, 0.3, 1.7, 2.2, 9.1) == udm1_noise_4d(n_new, 0.3, 1.7, 2.2, 9.1));
     nd.appended = 9;
     udm1_noise *n_bad = (udm1_noise *)&nd;
     CHECK_STATUS(udm1_noise_create((const udm1_noise_desc *)(const void *)&nd, &n_bad), UDM1_ERROR_INVALID_ARGUMENT);

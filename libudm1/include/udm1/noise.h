@@ -63,6 +63,9 @@ typedef struct udm1_noise_desc {
     uint64_t seed;
     uint32_t period[3];   /* 0: not periodic on that axis */
     uint32_t reserved;    /* set to 0 */
+    /* (1.7) */
+    uint32_t period_w;    /* the fourth axis' period (4D noise); 0: not periodic */
+    uint32_t reserved_w;  /* set to 0 */
 } udm1_noise_desc;
 
 UDM1_API void udm1_noise_desc_init(udm1_noise_desc *desc);
@@ -79,6 +82,33 @@ UDM1_API udm1_status udm1_noise_tables(const udm1_noise *noise, uint8_t *perm, d
 UDM1_API double udm1_noise_1d(const udm1_noise *noise, double x);
 UDM1_API double udm1_noise_2d(const udm1_noise *noise, double x, double y);
 UDM1_API double udm1_noise_3d(const udm1_noise *noise, double x, double y, double z);
+
+/* (1.7) 4D improved noise: the hash perm[perm[perm[perm[X] + Y] + Z] + W] of each of the cell's 16
+ * corners, the 32 gradients of Gustavson's noise1234 (three components +-1, one 0: u = x (h < 24) or y,
+ * v = y (h < 16) or z, w = z (h < 8) or t by h = hash & 31, +-u +-v +-w), the quintic fade, scaled by
+ * 0.87 to about [-1, 1]; periodic on the axes with a period (desc.period, desc.period_w): a texture
+ * that loops in time over the fourth. Classic noise has no 4D: NaN with INVALID_ARGUMENT. NaN for a
+ * non-finite coordinate and a NULL noise, as the others. */
+UDM1_API double udm1_noise_4d(const udm1_noise *noise, double x, double y, double z, double w);
+
+/* (1.7) Noise values and their gradients at n points of `dims` (1..4) coordinates, in double or in float:
+ * coordinate c of point i is axes[c][i * stride] - packed points: axes = {p, p + 1, p + 2} and stride 3;
+ * one array per axis: stride 1. value[i] is the noise (value may be NULL); gradient[i * dims + c] its
+ * derivative along axis c (gradient may be NULL; not both): the derivative of the same interpolation,
+ * analytic, whose value is value[i] bit for bit.
+ *  - double: udm1_noise_1d..4d's values, bit for bit, in every kernel.
+ *  - float: float coordinates and float arithmetic, the same operations as the double code, so as
+ *    accurate as a float can be: the lattice cell and the offset in it are exact for every finite
+ *    float (far from the origin the offset keeps a float's precision, as the double path keeps a
+ *    double's), and every kernel (AVX-512 with 16 lanes, AVX2 with 8, the scalar code) gives the same
+ *    bits.
+ * Errors: NULL_ARGUMENT (noise, axes or an axis, value and gradient both), INVALID_ARGUMENT (dims, stride
+ * 0, 4D classic noise, a non-finite coordinate: the message names the point; the outputs are then
+ * unspecified). */
+UDM1_API udm1_status udm1_noise_eval(const udm1_noise *noise, uint32_t dims, const double *const axes[], size_t stride,
+                                     size_t n, double *value, double *gradient);
+UDM1_API udm1_status udm1_noise_eval_f32(const udm1_noise *noise, uint32_t dims, const float *const axes[],
+                                         size_t stride, size_t n, float *value, float *gradient);
 
 /* Noise values at n points of `dims` (1, 2 or 3) coordinates, point i at
  * xyz[i * stride]. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (dims, stride < dims,

@@ -151,10 +151,14 @@ udm1_status udm1_noise_create(const udm1_noise_desc *caller_desc, udm1_noise **o
         if (desc->period[a] > (1u << 30))
             return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.period[%d] = %u is above 2^30", fn, a,
                              desc->period[a]);
+    if (desc->period_w > (1u << 30) || desc->reserved_w)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: desc.period_w = %u is above 2^30 (or reserved_w is not 0)", fn,
+                         desc->period_w);
     udm1_noise *n = calloc(1, sizeof *n);
     if (!n) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory", fn);
     n->kind = desc->kind;
     memcpy(n->period, desc->period, sizeof n->period);
+    n->period_w = desc->period_w;
     udm1_status st = UDM1_OK;
     if (!desc->table || strcmp(desc->table, "perlin") == 0) {
         memcpy(n->perm, PERLIN, 256);
@@ -224,121 +228,6 @@ udm1_status udm1_noise_tables(const udm1_noise *noise, uint8_t *perm, double *gr
     return UDM1_OK;
 }
 
-/* ---- the lattice ---- */
-
-/* floor of a finite double, fast where it fits an int64 (exact both ways) */
-static inline double fast_floor(double x)
-{
-    if (fabs(x) < 0x1p52) {
-        double t = (double)(int64_t)x;
-        return t > x ? t - 1.0 : t;
-    }
-    return x; /* |x| >= 2^52: x is an integer */
-}
-
-/* Cell of x on one axis: lattice indices of the two corners (wrapped by the
- * period, then to 0..255) and the offset t in [0, 1). Exact for every finite x. */
-static inline void cell(double x, uint32_t period, int *i0, int *i1, double *t)
-{
-    double f = fast_floor(x);
-    *t = (x - f) + 0.0; /* exact; + 0.0 turns the -0.0 of x = -0.0 into +0.0, as Perlin's x - floor(x) */
-    if (UDM1_UNLIKELY(period)) {
-        double m = fmod(f, (double)period); /* exact */
-        if (m < 0) m += period;
-        uint32_t a = (uint32_t)m, b = a + 1 == period ? 0 : a + 1;
-        *i0 = (int)(a & 255u);
-        *i1 = (int)(b & 255u);
-    } else {
-        double m = fabs(f) < 0x1p62 ? f : fmod(f, 256.0);
-        int a = (int)((int64_t)m & 255);
-        *i0 = a;
-        *i1 = (a + 1) & 255;
-    }
-}
-
-static inline double fade5(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
-static inline double fade3(double t) { return t * t * (3 - 2 * t); }
-static inline double lerp(double t, double a, double b) { return a + t * (b - a); }
-
-static inline double dot3(const udm1_noise *n, int h, double x, double y, double z)
-{
-    if (n->kind == UDM1_NOISE_IMPROVED) {
-        const double c[3] = {x, y, z};
-        const udm1_pick *k = &n->pick3[h];
-        return k->su * c[k->iu] + k->sv * c[k->iv];
-    }
-    const double *g = n->g3[h];
-    return g[0] * x + g[1] * y + g[2] * z;
-}
-
-double udm1_noise_3d(const udm1_noise *n, double x, double y, double z)
-{
-    /* NaN or infinite; each on its own: a sum of huge finite coordinates would overflow (found by fuzzing) */
-    if (UDM1_UNLIKELY(!n)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_noise_3d: noise is NULL"), NAN;
-    if (UDM1_UNLIKELY(!(fabs(x) < INFINITY && fabs(y) < INFINITY && fabs(z) < INFINITY))) return NAN;
-    int X0, X1, Y0, Y1, Z0, Z1;
-    cell(x, n->period[0], &X0, &X1, &x);
-    cell(y, n->period[1], &Y0, &Y1, &y);
-    cell(z, n->period[2], &Z0, &Z1, &z);
-    double u, v, w;
-    if (n->kind == UDM1_NOISE_CLASSIC) {
-        u = fade3(x);
-        v = fade3(y);
-        w = fade3(z);
-    } else {
-        u = fade5(x);
-        v = fade5(y);
-        w = fade5(z);
-    }
-    const uint8_t *p = n->perm;
-    int A = p[X0] + Y0, B = p[X1] + Y0, A1 = p[X0] + Y1, B1 = p[X1] + Y1;
-    int AA = p[A] + Z0, AB = p[A1] + Z0, BA = p[B] + Z0, BB = p[B1] + Z0;
-    int AA1 = p[A] + Z1, AB1 = p[A1] + Z1, BA1 = p[B] + Z1, BB1 = p[B1] + Z1;
-    return lerp(w,
-                lerp(v, lerp(u, dot3(n, p[AA], x, y, z), dot3(n, p[BA], x - 1, y, z)),
-                     lerp(u, dot3(n, p[AB], x, y - 1, z), dot3(n, p[BB], x - 1, y - 1, z))),
-                lerp(v, lerp(u, dot3(n, p[AA1], x, y, z - 1), dot3(n, p[BA1], x - 1, y, z - 1)),
-                     lerp(u, dot3(n, p[AB1], x, y - 1, z - 1), dot3(n, p[BB1], x - 1, y - 1, z - 1))));
-}
-
-static inline double dot2(const udm1_noise *n, int h, double x, double y)
-{
-    if (n->kind == UDM1_NOISE_IMPROVED) { /* noise1234: +-u +-2v, u = x (h & 7 < 4) or y */
-        const double c[2] = {x, y};
-        const udm1_pick *k = &n->pick2[h];
-        return k->su * c[k->iu] + k->sv * c[k->iv];
-    }
-    const double *g = n->g2[h];
-    return g[0] * x + g[1] * y;
-}
-
-double udm1_noise_2d(const udm1_noise *n, double x, double y)
-{
-    if (UDM1_UNLIKELY(!n)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_noise_2d: noise is NULL"), NAN;
-    if (UDM1_UNLIKELY(!(fabs(x) < INFINITY && fabs(y) < INFINITY))) return NAN;
-    int X0, X1, Y0, Y1;
-    cell(x, n->period[0], &X0, &X1, &x);
-    cell(y, n->period[1], &Y0, &Y1, &y);
-    int classic = n->kind == UDM1_NOISE_CLASSIC;
-    double u = classic ? fade3(x) : fade5(x), v = classic ? fade3(y) : fade5(y);
-    const uint8_t *p = n->perm;
-    double scale = classic ? 1.0 : 0.507; /* noise1234's range scale */
-    return scale * lerp(v, lerp(u, dot2(n, p[p[X0] + Y0], x, y), dot2(n, p[p[X1] + Y0], x - 1, y)),
-                        lerp(u, dot2(n, p[p[X0] + Y1], x, y - 1), dot2(n, p[p[X1] + Y1], x - 1, y - 1)));
-}
-
-double udm1_noise_1d(const udm1_noise *n, double x)
-{
-    if (UDM1_UNLIKELY(!n)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_noise_1d: noise is NULL"), NAN;
-    if (UDM1_UNLIKELY(!(fabs(x) < INFINITY))) return NAN;
-    int X0, X1;
-    cell(x, n->period[0], &X0, &X1, &x);
-    int classic = n->kind == UDM1_NOISE_CLASSIC;
-    double u = classic ? fade3(x) : fade5(x);
-    double scale = classic ? 1.0 : 0.188; /* noise1234's range scale */
-    return scale * lerp(u, n->g1[n->perm[X0]] * x, n->g1[n->perm[X1]] * (x - 1));
-}
-
 udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *xyz, size_t count, size_t stride,
                               double *out)
 {
@@ -354,8 +243,7 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
         for (uint32_t c = 0; c < dims; ++c)
             if (!isfinite(q[c]))
                 return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, c);
-        out[i] = dims == 3 ? udm1_noise_3d(n, q[0], q[1], q[2]) : dims == 2 ? udm1_noise_2d(n, q[0], q[1])
-                                                                            : udm1_noise_1d(n, q[0]);
+        out[i] = udm1_lattice_f64(n, dims, q, NULL);
     }
     return UDM1_OK;
 }

@@ -11,6 +11,7 @@ typedef struct udm1_pick { uint8_t iu, iv; double su, sv; } udm1_pick; /* +-c[iu
 struct udm1_noise {
     uint32_t kind;
     uint32_t period[3];
+    uint32_t period_w;        /* the fourth axis' */
     uint8_t perm[512];        /* the permutation, twice */
     double grad[256][3];      /* the table's unit gradients */
     int32_t pair[512];        /* perm[k] | perm[k + 1] << 8: a corner's hashes at z and z + 1 in one load */
@@ -28,5 +29,15 @@ struct udm1_noise {
 /* The vector path of udm1_noise_points (noise_simd.c): how many leading points it computed. */
 UDM1_HIDDEN size_t udm1_noise_points_fast(const struct udm1_noise *n, uint32_t dims, const double *xyz, size_t count,
                                           size_t stride, double *out);
+/* The vector paths of udm1_noise_eval and udm1_noise_eval_f32 (noise_simd.c, noise_simd_f32.c): how many
+ * leading points they computed (they stop before a group with a non-finite coordinate). */
+UDM1_HIDDEN size_t udm1_noise_eval_fast_f64(const struct udm1_noise *n, uint32_t dims, const double *const *axes,
+                                            size_t stride, size_t count, double *value, double *gradient);
+UDM1_HIDDEN size_t udm1_noise_eval_fast_f32(const struct udm1_noise *n, uint32_t dims, const float *const *axes,
+                                            size_t stride, size_t count, float *value, float *gradient);
+/* The scalar references (lattice.c): the noise of dims (1..4) coordinates c, and its gradient into grad
+ * (dims values) unless grad is NULL. c must be finite. */
+UDM1_HIDDEN double udm1_lattice_f64(const struct udm1_noise *n, uint32_t dims, const double *c, double *grad);
+UDM1_HIDDEN float udm1_lattice_f32(const struct udm1_noise *n, uint32_t dims, const float *c, float *grad);
 
 #endif /* UDM1_NOISE_TABLES_H */
