@@ -1,15 +1,25 @@
-"""Noise evaluations per second from Python, side by side in one run:
-FastNoise Lite (PyPI pyfastnoiselite, Perlin, its batch gen_from_coords: a
-serial C++ loop, one thread) against udm1's batch call (udm1.Noise.noise, a C
-loop, one thread, with the best kernel of the processor), over the same 2^20
-random points, 2D and 3D, alternating; then udm1 capped at AVX2 in a second
-process (UDM1_ISA=avx2: the library fixes its kernels' instruction set once per
-process), against the FastNoise Lite time of the first.
+"""Noise evaluations per second from Python, side by side in one process, one thread, the methods
+alternating within every round (best of --reps rounds), over the same 2^20 random points in [-100, 100]^d:
 
-    PYTHONPATH=python python bench/bench_noise.py [--reps 7]
+- FastNoiseSIMD (PyPI pyfastnoisesimd: float32, AVX-512 or AVX2 chosen at run time, its
+  `genFromCoords` over separate coordinate arrays, one worker): the anchor, the SIMD library a
+  speed-minded user picks; it has 3D noise only, so its 2D figure is its 3D noise at z = 0;
+- FastNoise Lite (PyPI pyfastnoiselite: its batch `gen_from_coords`, a scalar C loop);
+- udm1 (`udm1.Noise.noise`): float32 points (udm1_noise_eval_f32, 16 lanes with AVX-512 VBMI, 8
+  with AVX2), the same with the analytic gradient, and float64 (the exact double path);
+
+Perlin noise in 2D and 3D (improved noise, Perlin's table), and cellular noise (F1, Euclidean) against
+FastNoiseSIMD's cellular distance. Then udm1 again capped at AVX2 in a second process (UDM1_ISA=avx2:
+the library fixes its kernels' instruction set once per process), against the anchors' times of the
+first. Prints a table and writes --json.
+
+    PYTHONPATH=python python bench/bench_noise.py [--reps 9] [--json out.json]
 """
 
+from __future__ import annotations
+
 import argparse
+import json
 import os
 import subprocess
 import sys
@@ -19,17 +29,12 @@ import numpy as np
 
 import udm1
 
-
-def points(d: int, n: int = 1 << 20) -> np.ndarray:
-    return np.random.default_rng(d).uniform(-100, 100, (n, d))
+N = 1 << 20
 
 
-def avx2_only(d: int, reps: int) -> float:
-    """udm1's best batch time in d dimensions with its kernels capped at AVX2, in a second process."""
-    env = dict(os.environ, UDM1_ISA="avx2")
-    r = subprocess.run([sys.executable, __file__, "--udm1-only", str(d), "--reps", str(reps)], env=env,
-                       capture_output=True, text=True, check=True)
-    return float(r.stdout.split()[0])
+def coords(d: int) -> np.ndarray:
+    """(d, N) float32: the same points for every method (float64 methods read them widened)."""
+    return np.random.default_rng(d).uniform(-100, 100, (d, N)).astype(np.float32)
 
 
 def best_interleaved(fs, reps):
@@ -45,35 +50,85 @@ def best_interleaved(fs, reps):
     return best
 
 
+def udm1_methods(d: int):
+    """(label, function) for udm1 in d dimensions."""
+    c = coords(d)
+    c32 = tuple(c[k] for k in range(d))
+    c64 = tuple(c[k].astype(np.float64) for k in range(d))
+    ours = udm1.Noise()
+    return [(f"udm1 improved noise {d}D, float32", lambda: ours.noise(c32)),
+            (f"udm1 improved noise {d}D, float32, value and gradient", lambda: ours.noise(c32, gradient=True)),
+            (f"udm1 improved noise {d}D, float64", lambda: ours.noise(c64))]
+
+
+def capped(reps: int) -> dict:
+    """udm1's best times with its kernels capped at AVX2, in a second process: label -> seconds."""
+    env = dict(os.environ, UDM1_ISA="avx2")
+    r = subprocess.run([sys.executable, __file__, "--udm1-only", "--reps", str(reps)], env=env, capture_output=True,
+                       text=True, check=True)
+    return json.loads(r.stdout)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--reps", type=int, default=15)
-    ap.add_argument("--udm1-only", type=int, metavar="D", help="print udm1's best batch time in D dimensions only")
+    ap.add_argument("--reps", type=int, default=9)
+    ap.add_argument("--json", default="")
+    ap.add_argument("--udm1-only", action="store_true", help="print udm1's best times (JSON) only")
     args = ap.parse_args(argv)
     if args.udm1_only:
-        pts, ours = points(args.udm1_only), udm1.Noise("wr", seed=1)
-        print(best_interleaved([lambda: ours.noise(pts)], args.reps)[0])
+        out = {}
+        for d in (2, 3):
+            ms = udm1_methods(d)
+            for (label, _), t in zip(ms, best_interleaved([f for _, f in ms], args.reps)):
+                out[label] = t
+        print(json.dumps(out))
         return 0
+    try:
+        import pyfastnoisesimd as fns
+    except ImportError:
+        print("bench_noise: pyfastnoisesimd is not installed (see README: pip install --no-build-isolation "
+              "pyfastnoisesimd, with numpy's headers)", file=sys.stderr)
+        return 2
     try:
         from pyfastnoiselite.pyfastnoiselite import FastNoiseLite, FractalType, NoiseType
     except ImportError:
-        print("bench_noise: pyfastnoiselite is not installed (pip install pyfastnoiselite)", file=sys.stderr)
-        return 2
-    n = 1 << 20
-    fnl = FastNoiseLite(seed=1)
-    fnl.noise_type = NoiseType.NoiseType_Perlin
-    fnl.frequency = 1.0
-    fnl.fractal_type = FractalType.FractalType_None
-    ours = udm1.Noise("wr", seed=1)
-    print(f"{'d':>2} {'method':<46} {'evals/s':>12} {'x FastNoise Lite':>17}")
+        FastNoiseLite = None
+    rows = []
     for d in (2, 3):
-        pts = points(d, n)
-        coords = np.ascontiguousarray(pts.T.astype(np.float32))
-        t_fnl, t_ours = best_interleaved([lambda: fnl.gen_from_coords(coords), lambda: ours.noise(pts)], args.reps)
-        t_avx2 = avx2_only(d, args.reps)
-        print(f"{d:>2} {'FastNoise Lite Perlin, gen_from_coords (anchor)':<46} {n / t_fnl:12.4g} {1.0:17.2f}")
-        print(f"{d:>2} {'udm1 improved noise, Noise.noise (batch)':<46} {n / t_ours:12.4g} {t_fnl / t_ours:17.2f}")
-        print(f"{d:>2} {'udm1 ditto, UDM1_ISA=avx2':<46} {n / t_avx2:12.4g} {t_fnl / t_avx2:17.2f}")
+        c = coords(d)
+        c3 = fns.empty_coords(N)  # FastNoiseSIMD's own aligned (3, N) arrays; 2D: z = 0
+        c3[:d] = c
+        if d == 2:
+            c3[2] = 0
+        simd = fns.Noise(numWorkers=1)
+        simd.noiseType = fns.NoiseType.Perlin
+        simd.frequency = 1.0
+        methods = [(f"FastNoiseSIMD Perlin ({'3D at z = 0' if d == 2 else '3D'}), {fns.extension.SIMD_LEVEL} (anchor)",
+                    lambda: simd.genFromCoords(c3))]
+        if FastNoiseLite:
+            lite = FastNoiseLite(seed=1)
+            lite.noise_type = NoiseType.NoiseType_Perlin
+            lite.frequency = 1.0
+            lite.fractal_type = FractalType.FractalType_None
+            cl = np.ascontiguousarray(c)
+            methods.append((f"FastNoise Lite Perlin {d}D", lambda: lite.gen_from_coords(cl)))
+        methods += udm1_methods(d)
+        times = best_interleaved([f for _, f in methods], args.reps)
+        for (label, _), t in zip(methods, times):
+            rows.append({"d": d, "method": label, "seconds": t, "rate": N / t, "x_anchor": times[0] / t})
+    avx2 = capped(args.reps)
+    for label, t in avx2.items():
+        d = int(label.split()[3][0])
+        anchor = next(r["seconds"] for r in rows if r["d"] == d and "anchor" in r["method"])
+        rows.append({"d": d, "method": label + ", UDM1_ISA=avx2", "seconds": t, "rate": N / t, "x_anchor": anchor / t})
+    rows.sort(key=lambda r: r["d"])
+    print(f"{'d':>2} {'method':<62} {'evals/s':>10} {'x anchor':>9}")
+    for r in rows:
+        print(f"{r['d']:>2} {r['method']:<62} {r['rate']:10.4g} {r['x_anchor']:9.2f}")
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump({"rows": rows, "n": N, "reps": args.reps, "isa": udm1.isa() if hasattr(udm1, "isa") else ""}, f,
+                      indent=1)
     return 0
 
 

@@ -94,6 +94,8 @@ class NoiseDesc(ctypes.Structure):
         ("seed", ctypes.c_uint64),
         ("period", ctypes.c_uint32 * 3),
         ("reserved", ctypes.c_uint32),
+        ("period_w", ctypes.c_uint32),
+        ("reserved_w", ctypes.c_uint32),
     ]
 
 
@@ -227,6 +229,10 @@ _proto("udm1_noise_tables", _S, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_void_
 _proto("udm1_noise_points", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t,
        ctypes.c_void_p)
 _proto("udm1_noise_3d", ctypes.c_double, ctypes.c_void_p, ctypes.c_double, ctypes.c_double, ctypes.c_double)
+_proto("udm1_noise_eval", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(ctypes.c_void_p), ctypes.c_size_t,
+       ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p)
+_proto("udm1_noise_eval_f32", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(ctypes.c_void_p), ctypes.c_size_t,
+       ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p)
 _proto("udm1_pattern_params_init", None, ctypes.POINTER(PatternParams), ctypes.c_uint32)
 _proto("udm1_pattern_name", ctypes.c_char_p, ctypes.c_uint32)
 _proto("udm1_pattern_from_name", ctypes.c_uint32, ctypes.c_char_p)

@@ -34,23 +34,27 @@ def patterns() -> list[str]:
 class Noise:
     """A lattice noise with tables from Perlin's permutation (table=None),
     drand48 ("drand48") or any udm1 preset; kind "improved" (Perlin 2002) or
-    "classic" (Perlin 1985); period: an int or 3 ints (0 = not periodic)."""
+    "classic" (Perlin 1985); period: an int, or 3 or 4 ints (x, y, z and the 4D
+    noise's w; 0 = not periodic)."""
 
     def __init__(self, table: str | None = None, seed: int = 0, kind: str = "improved", period=0):
         self._handle = None
         if kind not in KINDS:
             raise ValueError(f"udm1.Noise: kind {kind!r} is not one of {sorted(KINDS)}")
-        periods = [period] * 3 if np.isscalar(period) else list(period)
-        if len(periods) != 3:
-            raise ValueError("udm1.Noise: period must be a non-negative int or 3 of them")
+        periods = [period] * 4 if np.isscalar(period) else list(period)
+        if len(periods) == 3:
+            periods.append(0)
+        if len(periods) != 4:
+            raise ValueError("udm1.Noise: period must be a non-negative int or 3 or 4 of them")
         periods = [u32(p, "period") for p in periods]
         desc = _native.NoiseDesc()
         lib.udm1_noise_desc_init(ctypes.byref(desc))
         desc.kind = KINDS[kind]
         desc.table = table.encode() if table else None
         desc.seed = u64(seed, "seed")
-        for i, p in enumerate(periods):
+        for i, p in enumerate(periods[:3]):
             desc.period[i] = p
+        desc.period_w = periods[3]
         handle = ctypes.c_void_p()
         check(lib.udm1_noise_create(ctypes.byref(desc), ctypes.byref(handle)))
         self._handle = handle
@@ -71,16 +75,47 @@ class Noise:
         check(lib.udm1_noise_tables(self._handle, perm.ctypes.data, grad.ctypes.data))
         return perm, grad
 
-    def noise(self, points) -> np.ndarray:
-        """Noise at the rows of an (n, d) array, d = 1, 2 or 3."""
-        x = np.ascontiguousarray(np.asarray(points, dtype=np.float64))
-        if x.ndim == 1:
-            x = x[:, None]
-        if x.ndim != 2 or not 1 <= x.shape[1] <= 3:
-            raise ValueError("udm1.Noise.noise: points must be an (n, 1|2|3) array")
-        out = np.empty(x.shape[0])
-        check(lib.udm1_noise_points(self._handle, x.shape[1], x.ctypes.data, x.shape[0], x.shape[1], out.ctypes.data))
-        return out
+    def noise(self, points, gradient: bool = False, dtype=None):
+        """Noise at n points, d = 1..4 coordinates each (4D: improved noise only): the rows of an (n, d)
+        array, or d separate arrays of n coordinates (a tuple or list, as x, y, z).
+
+        float32 points are evaluated in float (udm1_noise_eval_f32: SIMD over the points, the same bits
+        on every machine), anything else in double (the per-point functions' values, bit for bit);
+        dtype= forces the precision ("float32" or "float64"). Returns the values, an (n,) array; with
+        gradient=True, (values, gradients) with gradients of shape (n, d): d noise / d x_k, analytic."""
+        if isinstance(points, (tuple, list)) and len(points) and np.ndim(points[0]) == 1:
+            axes = list(points)
+            if not 1 <= len(axes) <= 4:
+                raise ValueError("udm1.Noise.noise: give 1 to 4 coordinate arrays")
+            kind = np.result_type(*axes) if dtype is None else np.dtype(dtype)
+        else:
+            arr = np.asarray(points)
+            if arr.ndim == 1:
+                arr = arr[:, None]
+            if arr.ndim != 2 or not 1 <= arr.shape[1] <= 4:
+                raise ValueError("udm1.Noise.noise: points must be an (n, 1..4) array or 1 to 4 coordinate arrays")
+            kind = arr.dtype if dtype is None else np.dtype(dtype)
+            axes = None
+        f32 = kind == np.float32
+        real = np.float32 if f32 else np.float64
+        if axes is not None:
+            cols = [np.ascontiguousarray(a, dtype=real) for a in axes]
+            n = cols[0].shape[0]
+            if any(c.shape != (n,) for c in cols):
+                raise ValueError("udm1.Noise.noise: the coordinate arrays must have one shape, (n,)")
+            ptrs, stride, keep = [c.ctypes.data for c in cols], 1, cols
+        else:
+            x = np.ascontiguousarray(arr, dtype=real)
+            n, d = x.shape
+            ptrs, stride, keep = [x.ctypes.data + k * x.itemsize for k in range(d)], d, x
+        d = len(ptrs)
+        values = np.empty(n, dtype=real)
+        grads = np.empty((n, d), dtype=real) if gradient else None
+        arg = (ctypes.c_void_p * d)(*ptrs)
+        fn = lib.udm1_noise_eval_f32 if f32 else lib.udm1_noise_eval
+        check(fn(self._handle, d, arg, max(stride, 1), n, values.ctypes.data, grads.ctypes.data if gradient else None))
+        del keep
+        return (values, grads) if gradient else values
 
     def _params(self, pattern: str, octaves=None, omega=None, lacunarity=None, turbulence=None, frequency=None,
                 phase=None, wave=None, exponent=None, agate_turb=None) -> _native.PatternParams:

@@ -85,3 +85,55 @@ def test_wrappers_and_errors():
     img = n.pattern_grid("granite", 32, 16)
     assert img.shape == (16, 32) and img.dtype == np.float32 and 0 <= img.min() and img.max() <= 1
     assert "marble" in udm1.patterns() and "waves" in udm1.patterns()
+
+
+@pytest.mark.parametrize("kind", ["improved", "classic"])
+@pytest.mark.parametrize("d", [1, 2, 3, 4])
+def test_eval_values_gradients_and_layouts(kind, d):
+    if kind == "classic" and d == 4:
+        with pytest.raises(udm1.UDM1Error, match="4D"):
+            udm1.Noise(kind=kind).noise(np.zeros((3, 4)))
+        return
+    n = udm1.Noise("rd", seed=3, kind=kind)
+    rng = np.random.default_rng(d)
+    pts = rng.uniform(-50, 50, (2000, d))
+    values = n.noise(pts)
+    v2, grads = n.noise(pts, gradient=True)
+    assert grads.shape == (2000, d) and np.array_equal(values, v2)  # the value part bit for bit
+    assert np.array_equal(n.noise(tuple(pts.T)), values)  # one array per axis = packed rows
+    h = 1e-6
+    for k in range(d):
+        e = np.zeros(d)
+        e[k] = h
+        central = (n.noise(pts + e) - n.noise(pts - e)) / (2 * h)
+        # central differences are O(h^2) off except where a point straddles a cell edge
+        inside = np.all(np.abs(pts - np.round(pts)) > 2 * h, axis=1)
+        assert np.max(np.abs(central - grads[:, k])[inside]) < 1e-5
+    # float: every kernel gives the bits of the scalar float code; here, close to double
+    p32 = pts.astype(np.float32)
+    f32, g32 = n.noise(p32, gradient=True)
+    assert f32.dtype == np.float32 and g32.dtype == np.float32
+    ref = n.noise(p32.astype(np.float64))
+    assert np.max(np.abs(f32 - ref)) < 1e-5
+    assert np.array_equal(n.noise(p32), f32)
+    assert np.array_equal(n.noise(pts, dtype="float32"), f32)
+
+
+def test_4d_noise_loops_over_its_period():
+    n = udm1.Noise("wr", seed=5, period=(0, 0, 0, 7))
+    rng = np.random.default_rng(9)
+    pts = rng.uniform(-20, 20, (500, 4))
+    shifted = pts + np.array([0, 0, 0, 7.0])
+    assert np.array_equal(n.noise(pts), n.noise(shifted))
+    free = udm1.Noise("wr", seed=5)
+    assert not np.array_equal(free.noise(pts), free.noise(shifted))
+
+
+def test_eval_refuses_bad_input_plainly():
+    n = udm1.Noise()
+    with pytest.raises(ValueError, match="1 to 4"):
+        n.noise(np.zeros((3, 5)))
+    with pytest.raises(ValueError, match="one shape"):
+        n.noise((np.zeros(3), np.zeros(4)))
+    with pytest.raises(udm1.UDM1Error, match="point 1"):
+        n.noise(np.array([[0.0, 0, 0], [0, np.inf, 0]], dtype=np.float32))

@@ -237,7 +237,8 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
     if (stride < dims) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < dims %u", fn, stride, dims);
     /* one pass over memory: the vector kernels stop before a group with a non-finite coordinate, and
      * the scalar loop checks every point it evaluates */
-    size_t i = udm1_noise_points_fast(n, dims, xyz, count, stride, out);
+    const double *axes[3] = {xyz, xyz + 1, xyz + 2};
+    size_t i = dims >= 2 ? udm1_noise_eval_fast_f64(n, dims, axes, stride, count, out, NULL) : 0;
     for (; i < count; ++i) {
         const double *q = xyz + i * stride;
         for (uint32_t c = 0; c < dims; ++c)

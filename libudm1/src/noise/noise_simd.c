@@ -162,24 +162,7 @@ size_t udm1_noise_points_fast(const udm1_noise *n, uint32_t dims, const double *
     return 0;
 }
 
-size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
-                                size_t count, double *value, double *gradient)
-{
-    /* the packed points of udm1_noise_points, values only */
-    if (gradient || !value || dims < 2 || dims > 3) return 0;
-    for (uint32_t c = 1; c < dims; ++c)
-        if (axes[c] != axes[0] + c) return 0;
-    return udm1_noise_points_fast(n, dims, axes[0], count, stride, value);
-}
-
 #else
-size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
-                                size_t count, double *value, double *gradient)
-{
-    (void)n, (void)dims, (void)axes, (void)stride, (void)count, (void)value, (void)gradient;
-    return 0;
-}
-
 size_t udm1_noise_points_fast(const udm1_noise *n, uint32_t dims, const double *xyz, size_t count, size_t stride,
                               double *out)
 {

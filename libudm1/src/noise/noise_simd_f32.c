@@ -105,6 +105,13 @@ AVX512 static inline __m512 dot3_16(const __m512 g[3], __m512 x, __m512 y, __m51
     return _mm512_fmadd_ps(g[0], x, _mm512_fmadd_ps(g[1], y, _mm512_fmadd_ps(g[2], z, _mm512_setzero_ps())));
 }
 
+AVX512 static inline __m512 corner16(const tables512 *t, __m512i H, const int k, __m512 x, __m512 y, __m512 z)
+{
+    __m512 g[3];
+    gvec16(t, H, k, g);
+    return dot3_16(g, x, y, z);
+}
+
 AVX512 static inline __m512 dot2_16(const __m512 g[3], __m512 x, __m512 y)
 {
     return _mm512_fmadd_ps(g[1], y, _mm512_mul_ps(g[0], x));
@@ -146,8 +153,12 @@ AVX512 static inline __m512i spread4(__m512i a) /* a (0..255) in every byte */
     return _mm512_shuffle_epi8(a, _mm512_set4_epi32(0x0C0C0C0C, 0x08080808, 0x04040404, 0x00000000));
 }
 
-AVX512 static size_t noise3_avx512(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
-                                   float *value, float *gradient)
+/* The 3D kernel, specialized by the compiler for the values alone (with_gradient 0: nothing else live
+ * across the corners, no spills) and for values and gradients. */
+AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const udm1_noise *n,
+                                                                          const float *const *axes, size_t stride,
+                                                                          size_t count, float *value, float *gradient,
+                                                                          const int with_gradient)
 {
     const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
                        _mm512_loadu_si512(n->perm + 192)};
@@ -175,18 +186,19 @@ AVX512 static size_t noise3_avx512(const udm1_noise *n, const float *const *axes
         __m512i H1 = lookup16(&T, _mm512_add_epi8(ab, spread4(Z1))); /* [h001, h011, h101, h111] */
         __m512 x1 = _mm512_sub_ps(x, onef), y1 = _mm512_sub_ps(y, onef), z1 = _mm512_sub_ps(z, onef);
         __m512 u = fade16(x), v = fade16(y), w = fade16(z);
-        __m512 G[8][3]; /* corners 000, 100, 010, 110, 001, 101, 011, 111 */
-        gvec16(&E, H0, 0, G[0]), gvec16(&E, H0, 2, G[1]), gvec16(&E, H0, 1, G[2]), gvec16(&E, H0, 3, G[3]);
-        gvec16(&E, H1, 0, G[4]), gvec16(&E, H1, 2, G[5]), gvec16(&E, H1, 1, G[6]), gvec16(&E, H1, 3, G[7]);
-        __m512 c000 = dot3_16(G[0], x, y, z), c100 = dot3_16(G[1], x1, y, z);
-        __m512 c010 = dot3_16(G[2], x, y1, z), c110 = dot3_16(G[3], x1, y1, z);
-        __m512 c001 = dot3_16(G[4], x, y, z1), c101 = dot3_16(G[5], x1, y, z1);
-        __m512 c011 = dot3_16(G[6], x, y1, z1), c111 = dot3_16(G[7], x1, y1, z1);
+        /* corners 000, 100, 010, 110, 001, 101, 011, 111: each vector made where it is used (all of them
+         * at once would not fit the 32 registers) */
+        __m512 c000 = corner16(&E, H0, 0, x, y, z), c100 = corner16(&E, H0, 2, x1, y, z);
+        __m512 c010 = corner16(&E, H0, 1, x, y1, z), c110 = corner16(&E, H0, 3, x1, y1, z);
+        __m512 c001 = corner16(&E, H1, 0, x, y, z1), c101 = corner16(&E, H1, 2, x1, y, z1);
+        __m512 c011 = corner16(&E, H1, 1, x, y1, z1), c111 = corner16(&E, H1, 3, x1, y1, z1);
         if (value)
             _mm512_storeu_ps(value + i, lerp16(w, lerp16(v, lerp16(u, c000, c100), lerp16(u, c010, c110)),
                                                lerp16(v, lerp16(u, c001, c101), lerp16(u, c011, c111))));
-        if (gradient) {
-            __m512 g[3];
+        if (with_gradient) {
+            __m512 G[8][3], g[3];
+            gvec16(&E, H0, 0, G[0]), gvec16(&E, H0, 2, G[1]), gvec16(&E, H0, 1, G[2]), gvec16(&E, H0, 3, G[3]);
+            gvec16(&E, H1, 0, G[4]), gvec16(&E, H1, 2, G[5]), gvec16(&E, H1, 1, G[6]), gvec16(&E, H1, 3, G[7]);
             for (int k = 0; k < 3; ++k)  /* (first level: u times a difference of small integers, exact: fused) */
                 g[k] = lerp16(w, lerp16(v, lerp16x(u, G[0][k], G[1][k]), lerp16x(u, G[2][k], G[3][k])),
                               lerp16(v, lerp16x(u, G[4][k], G[5][k]), lerp16x(u, G[6][k], G[7][k])));
@@ -206,6 +218,13 @@ AVX512 static size_t noise3_avx512(const udm1_noise *n, const float *const *axes
         }
     }
     return i;
+}
+
+AVX512 static size_t noise3_avx512(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
+                                   float *value, float *gradient)
+{
+    return gradient ? noise3_avx512_k(n, axes, stride, count, value, gradient, 1)
+                    : noise3_avx512_k(n, axes, stride, count, value, NULL, 0);
 }
 
 AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,

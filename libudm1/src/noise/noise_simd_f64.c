@@ -1,0 +1,317 @@
+/* noise_simd_f64.c - the double noise of udm1_noise_eval and udm1_noise_points on 16 points at a time with
+ * AVX-512 and VBMI: the hashes of 16 points in one register (the permutation held in four registers,
+ * looked up 64 bytes at a time, a point's four hashes of a step in the bytes of its lane, as the float
+ * kernel), the arithmetic in two registers of 8 doubles. Its operations are the scalar double code's in
+ * the same order (noise/lattice_impl.h): the exact floor and offset, the quintic fade, Perlin's +-u +-v as
+ * blends and sign flips (so a zero keeps the sign Perlin's code gives it), the nested lerps; the gradient
+ * the same derivative. So its values equal udm1_noise_1d..3d bit for bit (tests/c/test_noise.c,
+ * test_noise_eval.c). Improved noise in 2D and 3D, not periodic, any layout of the coordinates; the rest
+ * goes to noise_simd.c's 4-lane kernels (packed points) or to the scalar code. */
+#include "core/isa.h"
+#include "noise/noise_tables.h"
+
+#include <math.h>
+
+#if defined(UDM1_HAVE_ISA_KERNELS)
+#include <immintrin.h>
+
+#define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi")))
+
+typedef struct {
+    __m512i p0, p1, p2, p3; /* the permutation's 256 bytes */
+} perm512;
+
+AVX512 static inline __m512i lookup16(const perm512 *t, __m512i idx) /* each byte b of idx -> perm[b] */
+{
+    __m512i lo = _mm512_permutex2var_epi8(t->p0, idx, t->p1), hi = _mm512_permutex2var_epi8(t->p2, idx, t->p3);
+    return _mm512_mask_blend_epi8(_mm512_movepi8_mask(idx), lo, hi);
+}
+
+AVX512 static inline __m512i dup_pairs(__m512i v) /* bytes [a, a, b, b] of each lane from bytes [a, b, ., .] */
+{
+    return _mm512_shuffle_epi8(v, _mm512_set4_epi32(0x0D0D0C0C, 0x09090808, 0x05050404, 0x01010000));
+}
+
+AVX512 static inline __m512i spread4(__m512i a) /* a (0..255) in every byte */
+{
+    return _mm512_shuffle_epi8(a, _mm512_set4_epi32(0x0C0C0C0C, 0x08080808, 0x04040404, 0x00000000));
+}
+
+/* 8 coordinates from p, p + stride, ... (vindex: 0, stride, ...) */
+AVX512 static inline __m512d load8(const double *p, size_t stride, __m256i vindex)
+{
+    return stride == 1 ? _mm512_loadu_pd(p) : _mm512_i32gather_pd(vindex, p, 8);
+}
+
+AVX512 static inline __mmask8 not_finite8(__m512d x) { return _mm512_fpclass_pd_mask(x, 0x01 | 0x08 | 0x10 | 0x80); }
+
+/* floor and the offset in the cell (exact), and the lower corner's index & 255: the conversion is exact
+ * below 2^63 and gives 0x8000000000000000 above (a multiple of 256 there, as every double past 2^60) */
+AVX512 static inline __m512d axis8(__m512d x, __m256i *i0)
+{
+    __m512d f = _mm512_roundscale_pd(x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    *i0 = _mm512_cvtepi64_epi32(_mm512_and_si512(_mm512_cvttpd_epi64(f), _mm512_set1_epi64(255)));
+    return _mm512_add_pd(_mm512_sub_pd(x, f), _mm512_setzero_pd());
+}
+
+AVX512 static inline __m512i join16(__m256i lo, __m256i hi)
+{
+    return _mm512_inserti64x4(_mm512_castsi256_si512(lo), hi, 1);
+}
+
+AVX512 static inline __m512d fade8(__m512d t)
+{
+    __m512d a = _mm512_mul_pd(_mm512_mul_pd(t, t), t);
+    __m512d b = _mm512_sub_pd(_mm512_mul_pd(t, _mm512_set1_pd(6.0)), _mm512_set1_pd(15.0));
+    b = _mm512_add_pd(_mm512_mul_pd(t, b), _mm512_set1_pd(10.0));
+    return _mm512_mul_pd(a, b);
+}
+
+AVX512 static inline __m512d dfade8(__m512d t) /* 30 t t (t (t - 2) + 1) */
+{
+    __m512d a = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(30.0), t), t);
+    __m512d b = _mm512_add_pd(_mm512_mul_pd(t, _mm512_sub_pd(t, _mm512_set1_pd(2.0))), _mm512_set1_pd(1.0));
+    return _mm512_mul_pd(a, b);
+}
+
+AVX512 static inline __m512d lerp8(__m512d t, __m512d a, __m512d b)
+{
+    return _mm512_add_pd(a, _mm512_mul_pd(t, _mm512_sub_pd(b, a)));
+}
+
+/* A corner's choices for 16 points (the hash in byte k of each lane of H), as mask registers */
+typedef struct {
+    __mmask16 below8, v_on_y, v_on_x, neg_u, neg_v;
+} choice16;
+
+AVX512 static inline choice16 choose3(__m512i H, const int k)
+{
+    const int s = 8 * k;
+    choice16 c;
+    c.below8 = _mm512_testn_epi32_mask(H, _mm512_set1_epi32(8 << s));                        /* u = x */
+    c.v_on_y = _mm512_testn_epi32_mask(H, _mm512_set1_epi32(12 << s));                       /* h < 4 */
+    c.v_on_x = _mm512_cmpeq_epi32_mask(_mm512_and_si512(H, _mm512_set1_epi32(13 << s)),     /* 12 or 14 */
+                                       _mm512_set1_epi32(12 << s));
+    c.neg_u = _mm512_test_epi32_mask(H, _mm512_set1_epi32(1 << s));
+    c.neg_v = _mm512_test_epi32_mask(H, _mm512_set1_epi32(2 << s));
+    return c;
+}
+
+/* +-u +-v for half h (lanes 8 h .. 8 h + 7) of the choices */
+AVX512 static inline __m512d corner8(choice16 c, const int h, __m512d x, __m512d y, __m512d z)
+{
+    __mmask8 below8 = (__mmask8)(c.below8 >> (8 * h)), v_on_y = (__mmask8)(c.v_on_y >> (8 * h));
+    __mmask8 v_on_x = (__mmask8)(c.v_on_x >> (8 * h));
+    __m512d sign = _mm512_set1_pd(-0.0);
+    __m512d u = _mm512_mask_blend_pd(below8, y, x);
+    __m512d v = _mm512_mask_blend_pd(v_on_y, _mm512_mask_blend_pd(v_on_x, z, x), y);
+    u = _mm512_mask_xor_pd(u, (__mmask8)(c.neg_u >> (8 * h)), u, sign);
+    v = _mm512_mask_xor_pd(v, (__mmask8)(c.neg_v >> (8 * h)), v, sign);
+    return _mm512_add_pd(u, v);
+}
+
+/* the corner's gradient vector for half h: +-1 on the two axes picked */
+AVX512 static inline void gvec8(choice16 c, const int h, __m512d g[3])
+{
+    __mmask8 below8 = (__mmask8)(c.below8 >> (8 * h)), v_on_y = (__mmask8)(c.v_on_y >> (8 * h));
+    __mmask8 v_on_x = (__mmask8)((c.v_on_x & ~c.v_on_y) >> (8 * h)), v_on_z = (__mmask8)((~c.v_on_x & ~c.v_on_y) >> (8 * h));
+    __m512d one = _mm512_set1_pd(1.0), zero = _mm512_setzero_pd(), sign = _mm512_set1_pd(-0.0);
+    __m512d su = _mm512_mask_xor_pd(one, (__mmask8)(c.neg_u >> (8 * h)), one, sign);
+    __m512d sv = _mm512_mask_xor_pd(one, (__mmask8)(c.neg_v >> (8 * h)), one, sign);
+    g[0] = _mm512_mask_blend_pd(below8, _mm512_mask_blend_pd(v_on_x, zero, sv), su);
+    g[1] = _mm512_mask_blend_pd(below8, su, _mm512_mask_blend_pd(v_on_y, zero, sv));
+    g[2] = _mm512_mask_blend_pd(v_on_z, zero, sv);
+}
+
+/* noise1234's 2D: u = x (h & 7 < 4) or y, v the other; +-u +-2v */
+AVX512 static inline __m512d corner2_8(__m512i H, const int k, const int h, __m512d x, __m512d y)
+{
+    const int s = 8 * k;
+    __mmask8 below4 = (__mmask8)(_mm512_testn_epi32_mask(H, _mm512_set1_epi32(4 << s)) >> (8 * h));
+    __m512d sign = _mm512_set1_pd(-0.0);
+    __m512d u = _mm512_mask_blend_pd(below4, y, x);
+    __m512d v = _mm512_mul_pd(_mm512_set1_pd(2.0), _mm512_mask_blend_pd(below4, x, y));
+    u = _mm512_mask_xor_pd(u, (__mmask8)(_mm512_test_epi32_mask(H, _mm512_set1_epi32(1 << s)) >> (8 * h)), u, sign);
+    v = _mm512_mask_xor_pd(v, (__mmask8)(_mm512_test_epi32_mask(H, _mm512_set1_epi32(2 << s)) >> (8 * h)), v, sign);
+    return _mm512_add_pd(u, v);
+}
+
+AVX512 static inline void gvec2_8(__m512i H, const int k, const int h, __m512d g[2])
+{
+    const int s = 8 * k;
+    __mmask8 below4 = (__mmask8)(_mm512_testn_epi32_mask(H, _mm512_set1_epi32(4 << s)) >> (8 * h));
+    __m512d one = _mm512_set1_pd(1.0), two = _mm512_set1_pd(2.0), sign = _mm512_set1_pd(-0.0);
+    __m512d su = _mm512_mask_xor_pd(one, (__mmask8)(_mm512_test_epi32_mask(H, _mm512_set1_epi32(1 << s)) >> (8 * h)), one, sign);
+    __m512d sv = _mm512_mask_xor_pd(two, (__mmask8)(_mm512_test_epi32_mask(H, _mm512_set1_epi32(2 << s)) >> (8 * h)), two, sign);
+    g[0] = _mm512_mask_blend_pd(below4, sv, su);
+    g[1] = _mm512_mask_blend_pd(below4, su, sv);
+}
+
+/* g[0..k-1] (8 lanes each) into out[k j + c] */
+AVX512 static inline void store_interleaved8(double *out, const __m512d *g, int k)
+{
+    double tmp[3][8];
+    for (int c = 0; c < k; ++c) _mm512_storeu_pd(tmp[c], g[c]);
+    for (int j = 0; j < 8; ++j)
+        for (int c = 0; c < k; ++c) out[k * j + c] = tmp[c][j];
+}
+
+/* The hashes of 16 points: [h000, h010, h100, h110] and [h001, h011, h101, h111] (3D), or [h00, h01, h10,
+ * h11] (2D, H1 not made), from the lower corners' indices */
+AVX512 static inline void hashes(const perm512 *T, __m512i X0, __m512i Y0, __m512i Z0, int dims, __m512i *H0,
+                                 __m512i *H1)
+{
+    const __m512i one = _mm512_set1_epi32(1), m255 = _mm512_set1_epi32(255);
+    __m512i X1 = _mm512_and_si512(_mm512_add_epi32(X0, one), m255), Y1 = _mm512_and_si512(_mm512_add_epi32(Y0, one), m255);
+    __m512i px = dup_pairs(lookup16(T, _mm512_or_si512(X0, _mm512_slli_epi32(X1, 8))));
+    __m512i yy = _mm512_or_si512(Y0, _mm512_slli_epi32(Y1, 8));
+    __m512i ab = lookup16(T, _mm512_add_epi8(px, _mm512_or_si512(yy, _mm512_slli_epi32(yy, 16))));
+    if (dims == 2) {
+        *H0 = ab;
+        return;
+    }
+    __m512i Z1 = _mm512_and_si512(_mm512_add_epi32(Z0, one), m255);
+    *H0 = lookup16(T, _mm512_add_epi8(ab, spread4(Z0)));
+    *H1 = lookup16(T, _mm512_add_epi8(ab, spread4(Z1)));
+}
+
+/* One half (8 points) of a 3D group: values into value[0..7] and gradients into gradient[0..23] */
+AVX512 static inline __attribute__((always_inline)) void half3(choice16 C[8], const int h, __m512d x, __m512d y,
+                                                                __m512d z, double *value, double *gradient,
+                                                                const int with_gradient)
+{
+    const __m512d one = _mm512_set1_pd(1.0);
+    __m512d x1 = _mm512_sub_pd(x, one), y1 = _mm512_sub_pd(y, one), z1 = _mm512_sub_pd(z, one);
+    __m512d u = fade8(x), v = fade8(y), w = fade8(z);
+    __m512d c000 = corner8(C[0], h, x, y, z), c100 = corner8(C[1], h, x1, y, z);
+    __m512d c010 = corner8(C[2], h, x, y1, z), c110 = corner8(C[3], h, x1, y1, z);
+    __m512d c001 = corner8(C[4], h, x, y, z1), c101 = corner8(C[5], h, x1, y, z1);
+    __m512d c011 = corner8(C[6], h, x, y1, z1), c111 = corner8(C[7], h, x1, y1, z1);
+    if (value)
+        _mm512_storeu_pd(value, lerp8(w, lerp8(v, lerp8(u, c000, c100), lerp8(u, c010, c110)),
+                                      lerp8(v, lerp8(u, c001, c101), lerp8(u, c011, c111))));
+    if (with_gradient) {
+        __m512d G[8][3], g[3];
+        for (int k = 0; k < 8; ++k) gvec8(C[k], h, G[k]);
+        for (int k = 0; k < 3; ++k)
+            g[k] = lerp8(w, lerp8(v, lerp8(u, G[0][k], G[1][k]), lerp8(u, G[2][k], G[3][k])),
+                         lerp8(v, lerp8(u, G[4][k], G[5][k]), lerp8(u, G[6][k], G[7][k])));
+        __m512d du = dfade8(x), dv = dfade8(y), dw = dfade8(z);
+        __m512d k1 = _mm512_sub_pd(c100, c000), k2 = _mm512_sub_pd(c010, c000), k3 = _mm512_sub_pd(c001, c000);
+        __m512d k4 = _mm512_sub_pd(_mm512_sub_pd(c110, c010), k1), k5 = _mm512_sub_pd(_mm512_sub_pd(c011, c001), k2);
+        __m512d k6 = _mm512_sub_pd(_mm512_sub_pd(c101, c001), k1);
+        __m512d k7 = _mm512_sub_pd(_mm512_sub_pd(_mm512_sub_pd(c111, c011), _mm512_sub_pd(c101, c001)), k4);
+        __m512d k67 = _mm512_add_pd(k6, _mm512_mul_pd(k7, v));
+        __m512d pu = _mm512_add_pd(_mm512_add_pd(k1, _mm512_mul_pd(k4, v)), _mm512_mul_pd(k67, w));
+        __m512d pv = _mm512_add_pd(_mm512_add_pd(k2, _mm512_mul_pd(k4, u)), _mm512_mul_pd(_mm512_add_pd(k5, _mm512_mul_pd(k7, u)), w));
+        __m512d pw = _mm512_add_pd(_mm512_add_pd(k3, _mm512_mul_pd(k5, v)), _mm512_mul_pd(k67, u));
+        g[0] = _mm512_add_pd(g[0], _mm512_mul_pd(du, pu));
+        g[1] = _mm512_add_pd(g[1], _mm512_mul_pd(dv, pv));
+        g[2] = _mm512_add_pd(g[2], _mm512_mul_pd(dw, pw));
+        store_interleaved8(gradient, g, 3);
+    }
+}
+
+AVX512 static inline __attribute__((always_inline)) void half2(__m512i H, const int h, __m512d x, __m512d y,
+                                                                double *value, double *gradient, const int with_gradient)
+{
+    const __m512d one = _mm512_set1_pd(1.0), scale = _mm512_set1_pd(0.507);
+    __m512d x1 = _mm512_sub_pd(x, one), y1 = _mm512_sub_pd(y, one);
+    __m512d u = fade8(x), v = fade8(y);
+    __m512d a = corner2_8(H, 0, h, x, y), b = corner2_8(H, 2, h, x1, y), c = corner2_8(H, 1, h, x, y1);
+    __m512d d = corner2_8(H, 3, h, x1, y1);
+    if (value) _mm512_storeu_pd(value, _mm512_mul_pd(scale, lerp8(v, lerp8(u, a, b), lerp8(u, c, d))));
+    if (with_gradient) {
+        __m512d G[4][2], g[2];
+        gvec2_8(H, 0, h, G[0]), gvec2_8(H, 2, h, G[1]), gvec2_8(H, 1, h, G[2]), gvec2_8(H, 3, h, G[3]);
+        for (int k = 0; k < 2; ++k) g[k] = lerp8(v, lerp8(u, G[0][k], G[1][k]), lerp8(u, G[2][k], G[3][k]));
+        __m512d du = dfade8(x), dv = dfade8(y);
+        g[0] = _mm512_mul_pd(scale, _mm512_add_pd(_mm512_mul_pd(du, lerp8(v, _mm512_sub_pd(b, a), _mm512_sub_pd(d, c))), g[0]));
+        g[1] = _mm512_mul_pd(scale, _mm512_add_pd(_mm512_mul_pd(dv, lerp8(u, _mm512_sub_pd(c, a), _mm512_sub_pd(d, b))), g[1]));
+        store_interleaved8(gradient, g, 2);
+    }
+}
+
+AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1_noise *n, const uint32_t dims,
+                                                                     const double *const *axes, size_t stride,
+                                                                     size_t count, double *value, double *gradient,
+                                                                     const int with_gradient)
+{
+    const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
+                       _mm512_loadu_si512(n->perm + 192)};
+    const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
+    size_t i = 0;
+    for (; i + 16 <= count; i += 16) {
+        __m512d c[3][2];
+        __mmask8 bad = 0;
+        for (uint32_t a = 0; a < dims; ++a)
+            for (int h = 0; h < 2; ++h) {
+                c[a][h] = load8(axes[a] + (i + 8 * h) * stride, stride, vindex);
+                bad |= not_finite8(c[a][h]);
+            }
+        if (bad) break; /* the caller reports it */
+        __m256i idx[3][2] = {{_mm256_setzero_si256(), _mm256_setzero_si256()},
+                             {_mm256_setzero_si256(), _mm256_setzero_si256()},
+                             {_mm256_setzero_si256(), _mm256_setzero_si256()}};
+        for (uint32_t a = 0; a < dims; ++a)
+            for (int h = 0; h < 2; ++h) c[a][h] = axis8(c[a][h], &idx[a][h]);
+        __m512i X0 = join16(idx[0][0], idx[0][1]), Y0 = join16(idx[1][0], idx[1][1]), H0, H1;
+        __m512i Z0 = dims == 3 ? join16(idx[2][0], idx[2][1]) : X0;
+        hashes(&T, X0, Y0, Z0, (int)dims, &H0, &H1);
+        if (dims == 3) {
+            choice16 C[8] = {choose3(H0, 0), choose3(H0, 2), choose3(H0, 1), choose3(H0, 3),
+                             choose3(H1, 0), choose3(H1, 2), choose3(H1, 1), choose3(H1, 3)};
+            for (int h = 0; h < 2; ++h)
+                half3(C, h, c[0][h], c[1][h], c[2][h], value ? value + i + 8 * h : NULL,
+                      with_gradient ? gradient + 3 * (i + 8 * h) : NULL, with_gradient);
+        } else {
+            for (int h = 0; h < 2; ++h)
+                half2(H0, h, c[0][h], c[1][h], value ? value + i + 8 * h : NULL,
+                      with_gradient ? gradient + 2 * (i + 8 * h) : NULL, with_gradient);
+        }
+    }
+    return i;
+}
+
+AVX512 static size_t noise_f64_avx512(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                      size_t count, double *value, double *gradient)
+{
+    if (dims == 3)
+        return gradient ? kernel_f64(n, 3, axes, stride, count, value, gradient, 1)
+                        : kernel_f64(n, 3, axes, stride, count, value, NULL, 0);
+    return gradient ? kernel_f64(n, 2, axes, stride, count, value, gradient, 1)
+                    : kernel_f64(n, 2, axes, stride, count, value, NULL, 0);
+}
+
+static int has_vbmi(void)
+{
+    static int known = -1;
+    if (known < 0) {
+        __builtin_cpu_init();
+        known = __builtin_cpu_supports("avx512vbmi") ? 1 : 0;
+    }
+    return known;
+}
+
+size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                size_t count, double *value, double *gradient)
+{
+    if (n->kind != UDM1_NOISE_IMPROVED || n->period[0] || n->period[1] || n->period[2]) return 0;
+    if (dims < 2 || dims > 3) return 0;
+    if (udm1_isa_level() == UDM1_ISA_AVX512 && has_vbmi() && stride <= (1u << 26))
+        return noise_f64_avx512(n, dims, axes, stride, count, value, gradient);
+    /* otherwise the 4-lane kernels of noise_simd.c, for packed points and values alone */
+    if (gradient || !value) return 0;
+    for (uint32_t c = 1; c < dims; ++c)
+        if (axes[c] != axes[0] + c) return 0;
+    return udm1_noise_points_fast(n, dims, axes[0], count, stride, value);
+}
+
+#else
+size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                size_t count, double *value, double *gradient)
+{
+    (void)n, (void)dims, (void)axes, (void)stride, (void)count, (void)value, (void)gradient;
+    return 0;
+}
+#endif
