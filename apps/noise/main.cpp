@@ -34,7 +34,7 @@ const char *USAGE =
     "       udm1-noise figures -o DIR\n"
     "options:\n"
     "  --pattern P     noise, fbm, turbulence, ridged, bozo, bumps, granite, agate, marble, wood,\n"
-    "                  wrinkles, leopard, onion, ripples, waves (default noise)\n"
+    "                  wrinkles, leopard, onion, ripples, waves, crackle (default noise)\n"
     "  --table T       perlin, drand48 or a udm1 sampler name (default wr)\n"
     "  --seed S        table seed (default 1)        --kind improved|classic (default improved)\n"
     "  --size WxH      image size (default 512x512)  --scale S  units across the width (default 8)\n"
@@ -42,6 +42,7 @@ const char *USAGE =
     "  --period P      tileable: the lattice wraps every P units and the image covers exactly P\n"
     "  --octaves N --omega W --lambda L --turbulence T|X,Y,Z --frequency F --phase F\n"
     "  --wave ramp|triangle|sine|scallop|cubic|poly   (POV-Ray's parameters and defaults)\n"
+    "  --form A,B,C --metric M --offset O --solid   crackle's (default -1,1,0; 2; 0; not solid)\n"
     "  --colors grey|pov   grey values, or the pattern's POV-Ray default colour map (default grey)\n"
     "  --bits 8|16     PNG/TIFF depth (default 8)    --threads N (default: all cores)\n"
     "  --pov NAME      also write NAME.inc (the pigment) and NAME_demo.pov (a scene using it)\n"
@@ -136,6 +137,12 @@ Options parse(int argc, char **argv)
             o.bits = (uint32_t)udm1app::parse_u64(value(a), "--bits", 8, 16);
             if (o.bits != 8 && o.bits != 16) throw Error("--bits must be 8 or 16");
         } else if (a == "--threads") o.threads = (uint32_t)udm1app::parse_u64(value(a), "--threads", 1, 1024);
+        else if (a == "--form") {
+            std::vector<double> v = parse_vector(value(a), "--form", 3);
+            for (int c = 0; c < 3; ++c) o.params.crackle_form[c] = v[v.size() == 1 ? 0 : c];
+        } else if (a == "--metric") o.params.crackle_metric = udm1app::parse_double(value(a), "--metric", 1, 64);
+        else if (a == "--offset") o.params.crackle_offset = udm1app::parse_double(value(a), "--offset", 0, 1e6);
+        else if (a == "--solid") o.params.crackle_solid = 1;
         else if (a == "--pov") o.pov = value(a);
         else throw Error("unknown option '" + a + "'");
     }

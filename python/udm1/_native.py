@@ -112,6 +112,22 @@ class PatternParams(ctypes.Structure):
         ("phase", ctypes.c_double),
         ("exponent", ctypes.c_double),
         ("agate_turb", ctypes.c_double),
+        ("crackle_form", ctypes.c_double * 3),
+        ("crackle_metric", ctypes.c_double),
+        ("crackle_offset", ctypes.c_double),
+        ("crackle_solid", ctypes.c_uint32),
+        ("reserved", ctypes.c_uint32),
+    ]
+
+
+class CellularParams(ctypes.Structure):
+    _fields_ = [
+        ("struct_size", ctypes.c_uint32),
+        ("metric", ctypes.c_uint32),
+        ("output", ctypes.c_uint32),
+        ("reserved", ctypes.c_uint32),
+        ("jitter", ctypes.c_double),
+        ("exponent", ctypes.c_double),
     ]
 
 
@@ -233,6 +249,12 @@ _proto("udm1_noise_eval", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(c
        ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p)
 _proto("udm1_noise_eval_f32", _S, ctypes.c_void_p, ctypes.c_uint32, ctypes.POINTER(ctypes.c_void_p), ctypes.c_size_t,
        ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p)
+_proto("udm1_cellular_params_init", None, ctypes.POINTER(CellularParams))
+_proto("udm1_cellular_eval", _S, ctypes.c_void_p, ctypes.POINTER(CellularParams), ctypes.c_uint32,
+       ctypes.POINTER(ctypes.c_void_p), ctypes.c_size_t, ctypes.c_size_t, ctypes.c_void_p)
+_proto("udm1_cellular_eval_f32", _S, ctypes.c_void_p, ctypes.POINTER(CellularParams), ctypes.c_uint32,
+       ctypes.POINTER(ctypes.c_void_p), ctypes.c_size_t, ctypes.c_size_t, ctypes.c_void_p)
+_proto("udm1_cellular_offsets", _S, ctypes.c_void_p, ctypes.c_void_p)
 _proto("udm1_pattern_params_init", None, ctypes.POINTER(PatternParams), ctypes.c_uint32)
 _proto("udm1_pattern_name", ctypes.c_char_p, ctypes.c_uint32)
 _proto("udm1_pattern_from_name", ctypes.c_uint32, ctypes.c_char_p)

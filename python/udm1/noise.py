@@ -31,6 +31,44 @@ def patterns() -> list[str]:
     return out
 
 
+CELL_OUTPUTS = {"f1": 0, "f2": 1, "f3": 2, "f2-f1": 3, "cell": 4}
+CELL_METRICS = {"euclidean": 0, "manhattan": 1, "chebyshev": 2, "minkowski": 3}
+
+
+def _real(v, name: str) -> float:
+    if isinstance(v, (bool, np.bool_)) or not np.isscalar(v) or not np.isreal(v):
+        raise ValueError(f"udm1.Noise: {name} must be a real number, not {v!r}")
+    return float(v)
+
+
+def _coordinates(points, dtype, lo: int, hi: int, where: str):
+    """Points as rows of an (n, d) array or as d coordinate arrays (lo <= d <= hi): the axes' addresses,
+    the stride, n, the precision (float32 points: float32, else float64; dtype= forces one) and the arrays
+    to keep alive during the call."""
+    if isinstance(points, (tuple, list)) and len(points) and np.ndim(points[0]) == 1:
+        if not lo <= len(points) <= hi:
+            raise ValueError(f"{where}: give {lo} to {hi} coordinate arrays, not {len(points)}")
+        kind = np.result_type(*points) if dtype is None else np.dtype(dtype)
+        real = np.float32 if kind == np.float32 else np.float64
+        cols = [np.ascontiguousarray(a, dtype=real) for a in points]
+        n = cols[0].shape[0]
+        if any(c.shape != (n,) for c in cols):
+            raise ValueError(f"{where}: the coordinate arrays must have one shape, (n,)")
+        return [c.ctypes.data for c in cols], 1, n, real, cols
+    arr = np.asarray(points)
+    if arr.ndim == 1:
+        arr = arr[:, None]
+    if arr.ndim != 2 or not lo <= arr.shape[1] <= hi:
+        raise ValueError(f"{where}: points must be an (n, {lo}..{hi}) array or {lo} to {hi} coordinate arrays")
+    kind = arr.dtype if dtype is None else np.dtype(dtype)
+    if kind not in (np.float32, np.float64) and not np.issubdtype(kind, np.number):
+        raise ValueError(f"{where}: points of dtype {kind} are not numbers (float32 or float64)")
+    real = np.float32 if kind == np.float32 else np.float64
+    x = np.ascontiguousarray(arr, dtype=real)
+    n, d = x.shape
+    return [x.ctypes.data + k * x.itemsize for k in range(d)], max(d, 1), n, real, x
+
+
 class Noise:
     """A lattice noise with tables from Perlin's permutation (table=None),
     drand48 ("drand48") or any udm1 preset; kind "improved" (Perlin 2002) or
@@ -75,6 +113,13 @@ class Noise:
         check(lib.udm1_noise_tables(self._handle, perm.ctypes.data, grad.ctypes.data))
         return perm, grad
 
+    def cellular_offsets(self) -> np.ndarray:
+        """The cellular noise's 256 feature point offsets b, (256, 3) uint8: entry h's point sits at
+        1/2 + jitter ((b + 1/2) / 256 - 1/2) in its cell."""
+        raw = np.empty((256, 3), dtype=np.uint8)
+        check(lib.udm1_cellular_offsets(self._handle, raw.ctypes.data))
+        return raw
+
     def noise(self, points, gradient: bool = False, dtype=None):
         """Noise at n points, d = 1..4 coordinates each (4D: improved noise only): the rows of an (n, d)
         array, or d separate arrays of n coordinates (a tuple or list, as x, y, z).
@@ -83,42 +128,44 @@ class Noise:
         on every machine), anything else in double (the per-point functions' values, bit for bit);
         dtype= forces the precision ("float32" or "float64"). Returns the values, an (n,) array; with
         gradient=True, (values, gradients) with gradients of shape (n, d): d noise / d x_k, analytic."""
-        if isinstance(points, (tuple, list)) and len(points) and np.ndim(points[0]) == 1:
-            axes = list(points)
-            if not 1 <= len(axes) <= 4:
-                raise ValueError("udm1.Noise.noise: give 1 to 4 coordinate arrays")
-            kind = np.result_type(*axes) if dtype is None else np.dtype(dtype)
-        else:
-            arr = np.asarray(points)
-            if arr.ndim == 1:
-                arr = arr[:, None]
-            if arr.ndim != 2 or not 1 <= arr.shape[1] <= 4:
-                raise ValueError("udm1.Noise.noise: points must be an (n, 1..4) array or 1 to 4 coordinate arrays")
-            kind = arr.dtype if dtype is None else np.dtype(dtype)
-            axes = None
-        f32 = kind == np.float32
-        real = np.float32 if f32 else np.float64
-        if axes is not None:
-            cols = [np.ascontiguousarray(a, dtype=real) for a in axes]
-            n = cols[0].shape[0]
-            if any(c.shape != (n,) for c in cols):
-                raise ValueError("udm1.Noise.noise: the coordinate arrays must have one shape, (n,)")
-            ptrs, stride, keep = [c.ctypes.data for c in cols], 1, cols
-        else:
-            x = np.ascontiguousarray(arr, dtype=real)
-            n, d = x.shape
-            ptrs, stride, keep = [x.ctypes.data + k * x.itemsize for k in range(d)], d, x
+        ptrs, stride, n, real, keep = _coordinates(points, dtype, 1, 4, "udm1.Noise.noise")
         d = len(ptrs)
         values = np.empty(n, dtype=real)
         grads = np.empty((n, d), dtype=real) if gradient else None
         arg = (ctypes.c_void_p * d)(*ptrs)
-        fn = lib.udm1_noise_eval_f32 if f32 else lib.udm1_noise_eval
-        check(fn(self._handle, d, arg, max(stride, 1), n, values.ctypes.data, grads.ctypes.data if gradient else None))
+        fn = lib.udm1_noise_eval_f32 if real == np.float32 else lib.udm1_noise_eval
+        check(fn(self._handle, d, arg, stride, n, values.ctypes.data, grads.ctypes.data if gradient else None))
         del keep
         return (values, grads) if gradient else values
 
+    def cellular(self, points, output: str = "f1", metric: str = "euclidean", jitter: float = 1.0,
+                 exponent: float = 2.0, dtype=None) -> np.ndarray:
+        """Cellular (Worley) noise at n points of 2 or 3 coordinates (rows of an (n, d) array or d coordinate
+        arrays), one feature point per unit cell placed by this noise's table (a udm1 sequence's points,
+        a hash or drand48) and periodic with the noise's period. output: "f1", "f2", "f3", "f2-f1" (distances
+        to the nearest feature points, in cell units) or "cell" (the nearest point's table entry / 255);
+        metric: "euclidean", "manhattan", "chebyshev" or "minkowski" (with exponent); jitter in [0, 1]: how
+        far a point strays from its cell's centre (1: anywhere in the cell). float32 points are evaluated
+        in float, others in double (dtype= forces one). The search is exact in every case."""
+        if output not in CELL_OUTPUTS:
+            raise ValueError(f"udm1.Noise.cellular: output {output!r} is not one of {list(CELL_OUTPUTS)}")
+        if metric not in CELL_METRICS:
+            raise ValueError(f"udm1.Noise.cellular: metric {metric!r} is not one of {list(CELL_METRICS)}")
+        ptrs, stride, n, real, keep = _coordinates(points, dtype, 2, 3, "udm1.Noise.cellular")
+        p = _native.CellularParams()
+        lib.udm1_cellular_params_init(ctypes.byref(p))
+        p.output, p.metric = CELL_OUTPUTS[output], CELL_METRICS[metric]
+        p.jitter, p.exponent = _real(jitter, "jitter"), _real(exponent, "exponent")
+        out = np.empty(n, dtype=real)
+        arg = (ctypes.c_void_p * len(ptrs))(*ptrs)
+        fn = lib.udm1_cellular_eval_f32 if real == np.float32 else lib.udm1_cellular_eval
+        check(fn(self._handle, ctypes.byref(p), len(ptrs), arg, stride, n, out.ctypes.data))
+        del keep
+        return out
+
     def _params(self, pattern: str, octaves=None, omega=None, lacunarity=None, turbulence=None, frequency=None,
-                phase=None, wave=None, exponent=None, agate_turb=None) -> _native.PatternParams:
+                phase=None, wave=None, exponent=None, agate_turb=None, form=None, metric=None, offset=None,
+                solid=None) -> _native.PatternParams:
         code = lib.udm1_pattern_from_name(pattern.encode())
         if code == 0:
             raise ValueError(f"udm1: unknown pattern {pattern!r}; known: {patterns()}")
@@ -146,6 +193,18 @@ class Noise:
             p.exponent = float(exponent)
         if agate_turb is not None:
             p.agate_turb = float(agate_turb)
+        if form is not None:  # crackle's
+            f = [_real(v, "form") for v in form]
+            if len(f) != 3:
+                raise ValueError("udm1.Noise: form must be 3 numbers (the weights of F1, F2, F3)")
+            for i in range(3):
+                p.crackle_form[i] = f[i]
+        if metric is not None:
+            p.crackle_metric = _real(metric, "metric")
+        if offset is not None:
+            p.crackle_offset = _real(offset, "offset")
+        if solid is not None:
+            p.crackle_solid = 1 if solid else 0
         return p
 
     def pattern(self, name: str, points, **params) -> np.ndarray:

@@ -1,5 +1,6 @@
-/* test_descriptor_layouts.c - callers built against other releases' headers: a udm1_seq_desc and a
- * udm1_noise_desc laid out as in 1.5 (the layouts are written out here, not taken from the header) are
+/* test_descriptor_layouts.c - callers built against other releases' headers: a udm1_seq_desc, a
+ * udm1_noise_desc and a udm1_pattern_params laid out as in 1.5 (the layouts are written out here, not
+ * taken from the header) are
  * accepted with the values a current caller gets; a newer caller's longer layout is accepted when its
  * unknown fields are zero and refused, naming struct_size, when one is set; a shorter one than 1.0's
  * is refused. */
@@ -38,6 +39,12 @@ typedef struct noise_desc_1_5 {
     uint32_t period[3];
     uint32_t reserved;
 } noise_desc_1_5;
+
+/* udm1_pattern_params as 1.5 declared it (1.2's layout) */
+typedef struct pattern_params_1_5 {
+    uint32_t struct_size, pattern, octaves, wave;
+    double omega, lambda, turbulence[3], frequency, phase, exponent, agate_turb;
+} pattern_params_1_5;
 
 static void fill_1_5(seq_desc_1_5 *d, uint32_t size)
 {
@@ -137,6 +144,20 @@ int main(void)
     udm1_noise *n_bad = (udm1_noise *)&nd;
     CHECK_STATUS(udm1_noise_create((const udm1_noise_desc *)(const void *)&nd, &n_bad), UDM1_ERROR_INVALID_ARGUMENT);
     CHECK(n_bad == NULL);
+    /* pattern params of 1.5: the fields it knew, the others their defaults (crackle's too) */
+    for (uint32_t pattern = UDM1_PATTERN_MARBLE; pattern <= UDM1_PATTERN_CRACKLE; pattern += UDM1_PATTERN_CRACKLE - UDM1_PATTERN_MARBLE) {
+        udm1_pattern_params cur_p;
+        udm1_pattern_params_init(&cur_p, pattern);
+        pattern_params_1_5 old_p;
+        memcpy(&old_p, &cur_p, sizeof old_p);
+        old_p.struct_size = (uint32_t)sizeof old_p;
+        double a = udm1_pattern_eval(n_new, (const udm1_pattern_params *)(const void *)&old_p, 0.3, 1.7, 2.2);
+        double b = udm1_pattern_eval(n_new, &cur_p, 0.3, 1.7, 2.2);
+        CHECKF(a == b && a == a, "pattern %u: %g from the 1.5 layout, %g from today's", pattern, a, b);
+        old_p.struct_size = 40; /* shorter than 1.2's */
+        a = udm1_pattern_eval(n_new, (const udm1_pattern_params *)(const void *)&old_p, 0.3, 1.7, 2.2);
+        CHECK(a != a && strstr(udm1_last_error(), "struct_size 40"));
+    }
     udm1_noise_destroy(n_old);
     udm1_noise_destroy(n_new);
     udm1_noise_destroy(n_next);

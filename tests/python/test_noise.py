@@ -137,3 +137,84 @@ def test_eval_refuses_bad_input_plainly():
         n.noise((np.zeros(3), np.zeros(4)))
     with pytest.raises(udm1.UDM1Error, match="point 1"):
         n.noise(np.array([[0.0, 0, 0], [0, np.inf, 0]], dtype=np.float32))
+
+
+def _cellular_brute(noise, pts, jitter, metric):
+    """The documented definition by brute force over the cells within 4 (numpy, no fused multiply-add:
+    equal to udm1's values within a few ulps; the C tests compare bit for bit)."""
+    perm, _ = noise.tables()
+    off = noise.cellular_offsets().astype(np.float64)
+    c1 = jitter / 256
+    c0 = 0.5 - 127.5 * c1
+    f = np.floor(pts)
+    t = pts - f
+    base = f.astype(np.int64)
+    d = pts.shape[1]
+    rng = range(-4, 5)
+    dist = []
+    for dz in (rng if d == 3 else [0]):
+        for dy in rng:
+            for dx in rng:
+                dv = np.array([dx, dy, dz][:d])
+                ix = (base + dv) & 255
+                h = perm[(perm[ix[:, 0]].astype(np.int64) + ix[:, 1]) & 255]
+                if d == 3:
+                    h = perm[(h.astype(np.int64) + ix[:, 2]) & 255]
+                v = c1 * off[h, :d] + (c0 - (t - dv))
+                dist.append({"euclidean": np.sqrt((v * v).sum(1)), "manhattan": np.abs(v).sum(1),
+                             "chebyshev": np.abs(v).max(1)}[metric])
+    return np.sort(np.array(dist), axis=0)[:3]
+
+
+@pytest.mark.parametrize("d", [2, 3])
+@pytest.mark.parametrize("metric", ["euclidean", "manhattan", "chebyshev"])
+def test_cellular_against_brute_force(d, metric):
+    n = udm1.Noise("halton", seed=4)
+    pts = np.random.default_rng(d).uniform(-40, 40, (700, d))
+    for jitter in (1.0, 0.45):
+        F = _cellular_brute(n, pts, jitter, metric)
+        for k, out in enumerate(("f1", "f2", "f3")):
+            got = n.cellular(pts, output=out, metric=metric, jitter=jitter)
+            assert np.allclose(got, F[k], rtol=1e-14, atol=1e-14)
+        assert np.allclose(n.cellular(pts, output="f2-f1", metric=metric, jitter=jitter), F[1] - F[0], atol=1e-13)
+        got32 = n.cellular(pts.astype(np.float32), metric=metric, jitter=jitter)
+        assert got32.dtype == np.float32 and np.max(np.abs(got32 - F[0])) < 1e-4
+    cell = n.cellular(pts, output="cell")
+    assert cell.min() >= 0 and cell.max() <= 1 and len(np.unique(cell)) > 100
+
+
+def test_cellular_is_periodic_and_refuses_bad_input():
+    n = udm1.Noise("rd", seed=1, period=(4, 6, 0))
+    pts = np.floor(np.random.default_rng(2).uniform(-10, 10, (300, 3)) * 1024) / 1024
+    for axis, P in ((0, 4), (1, 6)):
+        moved = pts.copy()
+        moved[:, axis] += 5 * P
+        assert np.array_equal(n.cellular(pts, output="f2"), n.cellular(moved, output="f2"))
+    with pytest.raises(ValueError, match="output"):
+        n.cellular(pts, output="f4")
+    with pytest.raises(ValueError, match="metric"):
+        n.cellular(pts, metric="hamming")
+    with pytest.raises(udm1.UDM1Error, match="jitter"):
+        n.cellular(pts, jitter=2)
+    with pytest.raises(udm1.UDM1Error, match="exponent"):
+        n.cellular(pts, metric="minkowski", exponent=0.5)
+    with pytest.raises(ValueError, match="2 to 3"):
+        n.cellular(np.zeros((3, 4)))
+    with pytest.raises(udm1.UDM1Error, match="point 1"):
+        n.cellular(np.array([[0.0, 0], [np.nan, 0]]))
+
+
+def test_crackle_pattern():
+    n = udm1.Noise("rd", seed=1)
+    pts = np.random.default_rng(3).uniform(-20, 20, (500, 3))
+    default = n.pattern("crackle", pts)
+    F = [n.cellular(pts, output=o) for o in ("f1", "f2")]
+    assert np.array_equal(default, np.clip(F[1] - F[0], 0, 1))  # form <-1, 1, 0>: F2 - F1
+    f1 = n.pattern("crackle", pts, form=(1, 0, 0), metric=1)
+    assert np.array_equal(f1, np.clip(n.cellular(pts, metric="manhattan"), 0, 1))
+    solid = n.pattern("crackle", pts, solid=True)
+    assert 0 <= solid.min() and solid.max() <= 1 and len(np.unique(solid)) > 20
+    with pytest.raises(udm1.UDM1Error, match="crackle_metric"):
+        n.pattern("crackle", pts, metric=0.5)
+    with pytest.raises(ValueError, match="form"):
+        n.pattern("crackle", pts, form=(1, 0))

@@ -136,6 +136,11 @@ UDM1_API udm1_status udm1_noise_points(const udm1_noise *noise, uint32_t dims, c
  *  ONION        fmod(|P|, 1)
  *  RIPPLES      (1 + mean_i cyc(|P - s_i| frequency + phase)) / 2
  *  WAVES        (2.5 + mean_i cyc(|P - s_i| frequency f_i + phase) / f_i) / 5
+ *  CRACKLE      clamp(form . (F1, F2, F3), 0, 1) with Fi = (Fi^m + offset^m)^(1/m) (offset^m: offset
+ *               itself for m = 1, as POV-Ray) over udm1's cellular noise (udm1/cellular.h) with jitter 1
+ *               and the Minkowski metric of exponent m = crackle_metric (2: Euclidean), its three
+ *               nearest feature points found exactly (POV-Ray looks in 81 cells around the point);
+ *               solid: clamp(N(q), 0, 1) at the nearest feature point q
  * with cyc(v) = sin(2 pi frac(v)), T = TURBULENCE, DTurbulence the same sum
  * of the vector noise DNoise(P) = (noise(P), noise(P + o1), noise(P + o2)),
  * o1 = (31.416, -47.853, 12.793), o2 = (-101.234, 67.125, -23.478), the 10
@@ -161,7 +166,8 @@ typedef enum udm1_pattern {
     UDM1_PATTERN_LEOPARD = 12,
     UDM1_PATTERN_ONION = 13,
     UDM1_PATTERN_RIPPLES = 14,
-    UDM1_PATTERN_WAVES = 15
+    UDM1_PATTERN_WAVES = 15,
+    UDM1_PATTERN_CRACKLE = 16 /* (1.7) */
 } udm1_pattern;
 
 typedef enum udm1_wave {
@@ -186,6 +192,12 @@ typedef struct udm1_pattern_params {
     double phase;          /* default 0 */
     double exponent;       /* poly wave; default 1 */
     double agate_turb;     /* default 1 */
+    /* (1.7) crackle; a caller of an older layout (a smaller struct_size) gets the defaults */
+    double crackle_form[3]; /* the weights of F1, F2, F3; default (-1, 1, 0); all 0: the default */
+    double crackle_metric;  /* the Minkowski exponent, 1..64; default 2; 0: 2 */
+    double crackle_offset;  /* default 0 */
+    uint32_t crackle_solid; /* 1: each cell one value, the noise at its feature point; default 0 */
+    uint32_t reserved;      /* set to 0 */
 } udm1_pattern_params;
 
 /* POV-Ray's defaults for `pattern`. Does nothing if params is NULL. */

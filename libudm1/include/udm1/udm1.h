@@ -7,6 +7,7 @@
  *   udm1/domain.h   domains: keyed sub-samplers of a stream's sample, up to four dimensions each
  *   udm1/metrics.h  discrepancies, distances, integrands, integration error, spectra, zone plate
  *   udm1/noise.h    lattice noise, POV-Ray patterns and colour maps
+ *   udm1/cellular.h cellular (Worley) noise
  *
  * An embedder may include this header or only the parts it uses.
  *
@@ -28,5 +29,6 @@
 #include "udm1/domain.h"
 #include "udm1/metrics.h"
 #include "udm1/noise.h"
+#include "udm1/cellular.h"
 
 #endif /* UDM1_UDM1_H */

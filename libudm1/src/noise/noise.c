@@ -97,6 +97,11 @@ static udm1_status tables_from_sequence(udm1_noise *n, const char *preset, uint6
         }
         sphere(u, v, n->grad[k]);
     }
+    /* feature points: the sequence's points (dimensions 0, 1, 2), or its values whitened */
+    for (uint64_t k = 0; k < 256; ++k)
+        for (uint32_t c = 0; c < 3; ++c)
+            n->feature[c][k] = dims >= 3 ? (uint8_t)(raw[k * dims + c] >> 56)
+                                         : (uint8_t)(snws(raw[k * dims + c % dims], k + 256 * (c + 3)) * 256.0);
     return UDM1_OK;
 }
 
@@ -114,6 +119,8 @@ static void tables_from_drand48(udm1_noise *n, uint64_t seed)
         n->perm[i] = n->perm[j];
         n->perm[j] = t;
     }
+    for (int k = 0; k < 256; ++k) /* feature point offsets: the next draws */
+        for (int c = 0; c < 3; ++c) n->feature[c][k] = (uint8_t)(drand48() * 256.0);
 }
 
 /* Perlin's gradient of Improved Noise is +-u +-v: u is x (h < 8) or y; v is y (h < 4), x (h = 12,
@@ -166,6 +173,8 @@ udm1_status udm1_noise_create(const udm1_noise_desc *caller_desc, udm1_noise **o
             double len = sqrt(EDGES[k & 15][0] * EDGES[k & 15][0] + EDGES[k & 15][1] * EDGES[k & 15][1] +
                               EDGES[k & 15][2] * EDGES[k & 15][2]);
             for (int c = 0; c < 3; ++c) n->grad[k][c] = EDGES[k & 15][c] / len;
+            for (int c = 0; c < 3; ++c) /* feature point offsets: a hash of (entry, axis) */
+                n->feature[c][k] = (uint8_t)(udm1_mix64(UDM1_SEED_SALT + 3u * (uint64_t)k + (uint64_t)c) >> 56);
         }
     } else if (strcmp(desc->table, "drand48") == 0) {
         tables_from_drand48(n, desc->seed);

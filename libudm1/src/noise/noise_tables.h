@@ -4,6 +4,7 @@
 #define UDM1_NOISE_TABLES_H
 
 #include "core/internal.h"
+#include "udm1/cellular.h"
 
 /* A noise's tables (noise.c); the patterns (patterns.c) read the wave sources. */
 typedef struct udm1_pick { uint8_t iu, iv; double su, sv; } udm1_pick; /* +-c[iu] +-c[iv] */
@@ -24,6 +25,7 @@ struct udm1_noise {
     udm1_pick pick3[256];     /* the improved noise's 3D gradient, as coordinates and signs */
     udm1_pick pick2[256];     /* ... 2D */
     double wave_source[UDM1_NOISE_WAVES][3];
+    uint8_t feature[3][256];  /* the cellular noise's feature point offsets by axis, b: (b + 1/2) / 256 (udm1/cellular.h) */
 };
 
 /* The vector path of udm1_noise_points (noise_simd.c): how many leading points it computed. */
@@ -39,5 +41,17 @@ UDM1_HIDDEN size_t udm1_noise_eval_fast_f32(const struct udm1_noise *n, uint32_t
  * (dims values) unless grad is NULL. c must be finite. */
 UDM1_HIDDEN double udm1_lattice_f64(const struct udm1_noise *n, uint32_t dims, const double *c, double *grad);
 UDM1_HIDDEN float udm1_lattice_f32(const struct udm1_noise *n, uint32_t dims, const float *c, float *grad);
+
+/* Cellular noise (cellular.c): the vector kernels (cellular_simd.c): how many leading points they
+ * computed (they stop before a group with a non-finite coordinate); params checked, its metric never
+ * MINKOWSKI with exponent 1 or 2. */
+UDM1_HIDDEN size_t udm1_cellular_fast_f64(const struct udm1_noise *n, const udm1_cellular_params *params, uint32_t dims,
+                                          const double *const *axes, size_t stride, size_t count, double *out);
+UDM1_HIDDEN size_t udm1_cellular_fast_f32(const struct udm1_noise *n, const udm1_cellular_params *params, uint32_t dims,
+                                          const float *const *axes, size_t stride, size_t count, float *out);
+/* POV-Ray's crackle search (patterns.c): the three smallest power sums sum |v_i|^e (e = 2: squares) from
+ * the finite 3D point c to the feature points of jitter 1, and the nearest feature point (if not NULL). */
+UDM1_HIDDEN void udm1_cellular_nearest3(const struct udm1_noise *n, double e, const double c[3], double F[3],
+                                        double nearest[3]);
 
 #endif /* UDM1_NOISE_TABLES_H */

@@ -3,6 +3,7 @@
 #include "noise/noise_tables.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,8 +12,8 @@
 
 static const char *const NAMES[] = {NULL,    "noise",  "fbm",   "turbulence", "ridged",  "bozo",
                                     "bumps", "granite", "agate", "marble",     "wood",    "wrinkles",
-                                    "leopard", "onion", "ripples", "waves"};
-#define LAST_PATTERN UDM1_PATTERN_WAVES
+                                    "leopard", "onion", "ripples", "waves", "crackle"};
+#define LAST_PATTERN UDM1_PATTERN_CRACKLE
 
 const char *udm1_pattern_name(uint32_t pattern)
 {
@@ -41,6 +42,9 @@ void udm1_pattern_params_init(udm1_pattern_params *params, uint32_t pattern)
     params->phase = 0.0;
     params->exponent = 1.0;
     params->agate_turb = 1.0;
+    params->crackle_form[0] = -1.0;
+    params->crackle_form[1] = 1.0;
+    params->crackle_metric = 2.0;
 }
 
 static double clamp01(double v) { return v < 0 ? 0 : (v > 1 ? 1 : v); }
@@ -89,9 +93,27 @@ static double wave_frequency(int i)
     return ((r >> 16) & 0x7FFFu) * (1.0 / 32767.0) + 0.01;
 }
 
+/* POV-Ray's crackle over udm1's exact cellular search */
+static double crackle(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
+{
+    const double m = p->crackle_metric, c[3] = {x, y, z};
+    double F[3], q[3];
+    udm1_cellular_nearest3(n, m, c, F, p->crackle_solid ? q : NULL);
+    if (p->crackle_solid) return N(n, q[0], q[1], q[2]);
+    double off = p->crackle_offset, v = 0.0;
+    if (off != 0.0) off = m == 2.0 ? off * off : m == 1.0 ? off : pow(off, m);
+    for (int k = 0; k < 3; ++k) {
+        double s = F[k] + off;
+        double d = m == 2.0 ? sqrt(s) : m == 1.0 ? s : pow(s, 1.0 / m);
+        v += p->crackle_form[k] * d;
+    }
+    return clamp01(v);
+}
+
 static double raw(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
 {
     switch (p->pattern) {
+    case UDM1_PATTERN_CRACKLE: return crackle(n, p, x, y, z);
     case UDM1_PATTERN_NOISE: return udm1_noise_3d(n, x, y, z);
     case UDM1_PATTERN_FBM:
     case UDM1_PATTERN_RIDGED: {
@@ -179,29 +201,46 @@ static double shape(const udm1_pattern_params *p, double v)
     }
 }
 
-static udm1_status check_params(const char *fn, const udm1_noise *n, const udm1_pattern_params *p, const void *out)
+/* Size of the first (1.2) layout of udm1_pattern_params: later layouts only append. */
+#define PATTERN_PARAMS_V1_SIZE (offsetof(udm1_pattern_params, agate_turb) + sizeof(double))
+
+/* The caller's params (an older layout's missing fields: the defaults), checked, into p. */
+static udm1_status load_params(const char *fn, const udm1_noise *n, const udm1_pattern_params *caller, const void *out,
+                               udm1_pattern_params *p)
 {
-    if (!n || !p || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: a pointer argument is NULL", fn);
-    if (p->struct_size < sizeof(udm1_pattern_params))
-        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: params.struct_size %u (call udm1_pattern_params_init)", fn,
-                         p->struct_size);
+    if (!n || !caller || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: a pointer argument is NULL", fn);
+    udm1_status st = udm1_read_struct(fn, "params", "udm1_pattern_params_init", caller, PATTERN_PARAMS_V1_SIZE, p,
+                                      sizeof *p);
+    if (st != UDM1_OK) return st;
     if (p->pattern < 1 || p->pattern > LAST_PATTERN)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: unknown pattern %u", fn, p->pattern);
     if (p->octaves < 1 || p->octaves > 10)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: octaves %u is outside 1..10", fn, p->octaves);
     if (p->wave > UDM1_WAVE_POLY) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: unknown wave %u", fn, p->wave);
-    const double nums[] = {p->omega,     p->lambda,        p->turbulence[0], p->turbulence[1], p->turbulence[2],
-                           p->frequency, p->phase,         p->exponent,      p->agate_turb};
+    const double nums[] = {p->omega,         p->lambda,          p->turbulence[0],   p->turbulence[1],
+                           p->turbulence[2], p->frequency,       p->phase,           p->exponent,
+                           p->agate_turb,    p->crackle_form[0], p->crackle_form[1], p->crackle_form[2],
+                           p->crackle_metric, p->crackle_offset};
     for (size_t i = 0; i < sizeof nums / sizeof *nums; ++i)
         if (!isfinite(nums[i]))
             return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: a pattern parameter is not finite", fn);
+    if (p->crackle_form[0] == 0 && p->crackle_form[1] == 0 && p->crackle_form[2] == 0)
+        p->crackle_form[0] = -1.0, p->crackle_form[1] = 1.0;
+    if (p->crackle_metric == 0) p->crackle_metric = 2.0;
+    if (!(p->crackle_metric >= 1.0 && p->crackle_metric <= 64.0))
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: params.crackle_metric %g is outside [1, 64]", fn,
+                         p->crackle_metric);
+    if (p->crackle_offset < 0)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: params.crackle_offset %g is negative", fn, p->crackle_offset);
+    if (p->crackle_solid > 1 || p->reserved)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: params.crackle_solid %u is not 0 or 1 (or reserved is not 0)",
+                         fn, p->crackle_solid);
     return UDM1_OK;
 }
 
-double udm1_pattern_eval(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
+/* A checked pattern at a finite point */
+static double eval(const udm1_noise *n, const udm1_pattern_params *p, double x, double y, double z)
 {
-    if (UDM1_UNLIKELY(check_params("udm1_pattern_eval", n, p, &x) != UDM1_OK)) return NAN;
-    if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return NAN;
     int has_turb = p->turbulence[0] != 0 || p->turbulence[1] != 0 || p->turbulence[2] != 0;
     if (is_pov(p->pattern) && has_turb && p->pattern != UDM1_PATTERN_MARBLE && p->pattern != UDM1_PATTERN_WOOD) {
         double d[3];
@@ -209,10 +248,19 @@ double udm1_pattern_eval(const udm1_noise *n, const udm1_pattern_params *p, doub
         x += d[0] * p->turbulence[0];
         y += d[1] * p->turbulence[1];
         z += d[2] * p->turbulence[2];
+        if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return NAN;
     }
     double v = raw(n, p, x, y, z);
     if (!is_pov(p->pattern)) return v;
     return shape(p, v);
+}
+
+double udm1_pattern_eval(const udm1_noise *n, const udm1_pattern_params *caller, double x, double y, double z)
+{
+    udm1_pattern_params p;
+    if (UDM1_UNLIKELY(load_params("udm1_pattern_eval", n, caller, &x, &p) != UDM1_OK)) return NAN;
+    if (!isfinite(x) || !isfinite(y) || !isfinite(z)) return NAN;
+    return eval(n, &p, x, y, z);
 }
 
 /* A pattern that is not a number at a finite point: an octave's scale (lambda^i P) or its sum
@@ -228,12 +276,14 @@ static udm1_status not_a_number(const char *fn, const char *what, size_t a, size
                      "(omega, lambda, octaves, coordinates)", fn, a);
 }
 
-udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p, uint32_t width, uint32_t height,
-                              uint32_t row0, uint32_t rows, const double origin[3], const double step_x[3],
-                              const double step_y[3], float *out)
+udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *caller, uint32_t width,
+                              uint32_t height, uint32_t row0, uint32_t rows, const double origin[3],
+                              const double step_x[3], const double step_y[3], float *out)
 {
     static const char fn[] = "udm1_pattern_grid";
-    udm1_status st = check_params(fn, n, p, out);
+    udm1_pattern_params params;
+    const udm1_pattern_params *p = &params;
+    udm1_status st = load_params(fn, n, caller, out, &params);
     if (st != UDM1_OK) return st;
     if (!origin || !step_x || !step_y) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: origin or a step is NULL", fn);
     if (width == 0 || height == 0 || width > 65536 || height > 65536)
@@ -278,7 +328,7 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p,
             for (uint32_t i = 0; i < width; ++i) {
                 double a = i + 0.5, q[3];
                 for (int c = 0; c < 3; ++c) q[c] = origin[c] + a * step_x[c] + b * step_y[c];
-                out[(size_t)j * width + i] = (float)udm1_pattern_eval(n, p, q[0], q[1], q[2]);
+                out[(size_t)j * width + i] = (float)eval(n, p, q[0], q[1], q[2]);
             }
         }
         for (uint32_t i = 0; i < width; ++i)
@@ -293,11 +343,13 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *p,
     return UDM1_OK;
 }
 
-udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *p, const double *xyz, size_t count,
-                                size_t stride, double *out)
+udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *caller, const double *xyz,
+                                size_t count, size_t stride, double *out)
 {
     static const char fn[] = "udm1_pattern_points";
-    udm1_status st = check_params(fn, n, p, out);
+    udm1_pattern_params params;
+    const udm1_pattern_params *p = &params;
+    udm1_status st = load_params(fn, n, caller, out, &params);
     if (st != UDM1_OK) return st;
     if (!xyz) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: xyz is NULL", fn);
     if (stride < 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < 3", fn, stride);
@@ -308,7 +360,7 @@ udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *
     }
     for (size_t i = 0; i < count; ++i) {
         const double *q = xyz + i * stride;
-        out[i] = udm1_pattern_eval(n, p, q[0], q[1], q[2]);
+        out[i] = eval(n, p, q[0], q[1], q[2]);
         if (isnan(out[i])) return not_a_number(fn, "point", i, 0);
     }
     return UDM1_OK;

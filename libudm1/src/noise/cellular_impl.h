@@ -1,0 +1,177 @@
+/* noise/cellular_impl.h - cellular noise in one precision: the scalar reference that the vector kernels
+ * of that precision equal bit for bit. Included once per precision by noise/cellular.c with
+ *   REAL   float or double
+ *   R(f)   the name of f in that precision (f##_f32 or f##_f64)
+ *   RF(f)  the libm function f in that precision (floorf / floor, ...)
+ * A candidate feature point's distance is measured in the metric's "power" form (Euclidean: the sum of
+ * squares, fused: fma(v2, v2, fma(v1, v1, v0 v0)); Minkowski: the sum of |v|^e; Manhattan and Chebyshev: the distance), compared there, and
+ * turned into a distance at the end (a square root, a root). A cell's candidate vector on axis a is
+ * v = fma(c1, b, c0 - (t - d)): t the point's exact offset in its own cell, d the cell's integer offset from
+ * it, b the feature point's 8-bit offset, c1 = jitter / 256 and c0 = 1/2 - 127.5 c1, so that the feature
+ * point sits at 1/2 + jitter ((b + 1/2) / 256 - 1/2) in its cell. Since rounding is monotone, v lies
+ * between its values for b = 0 and 255 as computed: the bounds the search prunes with. */
+
+/* The point's cell on one axis: its offset t in [0, 1) (exact) and its index wrapped to 0..P-1, P the
+ * period (0: 256); a neighbour d cells away then has index (index + d) mod P, & 255. */
+static inline REAL R(cell_axis)(REAL x, uint32_t period, uint32_t *index)
+{
+    REAL f = RF(floor)(x);
+    REAL t = (x - f) + (REAL)0;
+    uint32_t P = period ? period : 256u;
+    double m = fmod((double)f, (double)P); /* exact */
+    if (m < 0) m += P;
+    *index = (uint32_t)m;
+    if (*index >= P) *index = 0; /* (m + P rounded up to P for a tiny negative m: impossible for integers) */
+    return t;
+}
+
+static inline uint32_t R(wrap)(uint32_t index, int d, uint32_t P)
+{
+    int64_t v = (int64_t)index + d;
+    v %= (int64_t)P;
+    if (v < 0) v += P;
+    return (uint32_t)v & 255u;
+}
+
+/* |v| in the metric's power form, summed over the axes */
+static inline REAL R(power_sum)(const REAL *v, uint32_t dims, uint32_t metric, REAL e)
+{
+    REAL s = 0;
+    switch (metric) {
+    case UDM1_CELLULAR_EUCLIDEAN: /* fused: one rounding per term */
+        s = RF(fma)(v[1], v[1], v[0] * v[0]);
+        if (dims == 3) s = RF(fma)(v[2], v[2], s);
+        return s;
+    case UDM1_CELLULAR_MANHATTAN:
+        s = RF(fabs)(v[0]) + RF(fabs)(v[1]);
+        if (dims == 3) s = s + RF(fabs)(v[2]);
+        return s;
+    case UDM1_CELLULAR_CHEBYSHEV:
+        s = RF(fmax)(RF(fabs)(v[0]), RF(fabs)(v[1]));
+        if (dims == 3) s = RF(fmax)(s, RF(fabs)(v[2]));
+        return s;
+    default:
+        s = RF(pow)(RF(fabs)(v[0]), e) + RF(pow)(RF(fabs)(v[1]), e);
+        if (dims == 3) s = s + RF(pow)(RF(fabs)(v[2]), e);
+        return s;
+    }
+}
+
+static inline REAL R(power_root)(REAL s, uint32_t metric, REAL e)
+{
+    switch (metric) {
+    case UDM1_CELLULAR_EUCLIDEAN: return RF(sqrt)(s);
+    case UDM1_CELLULAR_MINKOWSKI: return RF(pow)(s, (REAL)1 / e);
+    default: return s;
+    }
+}
+
+/* Whether a candidate with power-sum lower bound lb can still change the k nearest (F[k-1] the k-th):
+ * with a margin of 2^-20 of F[k-1], so that rounding of either can never drop a nearer point. */
+static inline int R(may_matter)(REAL lb, REAL worst) { return !(lb > worst + worst * (REAL)0x1p-20); }
+
+/* The state of a search: the k smallest power sums so far, and the nearest point's entry */
+typedef struct {
+    REAL F[3];
+    int nearest;    /* its entry */
+    int offset[3];  /* its cell, from the point's */
+} R(nearest3);
+
+/* Offer a candidate: the nearest is the smallest (D, h); F the k smallest D (as the vector kernels'
+ * min/max network). */
+static inline void R(offer)(R(nearest3) *s, int k, REAL D, int h, const int d[3])
+{
+    if (D < s->F[0] || (D == s->F[0] && h < s->nearest)) {
+        s->nearest = h;
+        s->offset[0] = d[0], s->offset[1] = d[1], s->offset[2] = d[2];
+    }
+    REAL t = D;
+    for (int i = 0; i < k; ++i) {
+        REAL lo = s->F[i] < t ? s->F[i] : t, hi = s->F[i] < t ? t : s->F[i];
+        s->F[i] = lo;
+        t = hi;
+    }
+}
+
+typedef struct {
+    uint32_t dims, metric, k, period[3];
+    REAL e, c0, c1;
+} R(cellular_setup);
+
+static void R(cellular_setup_init)(R(cellular_setup) *u, const udm1_noise *n, uint32_t dims, uint32_t metric,
+                                   uint32_t k, double jitter, double exponent)
+{
+    u->dims = dims, u->metric = metric, u->k = k;
+    for (int a = 0; a < 3; ++a) u->period[a] = n->period[a];
+    u->e = (REAL)exponent;
+    u->c1 = (REAL)jitter * (REAL)(1.0 / 256); /* exact: a power of 2 */
+    u->c0 = (REAL)0.5 - (REAL)127.5 * u->c1;
+}
+
+/* The gap on one axis between the point and the feature points of cells with K = c0 - (t - d) */
+static inline REAL R(axis_gap)(const R(cellular_setup) *u, REAL K)
+{
+    REAL top = RF(fma)(u->c1, (REAL)255, K);
+    return K > 0 ? K : (top < 0 ? -top : 0);
+}
+
+/* The k (1..3) smallest power sums at point c (finite) into s. */
+static void R(cellular_search)(const udm1_noise *n, const R(cellular_setup) *u, const REAL *c, R(nearest3) *s)
+{
+    const uint32_t dims = u->dims, k = u->k;
+    REAL t[3] = {0, 0, 0};
+    uint32_t idx[3] = {0, 0, 0}, P[3] = {256, 256, 256};
+    for (uint32_t a = 0; a < dims; ++a) {
+        t[a] = R(cell_axis)(c[a], u->period[a], &idx[a]);
+        P[a] = u->period[a] ? u->period[a] : 256u;
+    }
+    s->F[0] = s->F[1] = s->F[2] = (REAL)INFINITY;
+    s->nearest = 256;
+    s->offset[0] = s->offset[1] = s->offset[2] = 0;
+    for (int r = 0;; ++r) {
+        int zr = dims == 3 ? r : 0;
+        for (int dz = -zr; dz <= zr; ++dz)
+            for (int dy = -r; dy <= r; ++dy)
+                for (int dx = -r; dx <= r; ++dx) {
+                    int m = abs(dx) > abs(dy) ? abs(dx) : abs(dy);
+                    if (abs(dz) > m) m = abs(dz);
+                    if (m != r) continue; /* the shell of radius r only */
+                    const int d[3] = {dx, dy, dz};
+                    REAL K[3] = {0, 0, 0}, g[3] = {0, 0, 0};
+                    for (uint32_t a = 0; a < dims; ++a) {
+                        K[a] = u->c0 - (t[a] - (REAL)d[a]);
+                        g[a] = R(axis_gap)(u, K[a]);
+                    }
+                    if (!R(may_matter)(R(power_sum)(g, dims, u->metric, u->e), s->F[k - 1])) continue;
+                    int h = dims == 3 ? n->perm[n->perm[n->perm[R(wrap)(idx[0], dx, P[0])] + R(wrap)(idx[1], dy, P[1])] +
+                                                R(wrap)(idx[2], dz, P[2])]
+                                      : n->perm[n->perm[R(wrap)(idx[0], dx, P[0])] + R(wrap)(idx[1], dy, P[1])];
+                    REAL v[3] = {0, 0, 0};
+                    for (uint32_t a = 0; a < dims; ++a) v[a] = RF(fma)(u->c1, (REAL)n->feature[a][h], K[a]);
+                    R(offer)(s, (int)k, R(power_sum)(v, dims, u->metric, u->e), h, d);
+                }
+        /* the next shell's nearest possible point: one axis' gap to it */
+        REAL gap = (REAL)INFINITY;
+        for (uint32_t a = 0; a < dims; ++a) {
+            REAL below = R(axis_gap)(u, u->c0 - (t[a] - (REAL)(r + 1))), above = R(axis_gap)(u, u->c0 - (t[a] + (REAL)(r + 1)));
+            if (below < gap) gap = below;
+            if (above < gap) gap = above;
+        }
+        REAL g[3] = {gap, 0, 0};
+        if (!R(may_matter)(R(power_sum)(g, dims, u->metric, u->e), s->F[k - 1])) return;
+        if (r > 64) return; /* unreachable: a shell's gap grows by 1 each time */
+    }
+}
+
+/* The output of a finished search */
+static inline REAL R(cellular_output)(const R(nearest3) *s, const R(cellular_setup) *u, uint32_t output)
+{
+    switch (output) {
+    case UDM1_CELLULAR_F1: return R(power_root)(s->F[0], u->metric, u->e);
+    case UDM1_CELLULAR_F2: return R(power_root)(s->F[1], u->metric, u->e);
+    case UDM1_CELLULAR_F3: return R(power_root)(s->F[2], u->metric, u->e);
+    case UDM1_CELLULAR_F2_MINUS_F1:
+        return R(power_root)(s->F[1], u->metric, u->e) - R(power_root)(s->F[0], u->metric, u->e);
+    default: return (REAL)s->nearest / (REAL)255;
+    }
+}

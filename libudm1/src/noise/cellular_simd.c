@@ -1,0 +1,451 @@
+/* cellular_simd.c - the cellular noise on 16 points at a time with AVX-512 VBMI, in float and in double.
+ * The 3^dims cells around the points are hashed 16 points x 4 cells at a time: the permutation and the
+ * three tables of 8-bit feature offsets are held in registers (four each) and looked up 64 bytes at a
+ * time (perm[perm[perm[X] + Y] + Z] with byte additions, the permutation being periodic in 256). Each
+ * cell's vector v = fma(c1, b, K), its power sum and the min/max network keeping the k smallest are the
+ * scalar search's operations (noise/cellular_impl.h), so the same values. The scalar search is exact by
+ * visiting further shells while they could hold a nearer point; here a lane whose next shell could
+ * (rare: a feature point may lie anywhere in its cell) is recomputed by that scalar search, so every
+ * value is the exact one, bit for bit. Metrics Euclidean, Manhattan and Chebyshev; Minkowski and the
+ * processors without AVX-512 VBMI are left to the scalar code. */
+#include "core/isa.h"
+#include "noise/noise_tables.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#if defined(UDM1_HAVE_ISA_KERNELS)
+#include <immintrin.h>
+
+#define REAL double
+#define R(f) f##_f64
+#define RF(fn) fn
+#include "noise/cellular_impl.h"
+#undef REAL
+#undef R
+#undef RF
+
+#define REAL float
+#define R(f) f##_f32
+#define RF(fn) fn##f
+#include "noise/cellular_impl.h"
+#undef REAL
+#undef R
+#undef RF
+
+#define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi,fma")))
+
+typedef struct {
+    __m512i t[4]; /* a table of 256 bytes */
+} table256;
+
+AVX512 static inline table256 table_of(const uint8_t *bytes)
+{
+    table256 r;
+    for (int k = 0; k < 4; ++k) r.t[k] = _mm512_loadu_si512((const void *)(bytes + 64 * k));
+    return r;
+}
+
+AVX512 static inline __m512i lookup(const table256 *t, __m512i idx) /* each byte b of idx -> table[b] */
+{
+    __m512i lo = _mm512_permutex2var_epi8(t->t[0], idx, t->t[1]), hi = _mm512_permutex2var_epi8(t->t[2], idx, t->t[3]);
+    return _mm512_mask_blend_epi8(_mm512_movepi8_mask(idx), lo, hi);
+}
+
+AVX512 static inline __m512i pack4(__m128i a, __m128i b, __m128i c, __m128i d)
+{
+    __m512i z = _mm512_castsi128_si512(a);
+    z = _mm512_inserti32x4(z, b, 1);
+    z = _mm512_inserti32x4(z, c, 2);
+    return _mm512_inserti32x4(z, d, 3);
+}
+
+/* The cells around 16 points: ib[a][j] the bytes of the index on axis a of the cells at d = j - 1; out:
+ * H[c] the 16 entries of cell c = (dx + 1) + 3 (dy + 1) + 9 (dz + 1), O[a][c] their offsets on axis a. */
+typedef struct {
+    uint8_t H[28][16];
+    uint8_t O[3][28][16];
+} cells16;
+
+AVX512 static inline void hash_cells(const udm1_noise *n, const table256 *perm, uint32_t dims, __m128i ib[3][3],
+                                     cells16 *out)
+{
+    __m512i A = lookup(perm, pack4(ib[0][0], ib[0][1], ib[0][2], ib[0][2]));
+    __m128i a[3] = {_mm512_castsi512_si128(A), _mm512_extracti32x4_epi32(A, 1), _mm512_extracti32x4_epi32(A, 2)};
+    __m128i b[12]; /* (dx, dy) = (j % 3, j / 3): perm[A[dx] + Y[dy]] */
+    for (int j = 0; j < 9; ++j) b[j] = _mm_add_epi8(a[j % 3], ib[1][j / 3]);
+    b[9] = b[10] = b[11] = b[8];
+    __m512i B[3];
+    for (int z = 0; z < 3; ++z) B[z] = lookup(perm, pack4(b[4 * z], b[4 * z + 1], b[4 * z + 2], b[4 * z + 3]));
+    const uint32_t cells = dims == 3 ? 27 : 9;
+    __m512i Hz[7];
+    int nz;
+    if (dims == 2) {
+        for (int z = 0; z < 3; ++z) Hz[z] = B[z];
+        nz = 3;
+    } else {
+        _Alignas(64) uint8_t bb[3][64];
+        for (int z = 0; z < 3; ++z) _mm512_store_si512((void *)bb[z], B[z]);
+        __m128i h[28];
+        for (int c = 0; c < 27; ++c) { /* perm[B[dx, dy] + Z[dz]] */
+            int j = c % 9;
+            h[c] = _mm_add_epi8(_mm_load_si128((const __m128i *)(bb[j / 4] + 16 * (j % 4))), ib[2][c / 9]);
+        }
+        h[27] = h[26];
+        for (int z = 0; z < 7; ++z) Hz[z] = lookup(perm, pack4(h[4 * z], h[4 * z + 1], h[4 * z + 2], h[4 * z + 3]));
+        nz = 7;
+    }
+    for (int z = 0; z < nz; ++z) _mm512_storeu_si512((void *)out->H[4 * z], Hz[z]);
+    for (uint32_t ax = 0; ax < dims; ++ax) {
+        table256 f = table_of(n->feature[ax]);
+        for (int z = 0; z < nz; ++z) _mm512_storeu_si512((void *)out->O[ax][4 * z], lookup(&f, Hz[z]));
+    }
+    (void)cells;
+}
+
+/* The lattice index (0..255) of the cells at d = -1, 0, 1 from the floors f of 16 points, as bytes; periodic
+ * axes by an exact modulo in double (|f| < 2^31: the caller checks). */
+AVX512 static inline void index_bytes(__m512i i0, uint32_t period, __m128i out[3])
+{
+    const __m512i mask = _mm512_set1_epi32(255);
+    __m512i m, p;
+    if (period) {
+        __m512i P = _mm512_set1_epi32((int)period), one = _mm512_set1_epi32(1), zero = _mm512_setzero_si512();
+        m = _mm512_mask_blend_epi32(_mm512_cmpeq_epi32_mask(i0, zero), _mm512_sub_epi32(i0, one),
+                                    _mm512_sub_epi32(P, one));
+        p = _mm512_add_epi32(i0, one);
+        p = _mm512_mask_blend_epi32(_mm512_cmpeq_epi32_mask(p, P), p, zero);
+    } else {
+        m = _mm512_sub_epi32(i0, _mm512_set1_epi32(1));
+        p = _mm512_add_epi32(i0, _mm512_set1_epi32(1));
+    }
+    out[0] = _mm512_cvtepi32_epi8(_mm512_and_si512(m, mask));
+    out[1] = _mm512_cvtepi32_epi8(_mm512_and_si512(i0, mask));
+    out[2] = _mm512_cvtepi32_epi8(_mm512_and_si512(p, mask));
+}
+
+/* f mod P for 8 integral doubles |f| < 2^31, exactly: q = floor(f / P) may be one off, m = f - q P is exact */
+AVX512 static inline __m256i mod8(__m512d f, uint32_t period)
+{
+    __m512d P = _mm512_set1_pd((double)period);
+    __m512d q = _mm512_roundscale_pd(_mm512_div_pd(f, P), _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    __m512d m = _mm512_sub_pd(f, _mm512_mul_pd(q, P));
+    m = _mm512_mask_add_pd(m, _mm512_cmp_pd_mask(m, _mm512_setzero_pd(), _CMP_LT_OQ), m, P);
+    m = _mm512_mask_sub_pd(m, _mm512_cmp_pd_mask(m, P, _CMP_GE_OQ), m, P);
+    return _mm512_cvttpd_epi32(m);
+}
+
+/* ---- float: 16 lanes ---- */
+
+AVX512 static inline __m512 power16(const __m512 *v, uint32_t dims, uint32_t metric)
+{
+    __m512 s;
+    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
+        s = _mm512_fmadd_ps(v[1], v[1], _mm512_mul_ps(v[0], v[0]));
+        if (dims == 3) s = _mm512_fmadd_ps(v[2], v[2], s);
+    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
+        s = _mm512_add_ps(_mm512_abs_ps(v[0]), _mm512_abs_ps(v[1]));
+        if (dims == 3) s = _mm512_add_ps(s, _mm512_abs_ps(v[2]));
+    } else {
+        s = _mm512_max_ps(_mm512_abs_ps(v[0]), _mm512_abs_ps(v[1]));
+        if (dims == 3) s = _mm512_max_ps(s, _mm512_abs_ps(v[2]));
+    }
+    return s;
+}
+
+AVX512 static inline __m512 gap16(__m512 K, __m512 c1, __m512 zero) /* axis_gap */
+{
+    __m512 top = _mm512_fmadd_ps(c1, _mm512_set1_ps(255.0f), K);
+    __m512 g = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(top, zero, _CMP_LT_OQ), zero, _mm512_sub_ps(zero, top));
+    return _mm512_mask_blend_ps(_mm512_cmp_ps_mask(K, zero, _CMP_GT_OQ), g, K);
+}
+
+AVX512 static inline __m512 root16(__m512 F, uint32_t metric)
+{
+    return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm512_sqrt_ps(F) : F;
+}
+
+AVX512 static inline __m512 load16(const float *p, size_t stride, __m512i vindex)
+{
+    return stride == 1 ? _mm512_loadu_ps(p) : _mm512_i32gather_ps(vindex, p, 4);
+}
+
+AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n, const udm1_cellular_params *p,
+                                                          uint32_t dims, const float *const *axes, size_t stride,
+                                                          size_t count, float *out)
+{
+    cellular_setup_f32 u;
+    const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
+    cellular_setup_init_f32(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const table256 perm = table_of(n->perm);
+    const __m512i vindex = _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
+                                              _mm512_set1_epi32((int)stride));
+    const __m512 c0 = _mm512_set1_ps(u.c0), c1 = _mm512_set1_ps(u.c1), zero = _mm512_setzero_ps();
+    const __m512 inf = _mm512_set1_ps(INFINITY), margin = _mm512_set1_ps(0x1p-20f);
+    const int want_cell = p->output == UDM1_CELLULAR_CELL;
+    const uint32_t cells = dims == 3 ? 27 : 9;
+    _Alignas(64) cells16 C;
+    size_t i = 0;
+    for (; i + 16 <= count; i += 16) {
+        __m512 x[3], t[3], K[3][3];
+        __m128i ib[3][3];
+        int ok = 1;
+        for (uint32_t a = 0; a < dims; ++a) {
+            x[a] = load16(axes[a] + i * stride, stride, vindex);
+            if (_mm512_fpclass_ps_mask(x[a], 0x01 | 0x08 | 0x10 | 0x80)) ok = 0;
+        }
+        if (!ok) break;
+        for (uint32_t a = 0; a < dims && ok; ++a) {
+            __m512 f = _mm512_roundscale_ps(x[a], _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+            t[a] = _mm512_add_ps(_mm512_sub_ps(x[a], f), zero);
+            __m512i i0;
+            if (u.period[a]) {
+                if (_mm512_cmp_ps_mask(_mm512_abs_ps(f), _mm512_set1_ps(0x1p31f), _CMP_GE_OQ)) ok = 0;
+                __m512d lo = _mm512_cvtps_pd(_mm512_castps512_ps256(f));
+                __m512d hi = _mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(f), 1)));
+                i0 = _mm512_inserti64x4(_mm512_castsi256_si512(mod8(lo, u.period[a])), mod8(hi, u.period[a]), 1);
+            } else {
+                i0 = _mm512_cvttps_epi32(f); /* past 2^31: 0x80000000, and f a multiple of 256 */
+            }
+            index_bytes(i0, u.period[a], ib[a]);
+            for (int j = 0; j < 3; ++j) K[a][j] = _mm512_sub_ps(c0, _mm512_sub_ps(t[a], _mm512_set1_ps((float)(j - 1))));
+        }
+        if (!ok) break; /* a periodic coordinate past 2^31: the scalar code */
+        if (dims == 2) ib[2][0] = ib[2][1] = ib[2][2] = _mm_setzero_si128();
+        hash_cells(n, &perm, dims, ib, &C);
+        __m512 F0 = inf, F1 = inf, F2 = inf;
+        __m512i near = _mm512_set1_epi32(256);
+        for (uint32_t c = 0; c < cells; ++c) {
+            const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
+            __m512 v[3] = {zero, zero, zero};
+            for (uint32_t a = 0; a < dims; ++a) {
+                __m512 b = _mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(_mm_load_si128((const __m128i *)C.O[a][c])));
+                v[a] = _mm512_fmadd_ps(c1, b, K[a][d[a]]);
+            }
+            __m512 D = power16(v, dims, u.metric);
+            if (want_cell) {
+                __m512i h = _mm512_cvtepu8_epi32(_mm_load_si128((const __m128i *)C.H[c]));
+                __mmask16 m = _mm512_cmp_ps_mask(D, F0, _CMP_LT_OQ) |
+                              (_mm512_cmp_ps_mask(D, F0, _CMP_EQ_OQ) & _mm512_cmplt_epi32_mask(h, near));
+                near = _mm512_mask_blend_epi32(m, near, h);
+            }
+            __m512 lo = _mm512_min_ps(F0, D), hi = _mm512_max_ps(F0, D);
+            F0 = lo;
+            if (k >= 2) {
+                lo = _mm512_min_ps(F1, hi), hi = _mm512_max_ps(F1, hi);
+                F1 = lo;
+                if (k == 3) F2 = _mm512_min_ps(F2, hi);
+            }
+        }
+        /* lanes whose next shell could hold one of the k nearest: the scalar search */
+        __m512 gap = inf;
+        for (uint32_t a = 0; a < dims; ++a) {
+            gap = _mm512_min_ps(gap, gap16(_mm512_sub_ps(c0, _mm512_sub_ps(t[a], _mm512_set1_ps(2.0f))), c1, zero));
+            gap = _mm512_min_ps(gap, gap16(_mm512_sub_ps(c0, _mm512_add_ps(t[a], _mm512_set1_ps(2.0f))), c1, zero));
+        }
+        __m512 g3[3] = {gap, zero, zero};
+        __m512 bound = power16(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+        __mmask16 redo = _mm512_cmp_ps_mask(bound, _mm512_add_ps(worst, _mm512_mul_ps(worst, margin)), _CMP_LE_OQ);
+        __m512 r;
+        switch (p->output) {
+        case UDM1_CELLULAR_F1: r = root16(F0, u.metric); break;
+        case UDM1_CELLULAR_F2: r = root16(F1, u.metric); break;
+        case UDM1_CELLULAR_F3: r = root16(F2, u.metric); break;
+        case UDM1_CELLULAR_F2_MINUS_F1: r = _mm512_sub_ps(root16(F1, u.metric), root16(F0, u.metric)); break;
+        default: r = _mm512_div_ps(_mm512_cvtepi32_ps(near), _mm512_set1_ps(255.0f)); break;
+        }
+        _mm512_storeu_ps(out + i, r);
+        while (redo) {
+            int l = __builtin_ctz(redo);
+            redo &= (__mmask16)(redo - 1);
+            float c[3] = {0, 0, 0};
+            for (uint32_t a = 0; a < dims; ++a) c[a] = axes[a][(i + (size_t)l) * stride];
+            nearest3_f32 s;
+            cellular_search_f32(n, &u, c, &s);
+            out[i + (size_t)l] = cellular_output_f32(&s, &u, p->output);
+        }
+    }
+    return i;
+}
+
+/* ---- double: 16 points, the arithmetic in two halves of 8 lanes ---- */
+
+AVX512 static inline __m512d power8(const __m512d *v, uint32_t dims, uint32_t metric)
+{
+    __m512d s;
+    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
+        s = _mm512_fmadd_pd(v[1], v[1], _mm512_mul_pd(v[0], v[0]));
+        if (dims == 3) s = _mm512_fmadd_pd(v[2], v[2], s);
+    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
+        s = _mm512_add_pd(_mm512_abs_pd(v[0]), _mm512_abs_pd(v[1]));
+        if (dims == 3) s = _mm512_add_pd(s, _mm512_abs_pd(v[2]));
+    } else {
+        s = _mm512_max_pd(_mm512_abs_pd(v[0]), _mm512_abs_pd(v[1]));
+        if (dims == 3) s = _mm512_max_pd(s, _mm512_abs_pd(v[2]));
+    }
+    return s;
+}
+
+AVX512 static inline __m512d gap8(__m512d K, __m512d c1, __m512d zero)
+{
+    __m512d top = _mm512_fmadd_pd(c1, _mm512_set1_pd(255.0), K);
+    __m512d g = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(top, zero, _CMP_LT_OQ), zero, _mm512_sub_pd(zero, top));
+    return _mm512_mask_blend_pd(_mm512_cmp_pd_mask(K, zero, _CMP_GT_OQ), g, K);
+}
+
+AVX512 static inline __m512d root8(__m512d F, uint32_t metric)
+{
+    return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm512_sqrt_pd(F) : F;
+}
+
+AVX512 static inline __m512d load8(const double *p, size_t stride, __m256i vindex)
+{
+    return stride == 1 ? _mm512_loadu_pd(p) : _mm512_i32gather_pd(vindex, p, 8);
+}
+
+AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n, const udm1_cellular_params *p,
+                                                          uint32_t dims, const double *const *axes, size_t stride,
+                                                          size_t count, double *out)
+{
+    cellular_setup_f64 u;
+    const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
+    cellular_setup_init_f64(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const table256 perm = table_of(n->perm);
+    const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
+    const __m512d c0 = _mm512_set1_pd(u.c0), c1 = _mm512_set1_pd(u.c1), zero = _mm512_setzero_pd();
+    const __m512d inf = _mm512_set1_pd(INFINITY), margin = _mm512_set1_pd(0x1p-20);
+    const int want_cell = p->output == UDM1_CELLULAR_CELL;
+    const uint32_t cells = dims == 3 ? 27 : 9;
+    _Alignas(64) cells16 C;
+    size_t i = 0;
+    for (; i + 16 <= count; i += 16) {
+        __m512d x[3][2], t[3][2], K[3][3][2];
+        __m128i ib[3][3];
+        int ok = 1;
+        for (uint32_t a = 0; a < dims; ++a)
+            for (int hf = 0; hf < 2; ++hf) {
+                x[a][hf] = load8(axes[a] + (i + 8 * (size_t)hf) * stride, stride, vindex);
+                if (_mm512_fpclass_pd_mask(x[a][hf], 0x01 | 0x08 | 0x10 | 0x80)) ok = 0;
+            }
+        if (!ok) break;
+        for (uint32_t a = 0; a < dims && ok; ++a) {
+            __m256i ih[2];
+            for (int hf = 0; hf < 2; ++hf) {
+                __m512d f = _mm512_roundscale_pd(x[a][hf], _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+                t[a][hf] = _mm512_add_pd(_mm512_sub_pd(x[a][hf], f), zero);
+                if (u.period[a]) {
+                    if (_mm512_cmp_pd_mask(_mm512_abs_pd(f), _mm512_set1_pd(0x1p31), _CMP_GE_OQ)) ok = 0;
+                    ih[hf] = mod8(f, u.period[a]);
+                } else { /* exact below 2^63; past it 0x8000000000000000 and f a multiple of 256 */
+                    ih[hf] = _mm512_cvtepi64_epi32(_mm512_and_si512(_mm512_cvttpd_epi64(f), _mm512_set1_epi64(255)));
+                }
+                for (int j = 0; j < 3; ++j)
+                    K[a][j][hf] = _mm512_sub_pd(c0, _mm512_sub_pd(t[a][hf], _mm512_set1_pd((double)(j - 1))));
+            }
+            index_bytes(_mm512_inserti64x4(_mm512_castsi256_si512(ih[0]), ih[1], 1), u.period[a], ib[a]);
+        }
+        if (!ok) break;
+        if (dims == 2) ib[2][0] = ib[2][1] = ib[2][2] = _mm_setzero_si128();
+        hash_cells(n, &perm, dims, ib, &C);
+        __mmask16 redo = 0;
+        for (int hf = 0; hf < 2; ++hf) {
+            __m512d F0 = inf, F1 = inf, F2 = inf;
+            __m256i near = _mm256_set1_epi32(256);
+            for (uint32_t c = 0; c < cells; ++c) {
+                const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
+                __m512d v[3] = {zero, zero, zero};
+                for (uint32_t a = 0; a < dims; ++a) {
+                    __m128i bytes = _mm_loadl_epi64((const __m128i *)(C.O[a][c] + 8 * hf));
+                    __m512d b = _mm512_cvtepi32_pd(_mm256_cvtepu8_epi32(bytes));
+                    v[a] = _mm512_fmadd_pd(c1, b, K[a][d[a]][hf]);
+                }
+                __m512d D = power8(v, dims, u.metric);
+                if (want_cell) {
+                    __m256i h = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(C.H[c] + 8 * hf)));
+                    __mmask8 m = _mm512_cmp_pd_mask(D, F0, _CMP_LT_OQ) |
+                                 (_mm512_cmp_pd_mask(D, F0, _CMP_EQ_OQ) & _mm256_cmplt_epi32_mask(h, near));
+                    near = _mm256_mask_blend_epi32(m, near, h);
+                }
+                __m512d lo = _mm512_min_pd(F0, D), hi = _mm512_max_pd(F0, D);
+                F0 = lo;
+                if (k >= 2) {
+                    lo = _mm512_min_pd(F1, hi), hi = _mm512_max_pd(F1, hi);
+                    F1 = lo;
+                    if (k == 3) F2 = _mm512_min_pd(F2, hi);
+                }
+            }
+            __m512d gap = inf;
+            for (uint32_t a = 0; a < dims; ++a) {
+                gap = _mm512_min_pd(gap, gap8(_mm512_sub_pd(c0, _mm512_sub_pd(t[a][hf], _mm512_set1_pd(2.0))), c1, zero));
+                gap = _mm512_min_pd(gap, gap8(_mm512_sub_pd(c0, _mm512_add_pd(t[a][hf], _mm512_set1_pd(2.0))), c1, zero));
+            }
+            __m512d g3[3] = {gap, zero, zero};
+            __m512d bound = power8(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+            redo |= (__mmask16)((unsigned)_mm512_cmp_pd_mask(bound, _mm512_add_pd(worst, _mm512_mul_pd(worst, margin)),
+                                                             _CMP_LE_OQ) << (8 * hf));
+            __m512d r;
+            switch (p->output) {
+            case UDM1_CELLULAR_F1: r = root8(F0, u.metric); break;
+            case UDM1_CELLULAR_F2: r = root8(F1, u.metric); break;
+            case UDM1_CELLULAR_F3: r = root8(F2, u.metric); break;
+            case UDM1_CELLULAR_F2_MINUS_F1: r = _mm512_sub_pd(root8(F1, u.metric), root8(F0, u.metric)); break;
+            default: r = _mm512_div_pd(_mm512_cvtepi32_pd(near), _mm512_set1_pd(255.0)); break;
+            }
+            _mm512_storeu_pd(out + i + 8 * (size_t)hf, r);
+        }
+        while (redo) {
+            int l = __builtin_ctz(redo);
+            redo &= (__mmask16)(redo - 1);
+            double c[3] = {0, 0, 0};
+            for (uint32_t a = 0; a < dims; ++a) c[a] = axes[a][(i + (size_t)l) * stride];
+            nearest3_f64 s;
+            cellular_search_f64(n, &u, c, &s);
+            out[i + (size_t)l] = cellular_output_f64(&s, &u, p->output);
+        }
+    }
+    return i;
+}
+
+static int has_vbmi(void)
+{
+    static int known = -1;
+    if (known < 0) {
+        __builtin_cpu_init();
+        known = __builtin_cpu_supports("avx512vbmi") ? 1 : 0;
+    }
+    return known;
+}
+
+static int vector_case(const udm1_cellular_params *p, uint32_t dims, size_t stride)
+{
+    return p->metric <= UDM1_CELLULAR_CHEBYSHEV && (dims == 2 || dims == 3) && stride <= (1u << 26) &&
+           udm1_isa_level() == UDM1_ISA_AVX512 && has_vbmi();
+}
+
+size_t udm1_cellular_fast_f64(const udm1_noise *n, const udm1_cellular_params *p, uint32_t dims,
+                              const double *const *axes, size_t stride, size_t count, double *out)
+{
+    return vector_case(p, dims, stride) ? cellular_f64(n, p, dims, axes, stride, count, out) : 0;
+}
+
+size_t udm1_cellular_fast_f32(const udm1_noise *n, const udm1_cellular_params *p, uint32_t dims,
+                              const float *const *axes, size_t stride, size_t count, float *out)
+{
+    return vector_case(p, dims, stride) ? cellular_f32(n, p, dims, axes, stride, count, out) : 0;
+}
+
+#else
+size_t udm1_cellular_fast_f64(const udm1_noise *n, const udm1_cellular_params *p, uint32_t dims,
+                              const double *const *axes, size_t stride, size_t count, double *out)
+{
+    (void)n, (void)p, (void)dims, (void)axes, (void)stride, (void)count, (void)out;
+    return 0;
+}
+
+size_t udm1_cellular_fast_f32(const udm1_noise *n, const udm1_cellular_params *p, uint32_t dims,
+                              const float *const *axes, size_t stride, size_t count, float *out)
+{
+    (void)n, (void)p, (void)dims, (void)axes, (void)stride, (void)count, (void)out;
+    return 0;
+}
+#endif
