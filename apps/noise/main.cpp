@@ -46,13 +46,19 @@ const char *USAGE =
     "  --colors grey|pov   grey values, or the pattern's POV-Ray default colour map (default grey)\n"
     "  --bits 8|16     PNG/TIFF depth (default 8)    --threads N (default: all cores)\n"
     "  --pov NAME      also write NAME.inc (the pigment) and NAME_demo.pov (a scene using it)\n"
+    "  --frames N      a looping animation: N images FILE_0000.png ... over the time w in [0, T): 4D noise\n"
+    "                  periodic in w, so the frame after the last is the first (noise, fbm, turbulence, ridged)\n"
+    "  --loop T        the loop's length in noise units, an integer (default 4)\n"
+    "  --time W        one image at time W of the 4D noise (periodic in --loop)\n"
     "Raw noise patterns (noise, fbm, turbulence, ridged) are written as (1 + v) / 2.\n";
 
 struct Options {
     std::string output, pattern = "noise", table = "wr", pov, figures_dir;
     uint64_t seed = 1;
     uint32_t kind = UDM1_NOISE_IMPROVED, width = 512, height = 512, period = 0, bits = 8, threads = 0;
-    double scale = 8.0, origin[3] = {0, 0, 0};
+    uint32_t frames = 0, loop = 4;  // frames 0 and no --time: the 3D pattern
+    double scale = 8.0, origin[3] = {0, 0, 0}, time = 0.0;
+    bool four_d = false;
     bool pov_colors = false, figures = false;
     udm1_pattern_params params;
 };
@@ -143,10 +149,18 @@ Options parse(int argc, char **argv)
         } else if (a == "--metric") o.params.crackle_metric = udm1app::parse_double(value(a), "--metric", 1, 64);
         else if (a == "--offset") o.params.crackle_offset = udm1app::parse_double(value(a), "--offset", 0, 1e6);
         else if (a == "--solid") o.params.crackle_solid = 1;
+        else if (a == "--frames") o.frames = (uint32_t)udm1app::parse_u64(value(a), "--frames", 1, 100000), o.four_d = true;
+        else if (a == "--loop") o.loop = (uint32_t)udm1app::parse_u64(value(a), "--loop", 1, 1u << 30);
+        else if (a == "--time") o.time = udm1app::parse_double(value(a), "--time", -1e15, 1e15), o.four_d = true;
         else if (a == "--pov") o.pov = value(a);
         else throw Error("unknown option '" + a + "'");
     }
     if (o.output.empty() && o.figures) throw Error("figures needs an output folder: -o DIR");
+    if (o.four_d && o.params.pattern > UDM1_PATTERN_RIDGED)
+        throw Error("--frames and --time animate 4D noise: --pattern noise, fbm, turbulence or ridged, not '" +
+                    o.pattern + "'");
+    if (o.four_d && o.kind == UDM1_NOISE_CLASSIC) throw Error("--frames and --time need --kind improved (4D noise)");
+    if (o.four_d && !o.pov.empty()) throw Error("--pov writes one texture: not with --frames or --time");
     if (o.output.empty()) o.output = "noise.png";  // the built-in default, as udm1-ao and udm1-pt write theirs
     if (!o.figures) {  // the formats of the usage line, and only those
         std::string ext = o.output.substr(o.output.find_last_of('.') == std::string::npos ? o.output.size()
@@ -163,7 +177,8 @@ struct Noise {
     ~Noise() { udm1_noise_destroy(n); }
 };
 
-void make_noise(const std::string &table, uint64_t seed, uint32_t kind, uint32_t period, Noise &out)
+void make_noise(const std::string &table, uint64_t seed, uint32_t kind, uint32_t period, Noise &out,
+                uint32_t period_w = 0)
 {
     udm1_noise_desc d;
     udm1_noise_desc_init(&d);
@@ -171,6 +186,7 @@ void make_noise(const std::string &table, uint64_t seed, uint32_t kind, uint32_t
     d.seed = seed;
     d.kind = kind;
     d.period[0] = d.period[1] = period;
+    d.period_w = period_w;
     if (udm1_noise_create(&d, &out.n) != UDM1_OK) {
         if (table != "perlin" && table != "drand48") {
             udm1_preset_info info;
@@ -198,6 +214,54 @@ std::vector<float> render(const udm1_noise *n, const udm1_pattern_params &p, uin
     if (failed != UDM1_OK) throw Error(udm1_last_error());
     if (raw_kind(p.pattern))
         for (float &v : img) v = 0.5f * (1.0f + v);
+    return img;
+}
+
+// The raw patterns in 4D at time w (udm1/noise.h's sums, with udm1_noise_4d in the place of the 3D noise),
+// rows in parallel, octave by octave through the batch call.
+std::vector<float> render4(const udm1_noise *n, const udm1_pattern_params &p, uint32_t w, uint32_t h,
+                           const double origin[3], double width_units, double height_units, double time)
+{
+    std::vector<float> img((size_t)w * h);
+    bool failed = false;
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, h, 8), [&](const tbb::blocked_range<uint32_t> &r) {
+        std::vector<double> q(4 * (size_t)w), val(w), acc(w);
+        for (uint32_t j = r.begin(); j < r.end(); ++j) {
+            double b = j + 0.5;
+            uint32_t octaves = p.pattern == UDM1_PATTERN_NOISE ? 1 : p.octaves;
+            double amp = 1.0, s = 1.0;
+            for (uint32_t k = 0; k < octaves; ++k) {
+                for (uint32_t i = 0; i < w; ++i) {
+                    double a = i + 0.5;
+                    q[4 * (size_t)i] = (origin[0] + a * width_units / w) * s;
+                    q[4 * (size_t)i + 1] = (origin[1] + b * height_units / h) * s;
+                    q[4 * (size_t)i + 2] = origin[2] * s;
+                    q[4 * (size_t)i + 3] = time * s;
+                }
+                const double *axes[4] = {q.data(), q.data() + 1, q.data() + 2, q.data() + 3};
+                if (udm1_noise_eval(n, 4, axes, 4, w, val.data(), nullptr) != UDM1_OK) {
+                    failed = true;
+                    return;
+                }
+                for (uint32_t i = 0; i < w; ++i) {
+                    double t = val[i];
+                    double N = std::min(1.0, std::max(0.0, 0.5 + 0.5 * t));  // POV's Noise
+                    switch (p.pattern) {
+                    case UDM1_PATTERN_NOISE: acc[i] = t; break;
+                    case UDM1_PATTERN_TURBULENCE:
+                        acc[i] = k == 0 ? std::min(1.0, std::max(0.0, 2.0 * N - 0.5)) : acc[i] + amp * (2.0 * N - 0.5);
+                        break;
+                    case UDM1_PATTERN_RIDGED: acc[i] = (k == 0 ? 0.0 : acc[i]) + amp * (1.0 - std::fabs(t)) * (1.0 - std::fabs(t)); break;
+                    default: acc[i] = (k == 0 ? 0.0 : acc[i]) + amp * t; break;
+                    }
+                }
+                amp *= p.omega;  // octave k: weight omega^k, scale lambda^k
+                s *= p.lambda;
+            }
+            for (uint32_t i = 0; i < w; ++i) img[(size_t)j * w + i] = 0.5f * (1.0f + (float)acc[i]);
+        }
+    });
+    if (failed) throw Error(udm1_last_error());
     return img;
 }
 
@@ -249,8 +313,37 @@ void write_pov(const Options &o)
     write_text(dir + name + "_demo.pov", demo);
 }
 
+// FILE.png -> FILE_0007.png
+std::string frame_name(const std::string &output, uint32_t k)
+{
+    size_t dot = output.find_last_of('.'), slash = output.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) dot = output.size();
+    char num[16];
+    std::snprintf(num, sizeof num, "_%04u", k);
+    return output.substr(0, dot) + num + output.substr(dot);
+}
+
+void run_animation(const Options &o)
+{
+    Noise noise;
+    make_noise(o.table, o.seed, o.kind, o.period, noise, o.loop);
+    double wu = o.period ? (double)o.period : o.scale;
+    double hu = o.period ? (double)o.period : o.scale * o.height / o.width;
+    uint32_t frames = o.frames ? o.frames : 1;
+    for (uint32_t k = 0; k < frames; ++k) {  // frame k at w = k T / N: frame N would be frame 0
+        double w = o.frames ? (double)k * o.loop / o.frames : o.time;
+        std::vector<float> img = render4(noise.n, o.params, o.width, o.height, o.origin, wu, hu, w);
+        std::vector<float> out = colorize(img, o.params.pattern, o.pov_colors);
+        std::string path = o.frames ? frame_name(o.output, k) : o.output;
+        udm1app::write_image(path, out, (int)o.width, (int)o.height, o.pov_colors ? 3 : 1, false, (int)o.bits);
+        if (o.frames > 1) std::fprintf(stderr, "\rudm1-noise: frame %u/%u", k + 1, frames);
+    }
+    if (o.frames > 1) std::fprintf(stderr, "\n");
+}
+
 void run_single(const Options &o)
 {
+    if (o.four_d) return run_animation(o);
     Noise noise;
     make_noise(o.table, o.seed, o.kind, o.period, noise);
     double wu = o.period ? (double)o.period : o.scale;

@@ -260,6 +260,8 @@ _proto("udm1_pattern_name", ctypes.c_char_p, ctypes.c_uint32)
 _proto("udm1_pattern_from_name", ctypes.c_uint32, ctypes.c_char_p)
 _proto("udm1_pattern_points", _S, ctypes.c_void_p, ctypes.POINTER(PatternParams), ctypes.c_void_p, ctypes.c_size_t,
        ctypes.c_size_t, ctypes.c_void_p)
+_proto("udm1_pattern_gradient", _S, ctypes.c_void_p, ctypes.POINTER(PatternParams), ctypes.c_void_p, ctypes.c_size_t,
+       ctypes.c_size_t, ctypes.c_void_p, ctypes.c_void_p)
 _proto("udm1_pattern_grid", _S, ctypes.c_void_p, ctypes.POINTER(PatternParams), ctypes.c_uint32, ctypes.c_uint32,
        ctypes.c_uint32, ctypes.c_uint32, ctypes.POINTER(ctypes.c_double), ctypes.POINTER(ctypes.c_double),
        ctypes.POINTER(ctypes.c_double), ctypes.c_void_p)

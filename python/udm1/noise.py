@@ -207,13 +207,21 @@ class Noise:
             p.crackle_solid = 1 if solid else 0
         return p
 
-    def pattern(self, name: str, points, **params) -> np.ndarray:
-        """A pattern ("marble", "fbm", ...) at the rows of an (n, 3) array."""
+    def pattern(self, name: str, points, gradient: bool = False, **params):
+        """A pattern ("marble", "fbm", "crackle", ...) at the rows of an (n, 3) array. gradient=True (the raw
+        noise patterns noise, fbm, turbulence, ridged): (values, gradients (n, 3)), analytic, the values
+        bit for bit those of gradient=False. Parameters: octaves, omega, lacunarity, turbulence, frequency,
+        phase, wave, exponent, agate_turb; crackle's form, metric, offset, solid."""
         x = np.ascontiguousarray(np.asarray(points, dtype=np.float64))
         if x.ndim != 2 or x.shape[1] != 3:
             raise ValueError("udm1.Noise.pattern: points must be an (n, 3) array")
         p = self._params(name, **params)
         out = np.empty(x.shape[0])
+        if gradient:
+            grads = np.empty((x.shape[0], 3))
+            check(lib.udm1_pattern_gradient(self._handle, ctypes.byref(p), x.ctypes.data, x.shape[0], 3,
+                                            out.ctypes.data, grads.ctypes.data))
+            return out, grads
         check(lib.udm1_pattern_points(self._handle, ctypes.byref(p), x.ctypes.data, x.shape[0], 3, out.ctypes.data))
         return out
 

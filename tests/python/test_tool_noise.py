@@ -79,6 +79,24 @@ def test_povray_renders_the_include(tmp_path):
     assert np.corrcoef(render.ravel(), tex.ravel())[0, 1] > 0.95
 
 
+@pytest.mark.parametrize("pattern", ["noise", "fbm", "turbulence", "ridged"])
+def test_frames_loop(pattern, tmp_path):
+    # 8 frames over the loop [0, 2): the frame after the last (time 2) is the first, bit for bit, and the
+    # step from the last frame to the first is as small as any other step: the animation loops
+    common = ["--pattern", pattern, "--loop", "2", "--size", "96x64", "--bits", "16", "--table", "rd"]
+    r = run(*common, "--frames", "8", "-o", str(tmp_path / "a.png"))
+    assert r.returncode == 0, r.stderr
+    frames = [tmp_path / f"a_{k:04d}.png" for k in range(8)]
+    assert all(f.exists() for f in frames) and not (tmp_path / "a.png").exists()
+    assert run(*common, "--time", "2", "-o", str(tmp_path / "next.png")).returncode == 0
+    assert (tmp_path / "next.png").read_bytes() == frames[0].read_bytes()
+    assert run(*common, "--time", "1.75", "-o", str(tmp_path / "last.png")).returncode == 0
+    assert (tmp_path / "last.png").read_bytes() == frames[7].read_bytes()
+    imgs = [read(f).astype(np.float64) for f in frames]
+    steps = [np.abs(imgs[(k + 1) % 8] - imgs[k]).mean() for k in range(8)]
+    assert min(steps) > 0 and steps[7] < 1.5 * np.median(steps[:7])
+
+
 CRACKLE_CASES = [("", []), ("form <1,0,0>", ["--form", "1,0,0"]), ("form <0,0.5,0> metric 1", ["--form", "0,0.5,0", "--metric", "1"]),
                  ("metric 3 form <0,0.7,0>", ["--metric", "3", "--form", "0,0.7,0"]), ("offset 0.5", ["--offset", "0.5"]),
                  ("solid", ["--solid"])]
@@ -131,6 +149,11 @@ def test_figures(tmp_path):
         (["--bits", "12"], 2, "--bits"),
         (["--wave", "square"], 2, "'square'"),
         (["--frobnicate"], 2, "'--frobnicate'"),
+        (["--frames", "0"], 2, "--frames '0'"),
+        (["--pattern", "marble", "--frames", "4"], 2, "'marble'"),
+        (["--kind", "classic", "--time", "1"], 2, "--kind improved"),
+        (["--loop", "1.5", "--frames", "2"], 2, "--loop '1.5'"),
+        (["--metric", "0.5", "--pattern", "crackle"], 2, "--metric '0.5'"),
     ],
 )
 def test_bad_input(args, code, words, tmp_path):

@@ -226,6 +226,17 @@ UDM1_API udm1_status udm1_pattern_grid(const udm1_noise *noise, const udm1_patte
 UDM1_API udm1_status udm1_pattern_points(const udm1_noise *noise, const udm1_pattern_params *params,
                                          const double *xyz, size_t n, size_t stride, double *out);
 
+/* (1.7) The raw noise patterns (NOISE, FBM, TURBULENCE, RIDGED) and their analytic gradients at n points
+ * (point i at xyz[i * stride], 3 coordinates): value[i] (value may be NULL) is udm1_pattern_points' value
+ * bit for bit, gradient[3 i + c] its derivative along axis c: each octave's noise gradient (as
+ * udm1_noise_eval's) times its scale lambda^i and weight, through the pattern's function (RIDGED:
+ * 2 (1 - |n|) sign(n); TURBULENCE: the clamps' slopes, 0 outside (0, 1) and at the kinks).
+ * Errors: as udm1_pattern_points, and INVALID_ARGUMENT for another pattern (POV-Ray's patterns warp,
+ * clamp and wave-shape: no gradient is defined for them here). */
+UDM1_API udm1_status udm1_pattern_gradient(const udm1_noise *noise, const udm1_pattern_params *params,
+                                           const double *xyz, size_t n, size_t stride, double *value,
+                                           double *gradient);
+
 /* Colour maps with POV-Ray's lookup: entries sorted by value; below the first
  * or above the last, their colour; between two, linear interpolation; equal
  * values make a hard edge. */

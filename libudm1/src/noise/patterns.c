@@ -366,6 +366,81 @@ udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *
     return UDM1_OK;
 }
 
+/* The raw pattern p->pattern (NOISE, FBM, TURBULENCE, RIDGED) at c and its gradient: the operations of
+ * raw() and turbulence() for the value, the chain rule for the gradient. */
+static double raw_gradient(const udm1_noise *n, const udm1_pattern_params *p, const double c[3], double grad[3])
+{
+    double g[3], q[3];
+    grad[0] = grad[1] = grad[2] = 0.0;
+    if (p->pattern == UDM1_PATTERN_NOISE) {
+        double v = udm1_lattice_f64(n, 3, c, g);
+        for (int k = 0; k < 3; ++k) grad[k] = g[k];
+        return v;
+    }
+    if (p->pattern == UDM1_PATTERN_TURBULENCE) {
+        /* clamp01(2 N - 1/2) + sum amp (2 N(s P) - 1/2), N = clamp01(0.5 + 0.5 n) */
+        double t = udm1_lattice_f64(n, 3, c, g);
+        double Nv = 0.5 + 0.5 * t, dN = Nv > 0 && Nv < 1 ? 0.5 : 0.0;
+        double Nc = clamp01(Nv), u = 2.0 * Nc - 0.5, du = u > 0 && u < 1 ? 2.0 * dN : 0.0;
+        double v = clamp01(u), amp = 1.0, s = 1.0;
+        for (int k = 0; k < 3; ++k) grad[k] = du * g[k];
+        for (uint32_t i = 1; i < p->octaves; ++i) {
+            amp *= p->omega;
+            s *= p->lambda;
+            for (int k = 0; k < 3; ++k) q[k] = c[k] * s;
+            t = udm1_lattice_f64(n, 3, q, g);
+            Nv = 0.5 + 0.5 * t;
+            dN = Nv > 0 && Nv < 1 ? 0.5 : 0.0;
+            v += amp * (2.0 * clamp01(Nv) - 0.5);
+            for (int k = 0; k < 3; ++k) grad[k] += amp * 2.0 * dN * s * g[k];
+        }
+        return v;
+    }
+    /* FBM and RIDGED: sum amp t_i, t_i = n(s P) or (1 - |n(s P)|)^2 */
+    double v = 0.0, amp = 1.0, s = 1.0;
+    for (uint32_t i = 0; i < p->octaves; ++i) {
+        for (int k = 0; k < 3; ++k) q[k] = c[k] * s;
+        double t = udm1_lattice_f64(n, 3, q, g), dt = 1.0;
+        if (p->pattern == UDM1_PATTERN_RIDGED) {
+            dt = -2.0 * (1.0 - fabs(t)) * (t > 0 ? 1.0 : t < 0 ? -1.0 : 0.0);
+            t = (1.0 - fabs(t)) * (1.0 - fabs(t));
+        }
+        v += amp * t;
+        for (int k = 0; k < 3; ++k) grad[k] += amp * dt * s * g[k];
+        amp *= p->omega;
+        s *= p->lambda;
+    }
+    return v;
+}
+
+udm1_status udm1_pattern_gradient(const udm1_noise *n, const udm1_pattern_params *caller, const double *xyz,
+                                  size_t count, size_t stride, double *value, double *gradient)
+{
+    static const char fn[] = "udm1_pattern_gradient";
+    udm1_pattern_params params;
+    const udm1_pattern_params *p = &params;
+    udm1_status st = load_params(fn, n, caller, gradient ? (const void *)gradient : (const void *)value, &params);
+    if (st != UDM1_OK) return st;
+    if (!xyz) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: xyz is NULL", fn);
+    if (p->pattern > UDM1_PATTERN_RIDGED)
+        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: pattern %s has no gradient here (noise, fbm, turbulence, "
+                         "ridged have)", fn, NAMES[p->pattern]);
+    if (stride < 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < 3", fn, stride);
+    for (size_t i = 0; i < count; ++i) {
+        const double *q = xyz + i * stride;
+        if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
+            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu is not finite", fn, i);
+    }
+    for (size_t i = 0; i < count; ++i) {
+        double g[3], v = raw_gradient(n, p, xyz + i * stride, g);
+        if (!isfinite(v) || !isfinite(g[0]) || !isfinite(g[1]) || !isfinite(g[2])) return not_a_number(fn, "point", i, 0);
+        if (value) value[i] = v;
+        if (gradient)
+            for (int k = 0; k < 3; ++k) gradient[3 * i + k] = g[k];
+    }
+    return UDM1_OK;
+}
+
 /* ---- colour maps ---- */
 
 udm1_status udm1_color_map_eval(const udm1_color_entry *e, size_t count, double value, float rgb[3])
