@@ -85,6 +85,7 @@ bench)
     shift || true
     UDM1_DEBIAN_PACKAGES+=(libllvm19)  # Mitsuba 3's llvm_ad_rgb variant, the fast anchor of bench_pt.py
     udm1_bootstrap "$ROOT"
+    udm1_bootstrap_fastnoisesimd "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
     udm1_log "C throughput (bench/bench_seq.c)"
     ./build/bin/udm1_bench_seq "$@"
@@ -94,7 +95,7 @@ bench)
     "$PY" bench/bench_per_sample.py --build "$ROOT/build" --out "$ROOT/build/bench_per_sample"
     udm1_log "every sampler's throughput (bench/bench_samplers.c)"
     ./build/bin/udm1_bench_samplers throughput
-    udm1_log "noise against libnoise (bench/bench_noise.cpp) and FastNoise Lite (bench/bench_noise.py)"
+    udm1_log "noise against libnoise (bench/bench_noise.cpp), FastNoiseSIMD and FastNoise Lite (bench/bench_noise.py)"
     ./build/bin/udm1_bench_noise
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_noise.py
     udm1_log "udm1-ao against a bare Embree loop over the same rays, and each sampler's cost (bench/bench_ao.cpp)"

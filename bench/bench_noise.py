@@ -50,12 +50,19 @@ def best_interleaved(fs, reps):
     return best
 
 
-def udm1_methods(d: int):
-    """(label, function) for udm1 in d dimensions."""
+GROUPS = [("Perlin 2D", 2), ("Perlin 3D", 3), ("cellular 3D", 3)]
+
+
+def udm1_methods(group: str, d: int):
+    """(label, function) for udm1 in a group."""
     c = coords(d)
     c32 = tuple(c[k] for k in range(d))
     c64 = tuple(c[k].astype(np.float64) for k in range(d))
     ours = udm1.Noise()
+    if group.startswith("cellular"):
+        return [("udm1 cellular F1, jitter 0.45, float32", lambda: ours.cellular(c32, jitter=0.45)),
+                ("udm1 cellular F1, jitter 1, float32", lambda: ours.cellular(c32, jitter=1.0)),
+                ("udm1 cellular F1, jitter 0.45, float64", lambda: ours.cellular(c64, jitter=0.45))]
     return [(f"udm1 improved noise {d}D, float32", lambda: ours.noise(c32)),
             (f"udm1 improved noise {d}D, float32, value and gradient", lambda: ours.noise(c32, gradient=True)),
             (f"udm1 improved noise {d}D, float64", lambda: ours.noise(c64))]
@@ -76,11 +83,11 @@ def main(argv=None) -> int:
     ap.add_argument("--udm1-only", action="store_true", help="print udm1's best times (JSON) only")
     args = ap.parse_args(argv)
     if args.udm1_only:
-        out = {}
-        for d in (2, 3):
-            ms = udm1_methods(d)
+        out = []
+        for group, d in GROUPS:
+            ms = udm1_methods(group, d)
             for (label, _), t in zip(ms, best_interleaved([f for _, f in ms], args.reps)):
-                out[label] = t
+                out.append([group, label, t])
         print(json.dumps(out))
         return 0
     try:
@@ -94,37 +101,45 @@ def main(argv=None) -> int:
     except ImportError:
         FastNoiseLite = None
     rows = []
-    for d in (2, 3):
+    for group, d in GROUPS:
         c = coords(d)
         c3 = fns.empty_coords(N)  # FastNoiseSIMD's own aligned (3, N) arrays; 2D: z = 0
         c3[:d] = c
         if d == 2:
             c3[2] = 0
         simd = fns.Noise(numWorkers=1)
-        simd.noiseType = fns.NoiseType.Perlin
         simd.frequency = 1.0
-        methods = [(f"FastNoiseSIMD Perlin ({'3D at z = 0' if d == 2 else '3D'}), {fns.extension.SIMD_LEVEL} (anchor)",
-                    lambda: simd.genFromCoords(c3))]
+        cellular = group.startswith("cellular")
+        if cellular:  # its defaults: Euclidean, the distance to the nearest, jitter 0.45
+            simd.noiseType = fns.NoiseType.Cellular
+            simd.cell.distanceFunc = fns.CellularDistanceFunction.Euclidean
+            simd.cell.returnType = fns.CellularReturnType.Distance
+            name = f"FastNoiseSIMD cellular F1 Euclidean, jitter {simd.cell.jitter:.2f}"
+        else:
+            simd.noiseType = fns.NoiseType.Perlin
+            name = f"FastNoiseSIMD Perlin ({'3D at z = 0' if d == 2 else '3D'})"
+        methods = [(f"{name}, {fns.extension.SIMD_LEVEL} (anchor)", lambda: simd.genFromCoords(c3))]
         if FastNoiseLite:
             lite = FastNoiseLite(seed=1)
-            lite.noise_type = NoiseType.NoiseType_Perlin
+            lite.noise_type = NoiseType.NoiseType_Cellular if cellular else NoiseType.NoiseType_Perlin
             lite.frequency = 1.0
             lite.fractal_type = FractalType.FractalType_None
             cl = np.ascontiguousarray(c)
-            methods.append((f"FastNoise Lite Perlin {d}D", lambda: lite.gen_from_coords(cl)))
-        methods += udm1_methods(d)
+            methods.append((f"FastNoise Lite {'cellular (its defaults)' if cellular else 'Perlin'} {d}D",
+                            lambda: lite.gen_from_coords(cl)))
+        methods += udm1_methods(group, d)
         times = best_interleaved([f for _, f in methods], args.reps)
         for (label, _), t in zip(methods, times):
-            rows.append({"d": d, "method": label, "seconds": t, "rate": N / t, "x_anchor": times[0] / t})
-    avx2 = capped(args.reps)
-    for label, t in avx2.items():
-        d = int(label.split()[3][0])
-        anchor = next(r["seconds"] for r in rows if r["d"] == d and "anchor" in r["method"])
-        rows.append({"d": d, "method": label + ", UDM1_ISA=avx2", "seconds": t, "rate": N / t, "x_anchor": anchor / t})
-    rows.sort(key=lambda r: r["d"])
-    print(f"{'d':>2} {'method':<62} {'evals/s':>10} {'x anchor':>9}")
+            rows.append({"group": group, "method": label, "seconds": t, "rate": N / t, "x_anchor": times[0] / t})
+    for group, label, t in capped(args.reps):
+        anchor = next(r["seconds"] for r in rows if r["group"] == group and "anchor" in r["method"])
+        rows.append({"group": group, "method": label + ", UDM1_ISA=avx2", "seconds": t, "rate": N / t,
+                     "x_anchor": anchor / t})
+    order = [g for g, _ in GROUPS]
+    rows.sort(key=lambda r: order.index(r["group"]))
+    print(f"{'group':<12} {'method':<66} {'evals/s':>10} {'x anchor':>9}")
     for r in rows:
-        print(f"{r['d']:>2} {r['method']:<62} {r['rate']:10.4g} {r['x_anchor']:9.2f}")
+        print(f"{r['group']:<12} {r['method']:<66} {r['rate']:10.4g} {r['x_anchor']:9.2f}")
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"rows": rows, "n": N, "reps": args.reps, "isa": udm1.isa() if hasattr(udm1, "isa") else ""}, f,

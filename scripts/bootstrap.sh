@@ -45,6 +45,21 @@ udm1_bootstrap_python() {
     echo "$want" > "$stamp"
 }
 
+# FastNoiseSIMD (PyPI pyfastnoisesimd), the noise benchmark's anchor: only `./run.sh bench` needs it. Its
+# source distribution compiles against numpy's headers and imports numpy while it builds, so it is
+# built without pip's build isolation, in the environment that has numpy.
+udm1_bootstrap_fastnoisesimd() {
+    local py="$1/.venv/bin/python"
+    if "$py" -c "import pyfastnoisesimd" 2>/dev/null; then
+        udm1_log "pyfastnoisesimd present"
+        return 0
+    fi
+    udm1_log "installing pyfastnoisesimd 0.4.2 (FastNoiseSIMD) into .venv: built against numpy's headers"
+    "$py" -m pip install -q --disable-pip-version-check setuptools wheel >&2 || return 1
+    CFLAGS="-I$("$py" -c 'import numpy; print(numpy.get_include())')" \
+        "$py" -m pip install -q --disable-pip-version-check --no-build-isolation pyfastnoisesimd==0.4.2 >&2 || return 1
+}
+
 udm1_bootstrap() {
     udm1_bootstrap_debian && udm1_bootstrap_python "$1"
 }

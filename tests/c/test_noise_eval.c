@@ -148,7 +148,11 @@ static void test_double_equals_per_call(void)
 {
     static double xs[4][N], v[N], v2[N], g[4 * N];
     for (int i = 0; i < N; ++i)
-        for (int c = 0; c < 4; ++c) xs[c][i] = i % 53 == 2 ? (uniform() - 0.5) * 1e12 : (uniform() - 0.5) * 500;
+        for (int c = 0; c < 4; ++c) {
+            xs[c][i] = i % 53 == 2 ? (uniform() - 0.5) * 1e12 : (uniform() - 0.5) * 500;
+            if (i % 7 == 3) /* lattice points, -0 and halves: values and gradients of zero, with their signs */
+                xs[c][i] = uniform() < 0.5 ? floor(xs[c][i]) : uniform() < 0.3 ? -0.0 : floor(xs[c][i]) + 0.5;
+        }
     for (uint32_t kind = 0; kind <= 1; ++kind) {
         udm1_noise *n = make("wr", kind, 0, 0), *p = make(NULL, kind, 6, 0);
         for (int q = 0; q < 2; ++q) {
@@ -164,8 +168,13 @@ static void test_double_equals_per_call(void)
                                   : dims == 3 ? udm1_noise_3d(m, xs[0][i], xs[1][i], xs[2][i])
                                               : udm1_noise_4d(m, xs[0][i], xs[1][i], xs[2][i], xs[3][i]);
                     bad += memcmp(&want, &v[i], sizeof want) != 0 || memcmp(&want, &v2[i], sizeof want) != 0;
+                    /* the gradient as the scalar code gives it for the point alone, zeros' signs included */
+                    const double *one[4] = {xs[0] + i, xs[1] + i, xs[2] + i, xs[3] + i};
+                    double g1[4], v1;
+                    CHECK_STATUS(udm1_noise_eval(m, dims, one, 1, 1, &v1, g1), UDM1_OK);
+                    bad += memcmp(g1, g + (size_t)i * dims, sizeof(double) * dims) != 0;
                 }
-                CHECKF(bad == 0, "%s: kind %u periodic %d dims %u: %d values differ from the per-point call", udm1_isa(),
+                CHECKF(bad == 0, "%s: kind %u periodic %d dims %u: %d values or gradients differ from the per-point call", udm1_isa(),
                        kind, q, dims, bad);
             }
         }

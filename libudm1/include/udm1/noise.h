@@ -84,7 +84,8 @@ UDM1_API double udm1_noise_2d(const udm1_noise *noise, double x, double y);
 UDM1_API double udm1_noise_3d(const udm1_noise *noise, double x, double y, double z);
 
 /* (1.7) 4D improved noise: the hash perm[perm[perm[perm[X] + Y] + Z] + W] of each of the cell's 16
- * corners, the 32 gradients of Gustavson's noise1234 (three components +-1, one 0: u = x (h < 24) or y,
+ * corners, Perlin's 4D gradient set (the midpoints of the 32 edges of the 4D cube, as his simplex noise
+ * reference and Gustavson's noise1234 use them; three components +-1, one 0: u = x (h < 24) or y,
  * v = y (h < 16) or z, w = z (h < 8) or t by h = hash & 31, +-u +-v +-w), the quintic fade, scaled by
  * 0.87 to about [-1, 1]; periodic on the axes with a period (desc.period, desc.period_w): a texture
  * that loops in time over the fourth. Classic noise has no 4D: NaN with INVALID_ARGUMENT. NaN for a

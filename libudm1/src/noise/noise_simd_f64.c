@@ -2,9 +2,13 @@
  * AVX-512 and VBMI: the hashes of 16 points in one register (the permutation held in four registers,
  * looked up 64 bytes at a time, a point's four hashes of a step in the bytes of its lane, as the float
  * kernel), the arithmetic in two registers of 8 doubles. Its operations are the scalar double code's in
- * the same order (noise/lattice_impl.h): the exact floor and offset, the quintic fade, Perlin's +-u +-v as
- * blends and sign flips (so a zero keeps the sign Perlin's code gives it), the nested lerps; the gradient
- * the same derivative. So its values equal udm1_noise_1d..3d bit for bit (tests/c/test_noise.c,
+ * the same order (noise/lattice_impl.h): the exact floor and offset, the quintic fade, the nested lerps,
+ * and for the gradient the same derivative; a 3D corner's +-u +-v is the dot product with Perlin's edge
+ * vector, fma(gx, x, fma(gy, y, gz z)) with the edges looked up in registers: with one component 0 and
+ * two +-1 that is the one rounding of +-u +-v, the same value unless it is zero, when its sign may
+ * differ. A zero's sign changes no non-zero result of sums, differences and products, so only a value or
+ * gradient component that is itself zero may differ: those points are recomputed by the scalar code.
+ * So every value equals udm1_noise_1d..3d bit for bit, signed zeros included (tests/c/test_noise.c,
  * test_noise_eval.c). Improved noise in 2D and 3D, not periodic, any layout of the coordinates; the rest
  * goes to noise_simd.c's 4-lane kernels (packed points) or to the scalar code. */
 #include "core/isa.h"
@@ -79,48 +83,20 @@ AVX512 static inline __m512d lerp8(__m512d t, __m512d a, __m512d b)
     return _mm512_add_pd(a, _mm512_mul_pd(t, _mm512_sub_pd(b, a)));
 }
 
-/* A corner's choices for 16 points (the hash in byte k of each lane of H), as mask registers */
+/* Perlin's 16 edge directions by hash & 15, each component's 16 values in two registers */
 typedef struct {
-    __mmask16 below8, v_on_y, v_on_x, neg_u, neg_v;
-} choice16;
+    __m512d lo[3], hi[3];
+} edges16;
 
-AVX512 static inline choice16 choose3(__m512i H, const int k)
+/* A corner's gradient g (its hash in byte k of each 64-bit lane of W) and its value g . (x, y, z) =
+ * fma(gx, x, fma(gy, y, gz z)): with one component 0 and two +-1, one rounding of +-u +-v, so Perlin's
+ * value whenever it is not zero (a zero's sign may differ: the caller redoes such points) */
+AVX512 static inline __m512d dot8(const edges16 *E, __m512i W, const int k, __m512d x, __m512d y, __m512d z,
+                                  __m512d g[3])
 {
-    const int s = 8 * k;
-    choice16 c;
-    c.below8 = _mm512_testn_epi32_mask(H, _mm512_set1_epi32(8 << s));                        /* u = x */
-    c.v_on_y = _mm512_testn_epi32_mask(H, _mm512_set1_epi32(12 << s));                       /* h < 4 */
-    c.v_on_x = _mm512_cmpeq_epi32_mask(_mm512_and_si512(H, _mm512_set1_epi32(13 << s)),     /* 12 or 14 */
-                                       _mm512_set1_epi32(12 << s));
-    c.neg_u = _mm512_test_epi32_mask(H, _mm512_set1_epi32(1 << s));
-    c.neg_v = _mm512_test_epi32_mask(H, _mm512_set1_epi32(2 << s));
-    return c;
-}
-
-/* +-u +-v for half h (lanes 8 h .. 8 h + 7) of the choices */
-AVX512 static inline __m512d corner8(choice16 c, const int h, __m512d x, __m512d y, __m512d z)
-{
-    __mmask8 below8 = (__mmask8)(c.below8 >> (8 * h)), v_on_y = (__mmask8)(c.v_on_y >> (8 * h));
-    __mmask8 v_on_x = (__mmask8)(c.v_on_x >> (8 * h));
-    __m512d sign = _mm512_set1_pd(-0.0);
-    __m512d u = _mm512_mask_blend_pd(below8, y, x);
-    __m512d v = _mm512_mask_blend_pd(v_on_y, _mm512_mask_blend_pd(v_on_x, z, x), y);
-    u = _mm512_mask_xor_pd(u, (__mmask8)(c.neg_u >> (8 * h)), u, sign);
-    v = _mm512_mask_xor_pd(v, (__mmask8)(c.neg_v >> (8 * h)), v, sign);
-    return _mm512_add_pd(u, v);
-}
-
-/* the corner's gradient vector for half h: +-1 on the two axes picked */
-AVX512 static inline void gvec8(choice16 c, const int h, __m512d g[3])
-{
-    __mmask8 below8 = (__mmask8)(c.below8 >> (8 * h)), v_on_y = (__mmask8)(c.v_on_y >> (8 * h));
-    __mmask8 v_on_x = (__mmask8)((c.v_on_x & ~c.v_on_y) >> (8 * h)), v_on_z = (__mmask8)((~c.v_on_x & ~c.v_on_y) >> (8 * h));
-    __m512d one = _mm512_set1_pd(1.0), zero = _mm512_setzero_pd(), sign = _mm512_set1_pd(-0.0);
-    __m512d su = _mm512_mask_xor_pd(one, (__mmask8)(c.neg_u >> (8 * h)), one, sign);
-    __m512d sv = _mm512_mask_xor_pd(one, (__mmask8)(c.neg_v >> (8 * h)), one, sign);
-    g[0] = _mm512_mask_blend_pd(below8, _mm512_mask_blend_pd(v_on_x, zero, sv), su);
-    g[1] = _mm512_mask_blend_pd(below8, su, _mm512_mask_blend_pd(v_on_y, zero, sv));
-    g[2] = _mm512_mask_blend_pd(v_on_z, zero, sv);
+    __m512i idx = k ? _mm512_srli_epi64(W, 8 * k) : W; /* (permutex2var reads the low 4 bits) */
+    for (int c = 0; c < 3; ++c) g[c] = _mm512_permutex2var_pd(E->lo[c], idx, E->hi[c]);
+    return _mm512_fmadd_pd(g[0], x, _mm512_fmadd_pd(g[1], y, _mm512_mul_pd(g[2], z)));
 }
 
 /* noise1234's 2D: u = x (h & 7 < 4) or y, v the other; +-u +-2v */
@@ -175,24 +151,27 @@ AVX512 static inline void hashes(const perm512 *T, __m512i X0, __m512i Y0, __m51
     *H1 = lookup16(T, _mm512_add_epi8(ab, spread4(Z1)));
 }
 
-/* One half (8 points) of a 3D group: values into value[0..7] and gradients into gradient[0..23] */
-AVX512 static inline __attribute__((always_inline)) void half3(choice16 C[8], const int h, __m512d x, __m512d y,
-                                                                __m512d z, double *value, double *gradient,
-                                                                const int with_gradient)
+/* One half (8 points) of a 3D group, the hashes W0 = [h000, h010, h100, h110], W1 = [h001, h011, h101,
+ * h111] in the bytes of 64-bit lanes: values into value[0..7] and gradients into gradient[0..23]; the
+ * mask of the lanes whose value or a gradient component is zero (their sign is the scalar code's job) */
+AVX512 static inline __attribute__((always_inline)) __mmask8 half3(const edges16 *E, __m512i W0, __m512i W1,
+                                                                    __m512d x, __m512d y, __m512d z, double *value,
+                                                                    double *gradient, const int with_gradient)
 {
-    const __m512d one = _mm512_set1_pd(1.0);
+    const __m512d one = _mm512_set1_pd(1.0), zero = _mm512_setzero_pd();
     __m512d x1 = _mm512_sub_pd(x, one), y1 = _mm512_sub_pd(y, one), z1 = _mm512_sub_pd(z, one);
     __m512d u = fade8(x), v = fade8(y), w = fade8(z);
-    __m512d c000 = corner8(C[0], h, x, y, z), c100 = corner8(C[1], h, x1, y, z);
-    __m512d c010 = corner8(C[2], h, x, y1, z), c110 = corner8(C[3], h, x1, y1, z);
-    __m512d c001 = corner8(C[4], h, x, y, z1), c101 = corner8(C[5], h, x1, y, z1);
-    __m512d c011 = corner8(C[6], h, x, y1, z1), c111 = corner8(C[7], h, x1, y1, z1);
-    if (value)
-        _mm512_storeu_pd(value, lerp8(w, lerp8(v, lerp8(u, c000, c100), lerp8(u, c010, c110)),
-                                      lerp8(v, lerp8(u, c001, c101), lerp8(u, c011, c111))));
+    __m512d G[8][3];
+    __m512d c000 = dot8(E, W0, 0, x, y, z, G[0]), c100 = dot8(E, W0, 2, x1, y, z, G[1]);
+    __m512d c010 = dot8(E, W0, 1, x, y1, z, G[2]), c110 = dot8(E, W0, 3, x1, y1, z, G[3]);
+    __m512d c001 = dot8(E, W1, 0, x, y, z1, G[4]), c101 = dot8(E, W1, 2, x1, y, z1, G[5]);
+    __m512d c011 = dot8(E, W1, 1, x, y1, z1, G[6]), c111 = dot8(E, W1, 3, x1, y1, z1, G[7]);
+    __m512d val = lerp8(w, lerp8(v, lerp8(u, c000, c100), lerp8(u, c010, c110)),
+                        lerp8(v, lerp8(u, c001, c101), lerp8(u, c011, c111)));
+    __mmask8 zeros = _mm512_cmp_pd_mask(val, zero, _CMP_EQ_OQ);
+    if (value) _mm512_storeu_pd(value, val);
     if (with_gradient) {
-        __m512d G[8][3], g[3];
-        for (int k = 0; k < 8; ++k) gvec8(C[k], h, G[k]);
+        __m512d g[3];
         for (int k = 0; k < 3; ++k)
             g[k] = lerp8(w, lerp8(v, lerp8(u, G[0][k], G[1][k]), lerp8(u, G[2][k], G[3][k])),
                          lerp8(v, lerp8(u, G[4][k], G[5][k]), lerp8(u, G[6][k], G[7][k])));
@@ -208,8 +187,10 @@ AVX512 static inline __attribute__((always_inline)) void half3(choice16 C[8], co
         g[0] = _mm512_add_pd(g[0], _mm512_mul_pd(du, pu));
         g[1] = _mm512_add_pd(g[1], _mm512_mul_pd(dv, pv));
         g[2] = _mm512_add_pd(g[2], _mm512_mul_pd(dw, pw));
+        for (int k = 0; k < 3; ++k) zeros |= _mm512_cmp_pd_mask(g[k], zero, _CMP_EQ_OQ);
         store_interleaved8(gradient, g, 3);
     }
+    return zeros;
 }
 
 AVX512 static inline __attribute__((always_inline)) void half2(__m512i H, const int h, __m512d x, __m512d y,
@@ -239,6 +220,12 @@ AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1
 {
     const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
                        _mm512_loadu_si512(n->perm + 192)};
+    edges16 E;
+    for (int c = 0; c < 3; ++c) {
+        double t[16];
+        for (int h = 0; h < 16; ++h) t[h] = n->g3[h][c]; /* improved noise: EDGES[h & 15] */
+        E.lo[c] = _mm512_loadu_pd(t), E.hi[c] = _mm512_loadu_pd(t + 8);
+    }
     const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
     size_t i = 0;
     for (; i + 16 <= count; i += 16) {
@@ -259,11 +246,22 @@ AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1
         __m512i Z0 = dims == 3 ? join16(idx[2][0], idx[2][1]) : X0;
         hashes(&T, X0, Y0, Z0, (int)dims, &H0, &H1);
         if (dims == 3) {
-            choice16 C[8] = {choose3(H0, 0), choose3(H0, 2), choose3(H0, 1), choose3(H0, 3),
-                             choose3(H1, 0), choose3(H1, 2), choose3(H1, 1), choose3(H1, 3)};
-            for (int h = 0; h < 2; ++h)
-                half3(C, h, c[0][h], c[1][h], c[2][h], value ? value + i + 8 * h : NULL,
-                      with_gradient ? gradient + 3 * (i + 8 * h) : NULL, with_gradient);
+            for (int h = 0; h < 2; ++h) {
+                __m512i W0 = _mm512_cvtepu32_epi64(h ? _mm512_extracti64x4_epi64(H0, 1) : _mm512_castsi512_si256(H0));
+                __m512i W1 = _mm512_cvtepu32_epi64(h ? _mm512_extracti64x4_epi64(H1, 1) : _mm512_castsi512_si256(H1));
+                __mmask8 redo = half3(&E, W0, W1, c[0][h], c[1][h], c[2][h], value ? value + i + 8 * h : NULL,
+                                      with_gradient ? gradient + 3 * (i + 8 * h) : NULL, with_gradient);
+                while (redo) { /* a zero: its sign as the scalar code gives it */
+                    int l = __builtin_ctz(redo);
+                    redo &= (__mmask8)(redo - 1);
+                    size_t at = i + 8 * (size_t)h + (size_t)l;
+                    double q[3] = {axes[0][at * stride], axes[1][at * stride], axes[2][at * stride]}, g[3];
+                    double r = udm1_lattice_f64(n, 3, q, with_gradient ? g : NULL);
+                    if (value) value[at] = r;
+                    if (with_gradient)
+                        for (int k = 0; k < 3; ++k) gradient[3 * at + k] = g[k];
+                }
+            }
         } else {
             for (int h = 0; h < 2; ++h)
                 half2(H0, h, c[0][h], c[1][h], value ? value + i + 8 * h : NULL,
