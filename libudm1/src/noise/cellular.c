@@ -8,19 +8,64 @@
 
 #define REAL double
 #define R(f) f##_f64
+#define RT(f) f##_f64
 #define RF(fn) fn
 #include "noise/cellular_impl.h"
 #undef REAL
 #undef R
+#undef RT
 #undef RF
 
 #define REAL float
 #define R(f) f##_f32
+#define RT(f) f##_f32
 #define RF(fn) fn##f
 #include "noise/cellular_impl.h"
 #undef REAL
 #undef R
+#undef RT
 #undef RF
+
+/* The same search compiled for processors with FMA (every AVX2 one): the same operations, fma() in one
+ * instruction instead of a library call, so the same values, several times faster. */
+#if defined(UDM1_HAVE_ISA_KERNELS)
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+#define CELLULAR_REUSE_TYPES
+#define REAL double
+#define R(f) f##_f64_fma
+#define RT(f) f##_f64
+#define RF(fn) fn
+#include "noise/cellular_impl.h"
+#undef REAL
+#undef R
+#undef RT
+#undef RF
+#define REAL float
+#define R(f) f##_f32_fma
+#define RT(f) f##_f32
+#define RF(fn) fn##f
+#include "noise/cellular_impl.h"
+#undef REAL
+#undef R
+#undef RT
+#undef RF
+#undef CELLULAR_REUSE_TYPES
+#pragma GCC pop_options
+#include "core/isa.h"
+static int with_fma(void)
+{
+    static int known = -1;
+    if (known < 0) {
+        __builtin_cpu_init();
+        known = __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2") ? 1 : 0;
+    }
+    return known && udm1_isa_level() >= UDM1_ISA_AVX2;
+}
+#define SEARCH(P, n, u, c, s) (with_fma() ? cellular_search_##P##_fma(n, u, c, s) : cellular_search_##P(n, u, c, s))
+#else
+#define SEARCH(P, n, u, c, s) cellular_search_##P(n, u, c, s)
+#endif
 
 void udm1_cellular_params_init(udm1_cellular_params *params)
 {
@@ -92,7 +137,7 @@ udm1_status udm1_cellular_eval(const udm1_noise *n, const udm1_cellular_params *
                 return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, a);
         }
         nearest3_f64 s;
-        cellular_search_f64(n, &u, c, &s);
+        SEARCH(f64, n, &u, c, &s);
         out[i] = cellular_output_f64(&s, &u, p.output);
     }
     return UDM1_OK;
@@ -117,7 +162,7 @@ udm1_status udm1_cellular_eval_f32(const udm1_noise *n, const udm1_cellular_para
                 return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, a);
         }
         nearest3_f32 s;
-        cellular_search_f32(n, &u, c, &s);
+        SEARCH(f32, n, &u, c, &s);
         out[i] = cellular_output_f32(&s, &u, p.output);
     }
     return UDM1_OK;
@@ -137,7 +182,7 @@ void udm1_cellular_nearest3(const udm1_noise *n, double e, const double c[3], do
     cellular_setup_f64 u;
     cellular_setup_init_f64(&u, n, 3, metric, 3, 1.0, e);
     nearest3_f64 s;
-    cellular_search_f64(n, &u, c, &s);
+    SEARCH(f64, n, &u, c, &s);
     for (int k = 0; k < 3; ++k) F[k] = s.F[k];
     if (nearest) /* the point's cell + the nearest's offset (exact far from the origin: floor(c) is) */
         for (int a = 0; a < 3; ++a)

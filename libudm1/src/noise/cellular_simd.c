@@ -19,18 +19,22 @@
 
 #define REAL double
 #define R(f) f##_f64
+#define RT(f) f##_f64
 #define RF(fn) fn
 #include "noise/cellular_impl.h"
 #undef REAL
 #undef R
+#undef RT
 #undef RF
 
 #define REAL float
 #define R(f) f##_f32
+#define RT(f) f##_f32
 #define RF(fn) fn##f
 #include "noise/cellular_impl.h"
 #undef REAL
 #undef R
+#undef RT
 #undef RF
 
 #define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi,fma")))
