@@ -32,6 +32,7 @@ case "$cmd" in
 report | --*)
     if [[ $# -gt 0 && "$1" == report ]]; then shift; fi
     udm1_bootstrap "$ROOT"
+    udm1_bootstrap_fastnoisesimd "$ROOT" || udm1_log "pyfastnoisesimd could not be installed: the noise speeds are measured against FastNoise Lite"
     build build -DCMAKE_BUILD_TYPE=Release
     export PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1"
     udm1_log "writing report/: speed against error for every sampler and application (tools/report/main_report.py;"

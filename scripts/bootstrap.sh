@@ -45,7 +45,7 @@ udm1_bootstrap_python() {
     echo "$want" > "$stamp"
 }
 
-# FastNoiseSIMD (PyPI pyfastnoisesimd), the noise benchmark's anchor: only `./run.sh bench` needs it. Its
+# FastNoiseSIMD (PyPI pyfastnoisesimd), the noise benchmark's anchor (the report and `./run.sh bench`). Its
 # source distribution compiles against numpy's headers and imports numpy while it builds, so it is
 # built without pip's build isolation, in the environment that has numpy.
 udm1_bootstrap_fastnoisesimd() {

@@ -7,7 +7,8 @@ terminal, and records what each did in OUT/steps.json:
     samplers    integration RMSE against N and time, slopes, spectra, zone plates (sampler_report.py)
     throughput  every sampler's values per second, bulk and per sample (udm1_bench_samplers throughput)
     noise       the paper's Figures 2 and 3 (udm1-noise figures), noise evaluations per second against
-                libnoise (udm1_bench_noise) and FastNoise Lite (bench_noise.py), spectra (noise_report.py)
+                libnoise (udm1_bench_noise) and FastNoiseSIMD (bench_noise.py;
+                FastNoise Lite where FastNoiseSIMD is not installed), spectra (noise_report.py)
     ao          the paper's Figure 6 with udm1-ao (ao_report.py)
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
     tent        beyond the paper: the tent transform's effect per integrand (udm1_bench_samplers error)
@@ -104,9 +105,9 @@ def plan(args, out: Path) -> list[Step]:
         Step("noise", "Noise: the paper's Figures 2 and 3, evaluations per second, spectra",
              [[tools["noise"], "figures", "-o", str(out / "noise")],
               [tools["bench_noise"], "--reps", noise_reps],
-              [py, str(ROOT / "bench" / "bench_noise.py"), "--reps", noise_reps],
+              [py, str(ROOT / "bench" / "bench_noise.py"), "--reps", noise_reps, "--json", str(out / "noise_simd.json")],
               [py, str(HERE / "noise_report.py"), *o, *q]],
-             ["noise/figures.md", "noise_libnoise.txt", "noise_fastnoise.txt", "noise_spectra.json"], "noise/figures.md",
+             ["noise/figures.md", "noise_libnoise.txt", "noise_simd.json", "noise_spectra.json"], "noise/figures.md",
              stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
         Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html"),
         Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html"),

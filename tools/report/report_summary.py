@@ -101,14 +101,11 @@ def parse_libnoise(text: str) -> list[dict]:
     return rows
 
 
-def parse_fastnoise(text: str) -> list[dict]:
-    rows = []
-    for line in text.splitlines():
-        m = re.match(r"^\s*(\d)\s+(.*?)\s+([0-9.e+-]+)\s+([0-9.]+)\s*$", line)
-        if m:
-            rows.append({"method": f"{m.group(2)} ({m.group(1)}D)", "per_second": float(m.group(3)),
-                         "ratio": float(m.group(4)), "anchor": f"FastNoise Lite Perlin {m.group(1)}D"})
-    return rows
+def parse_simd_noise(out: Path) -> list[dict]:
+    """bench_noise.py's rows (FastNoiseSIMD, or FastNoise Lite where it is absent, and udm1)."""
+    rows = load(out, "noise_simd.json")["rows"]
+    return [{"method": f"{r['method']} ({r['group']})", "per_second": r["rate"], "ratio": r["x_anchor"],
+             "anchor": r["anchor"]} for r in rows]
 
 
 # ---- sections --------------------------------------------------------------------------------------------------
@@ -367,7 +364,7 @@ def noise_section(doc, out: Path, state):
     doc.image("noise/figure2.png", "Figure 2")
     doc.image("noise/figure3.png", "Figure 3")
     rows = parse_libnoise((out / "noise_libnoise.txt").read_text()) + \
-        parse_fastnoise((out / "noise_fastnoise.txt").read_text())
+        parse_simd_noise(out)
     doc.para("Evaluations per second, each ratio against the anchor named in its row, measured in the same run "
              "(udm1_bench_noise and bench/bench_noise.py).")
     doc.table("noise_speed", "noise speed", [("method", "method", ""), ("per_second", "per second", ".3g"),
