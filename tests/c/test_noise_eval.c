@@ -9,6 +9,9 @@
  *  - gradients against central differences of the noise (double), and float's against double's;
  *  - float far from the origin: as accurate as the double code at the same (float) coordinates;
  *  - 4D periodic in w (a looping texture) and in x, exactly; classic noise has no 4D;
+ *  - points in rows of 1 to 6 numbers (the kernels' strided loads and gathers), noise and cellular noise
+ *    in float and double: the values of one array per axis bit for bit, the rows at the very end of
+ *    their allocation (nothing past the last point is read: AddressSanitizer's build);
  *  - bad input: one message, the point named.
  */
 #include "check.h"
@@ -284,6 +287,55 @@ static void test_float_far(void)
     udm1_noise_destroy(n);
 }
 
+/* One evaluation of every batch function on points in rows of `stride` numbers (the last row ends the
+ * allocation) against the same points in one array per axis. */
+static void test_rows(void)
+{
+    enum { M = 1000 };
+    static double soa64[3][M], out64[2][M], grad64[2][3 * M];
+    static float soa32[3][M], out32[2][M], grad32[2][3 * M];
+    for (int i = 0; i < M; ++i)
+        for (int c = 0; c < 3; ++c) soa64[c][i] = soa32[c][i] = (float)((uniform() - 0.5) * (i % 31 == 4 ? 1e7 : 300));
+    udm1_noise *n = make("wr", UDM1_NOISE_IMPROVED, 0, 0);
+    udm1_cellular_params cp;
+    udm1_cellular_params_init(&cp);
+    for (uint32_t dims = 2; dims <= 3; ++dims)
+        for (size_t stride = dims; stride <= 6; ++stride)
+            for (size_t m = M; m >= 3; m = m / 3 - 1) { /* tails of every length class */
+                size_t len = (m - 1) * stride + dims; /* the last row ends at the last coordinate */
+                double *r64 = malloc(len * sizeof *r64);
+                float *r32 = malloc(len * sizeof *r32);
+                CHECK(r64 && r32);
+                for (size_t i = 0; i < m; ++i)
+                    for (uint32_t c = 0; c < dims; ++c)
+                        r64[i * stride + c] = soa64[c][M - m + i], r32[i * stride + c] = soa32[c][M - m + i];
+                const double *a64[3] = {soa64[0] + M - m, soa64[1] + M - m, soa64[2] + M - m}, *q64[3] = {r64, r64 + 1, r64 + 2};
+                const float *a32[3] = {soa32[0] + M - m, soa32[1] + M - m, soa32[2] + M - m}, *q32[3] = {r32, r32 + 1, r32 + 2};
+                int bad = 0;
+                for (int which = 0; which < 4; ++which) {
+                    for (int layout = 0; layout < 2; ++layout) {
+                        const double *const *x64 = layout ? q64 : a64;
+                        const float *const *x32 = layout ? q32 : a32;
+                        size_t st = layout ? stride : 1;
+                        if (which == 0) CHECK_STATUS(udm1_noise_eval(n, dims, x64, st, m, out64[layout], grad64[layout]), UDM1_OK);
+                        if (which == 1) CHECK_STATUS(udm1_noise_eval_f32(n, dims, x32, st, m, out32[layout], grad32[layout]), UDM1_OK);
+                        if (which == 2) CHECK_STATUS(udm1_cellular_eval(n, &cp, dims, x64, st, m, out64[layout]), UDM1_OK);
+                        if (which == 3) CHECK_STATUS(udm1_cellular_eval_f32(n, &cp, dims, x32, st, m, out32[layout]), UDM1_OK);
+                    }
+                    if (which % 2 == 0)
+                        bad += memcmp(out64[0], out64[1], m * sizeof(double)) != 0 ||
+                               (which == 0 && memcmp(grad64[0], grad64[1], m * dims * sizeof(double)) != 0);
+                    else
+                        bad += memcmp(out32[0], out32[1], m * sizeof(float)) != 0 ||
+                               (which == 1 && memcmp(grad32[0], grad32[1], m * dims * sizeof(float)) != 0);
+                }
+                CHECKF(bad == 0, "%s: dims %u, rows of %zu, %zu points: %d of 4 batch functions differ from one array per axis",
+                       udm1_isa(), dims, stride, m, bad);
+                free(r64), free(r32);
+            }
+    udm1_noise_destroy(n);
+}
+
 static void test_bad_input(void)
 {
     udm1_noise *n = make(NULL, UDM1_NOISE_IMPROVED, 0, 0);
@@ -320,6 +372,7 @@ int main(void)
     test_4d();
     test_gradients();
     test_float_far();
+    test_rows();
     test_bad_input();
     CHECK_DONE();
 }

@@ -17,6 +17,8 @@
 #if defined(UDM1_HAVE_ISA_KERNELS)
 #include <immintrin.h>
 
+#include "noise/strided_loads.h"
+
 #define REAL double
 #define R(f) f##_f64
 #define RT(f) f##_f64
@@ -169,11 +171,6 @@ AVX512 static inline __m512 root16(__m512 F, uint32_t metric)
     return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm512_sqrt_ps(F) : F;
 }
 
-AVX512 static inline __m512 load16(const float *p, size_t stride, __m512i vindex)
-{
-    return stride == 1 ? _mm512_loadu_ps(p) : _mm512_i32gather_ps(vindex, p, 4);
-}
-
 AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n, const udm1_cellular_params *p,
                                                           uint32_t dims, const float *const *axes, size_t stride,
                                                           size_t count, float *out)
@@ -182,8 +179,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f32(&u, n, dims, p->metric, k, p->jitter, p->exponent);
     const table256 perm = table_of(n->perm);
-    const __m512i vindex = _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
-                                              _mm512_set1_epi32((int)stride));
+    const strided_loads L = strided_loads_init(stride, 16);
     const __m512 c0 = _mm512_set1_ps(u.c0), c1 = _mm512_set1_ps(u.c1), zero = _mm512_setzero_ps();
     const __m512 inf = _mm512_set1_ps(INFINITY), margin = _mm512_set1_ps(0x1p-20f);
     const int want_cell = p->output == UDM1_CELLULAR_CELL;
@@ -195,7 +191,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
         __m128i ib[3][3];
         int ok = 1;
         for (uint32_t a = 0; a < dims; ++a) {
-            x[a] = load16(axes[a] + i * stride, stride, vindex);
+            x[a] = strided_load16(&L, axes[a] + i * stride);
             if (_mm512_fpclass_ps_mask(x[a], 0x01 | 0x08 | 0x10 | 0x80)) ok = 0;
         }
         if (!ok) break;
@@ -302,11 +298,6 @@ AVX512 static inline __m512d root8(__m512d F, uint32_t metric)
     return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm512_sqrt_pd(F) : F;
 }
 
-AVX512 static inline __m512d load8(const double *p, size_t stride, __m256i vindex)
-{
-    return stride == 1 ? _mm512_loadu_pd(p) : _mm512_i32gather_pd(vindex, p, 8);
-}
-
 AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n, const udm1_cellular_params *p,
                                                           uint32_t dims, const double *const *axes, size_t stride,
                                                           size_t count, double *out)
@@ -315,7 +306,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f64(&u, n, dims, p->metric, k, p->jitter, p->exponent);
     const table256 perm = table_of(n->perm);
-    const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
+    const strided_loads L = strided_loads_init(stride, 8);
     const __m512d c0 = _mm512_set1_pd(u.c0), c1 = _mm512_set1_pd(u.c1), zero = _mm512_setzero_pd();
     const __m512d inf = _mm512_set1_pd(INFINITY), margin = _mm512_set1_pd(0x1p-20);
     const int want_cell = p->output == UDM1_CELLULAR_CELL;
@@ -328,7 +319,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
         int ok = 1;
         for (uint32_t a = 0; a < dims; ++a)
             for (int hf = 0; hf < 2; ++hf) {
-                x[a][hf] = load8(axes[a] + (i + 8 * (size_t)hf) * stride, stride, vindex);
+                x[a][hf] = strided_load8(&L, axes[a] + (i + 8 * (size_t)hf) * stride);
                 if (_mm512_fpclass_pd_mask(x[a][hf], 0x01 | 0x08 | 0x10 | 0x80)) ok = 0;
             }
         if (!ok) break;

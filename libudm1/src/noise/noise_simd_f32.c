@@ -15,6 +15,8 @@
 #if defined(UDM1_HAVE_ISA_KERNELS)
 #include <immintrin.h>
 
+#include "noise/strided_loads.h"
+
 /* ---- AVX-512 (F, VL, DQ, BW, VBMI): 16 points ---- */
 #define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi")))
 
@@ -29,11 +31,6 @@ AVX512 static inline __m512i lookup16(const perm512 *t, __m512i idx)
     return _mm512_mask_blend_epi8(_mm512_movepi8_mask(idx), lo, hi);
 }
 
-/* 16 coordinates from p, p + stride, ... (vindex: 0, stride, 2 stride, ...) */
-AVX512 static inline __m512 load16(const float *p, size_t stride, __m512i vindex)
-{
-    return stride == 1 ? _mm512_loadu_ps(p) : _mm512_i32gather_ps(vindex, p, 4);
-}
 
 AVX512 static inline __mmask16 not_finite16(__m512 x) /* NaN or infinite */
 {
@@ -162,15 +159,14 @@ AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const
 {
     const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
                        _mm512_loadu_si512(n->perm + 192)};
-    const __m512i vindex = _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
-                                              _mm512_set1_epi32((int)stride));
+    const strided_loads L = strided_loads_init(stride, 16);
     const __m512i one = _mm512_set1_epi32(1), m255 = _mm512_set1_epi32(255);
     const __m512 onef = _mm512_set1_ps(1.0f);
     const tables512 E = {_mm512_loadu_ps(EDGES[0]), _mm512_loadu_ps(EDGES[1]), _mm512_loadu_ps(EDGES[2])};
     size_t i = 0;
     for (; i + 16 <= count; i += 16) {
-        __m512 x = load16(axes[0] + i * stride, stride, vindex), y = load16(axes[1] + i * stride, stride, vindex);
-        __m512 z = load16(axes[2] + i * stride, stride, vindex);
+        __m512 x = strided_load16(&L, axes[0] + i * stride), y = strided_load16(&L, axes[1] + i * stride);
+        __m512 z = strided_load16(&L, axes[2] + i * stride);
         if (not_finite16(x) | not_finite16(y) | not_finite16(z)) break; /* the caller reports it */
         __m512i X0, Y0, Z0;
         x = axis16(x, &X0), y = axis16(y, &Y0), z = axis16(z, &Z0);
@@ -232,14 +228,13 @@ AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes
 {
     const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
                        _mm512_loadu_si512(n->perm + 192)};
-    const __m512i vindex = _mm512_mullo_epi32(_mm512_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15),
-                                              _mm512_set1_epi32((int)stride));
+    const strided_loads L = strided_loads_init(stride, 16);
     const __m512i one = _mm512_set1_epi32(1), m255 = _mm512_set1_epi32(255);
     const __m512 onef = _mm512_set1_ps(1.0f), scale = _mm512_set1_ps(0.507f);
     const tables512 E = {_mm512_loadu_ps(G2[0]), _mm512_loadu_ps(G2[1]), _mm512_loadu_ps(G2[2])};
     size_t i = 0;
     for (; i + 16 <= count; i += 16) {
-        __m512 x = load16(axes[0] + i * stride, stride, vindex), y = load16(axes[1] + i * stride, stride, vindex);
+        __m512 x = strided_load16(&L, axes[0] + i * stride), y = strided_load16(&L, axes[1] + i * stride);
         if (not_finite16(x) | not_finite16(y)) break;
         __m512i X0, Y0;
         x = axis16(x, &X0), y = axis16(y, &Y0);

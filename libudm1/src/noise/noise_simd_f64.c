@@ -19,6 +19,8 @@
 #if defined(UDM1_HAVE_ISA_KERNELS)
 #include <immintrin.h>
 
+#include "noise/strided_loads.h"
+
 #define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi")))
 
 typedef struct {
@@ -41,11 +43,6 @@ AVX512 static inline __m512i spread4(__m512i a) /* a (0..255) in every byte */
     return _mm512_shuffle_epi8(a, _mm512_set4_epi32(0x0C0C0C0C, 0x08080808, 0x04040404, 0x00000000));
 }
 
-/* 8 coordinates from p, p + stride, ... (vindex: 0, stride, ...) */
-AVX512 static inline __m512d load8(const double *p, size_t stride, __m256i vindex)
-{
-    return stride == 1 ? _mm512_loadu_pd(p) : _mm512_i32gather_pd(vindex, p, 8);
-}
 
 AVX512 static inline __mmask8 not_finite8(__m512d x) { return _mm512_fpclass_pd_mask(x, 0x01 | 0x08 | 0x10 | 0x80); }
 
@@ -226,14 +223,14 @@ AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1
         for (int h = 0; h < 16; ++h) t[h] = n->g3[h][c]; /* improved noise: EDGES[h & 15] */
         E.lo[c] = _mm512_loadu_pd(t), E.hi[c] = _mm512_loadu_pd(t + 8);
     }
-    const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
+    const strided_loads L = strided_loads_init(stride, 8);
     size_t i = 0;
     for (; i + 16 <= count; i += 16) {
         __m512d c[3][2];
         __mmask8 bad = 0;
         for (uint32_t a = 0; a < dims; ++a)
             for (int h = 0; h < 2; ++h) {
-                c[a][h] = load8(axes[a] + (i + 8 * h) * stride, stride, vindex);
+                c[a][h] = strided_load8(&L, axes[a] + (i + 8 * h) * stride);
                 bad |= not_finite8(c[a][h]);
             }
         if (bad) break; /* the caller reports it */
