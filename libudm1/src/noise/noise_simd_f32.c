@@ -37,12 +37,13 @@ AVX512 static inline __mmask16 not_finite16(__m512 x) /* NaN or infinite */
     return _mm512_fpclass_ps_mask(x, 0x01 | 0x08 | 0x10 | 0x80);
 }
 
-/* floor, the offset in the cell (exact) and the lower corner's index & 255 (a coordinate past 2^31 is a
- * multiple of 256: its conversion's 0x80000000 gives 0, as the scalar code) */
+/* floor, the offset in the cell (exact) and the lower corner's index, of which only the low byte (the
+ * index mod 256) is read (a coordinate past 2^31 is a multiple of 256: its conversion's 0x80000000 has
+ * the low byte 0, as the scalar code's index) */
 AVX512 static inline __m512 axis16(__m512 x, __m512i *i0)
 {
     __m512 f = _mm512_roundscale_ps(x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    *i0 = _mm512_and_si512(_mm512_cvttps_epi32(f), _mm512_set1_epi32(255));
+    *i0 = _mm512_cvttps_epi32(f);
     return _mm512_add_ps(_mm512_sub_ps(x, f), _mm512_setzero_ps());
 }
 
@@ -138,16 +139,16 @@ AVX512 static inline void store_interleaved16(float *out, const __m512 *g, int k
     }
 }
 
-/* bytes [a, a, b, b] of each lane from bytes [a, b, ., .] */
-AVX512 static inline __m512i dup_pairs(__m512i v)
-{
-    const __m512i pattern = _mm512_set4_epi32(0x0D0D0C0C, 0x09090808, 0x05050404, 0x01010000);
-    return _mm512_shuffle_epi8(v, pattern);
-}
-
-AVX512 static inline __m512i spread4(__m512i a) /* a (0..255) in every byte */
+AVX512 static inline __m512i spread4(__m512i a) /* a's low byte in every byte of its lane */
 {
     return _mm512_shuffle_epi8(a, _mm512_set4_epi32(0x0C0C0C0C, 0x08080808, 0x04040404, 0x00000000));
+}
+
+/* a's low byte plus the bytes of `plus` (each 0 or 1) in the bytes of its lane, mod 256: the indices
+ * [i, i, i + 1, i + 1] or [i, i + 1, i, i + 1] of a cell's corners in one shuffle and one add */
+AVX512 static inline __m512i spread4_plus(__m512i a, int plus)
+{
+    return _mm512_add_epi8(spread4(a), _mm512_set1_epi32(plus));
 }
 
 /* The 3D kernel, specialized by the compiler for the values alone (with_gradient 0: nothing else live
@@ -160,7 +161,6 @@ AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const
     const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
                        _mm512_loadu_si512(n->perm + 192)};
     const strided_loads L = strided_loads_init(stride, 16);
-    const __m512i one = _mm512_set1_epi32(1), m255 = _mm512_set1_epi32(255);
     const __m512 onef = _mm512_set1_ps(1.0f);
     const tables512 E = {_mm512_loadu_ps(EDGES[0]), _mm512_loadu_ps(EDGES[1]), _mm512_loadu_ps(EDGES[2])};
     size_t i = 0;
@@ -170,16 +170,14 @@ AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const
         if (not_finite16(x) | not_finite16(y) | not_finite16(z)) break; /* the caller reports it */
         __m512i X0, Y0, Z0;
         x = axis16(x, &X0), y = axis16(y, &Y0), z = axis16(z, &Z0);
-        __m512i X1 = _mm512_and_si512(_mm512_add_epi32(X0, one), m255);
-        __m512i Y1 = _mm512_and_si512(_mm512_add_epi32(Y0, one), m255);
-        __m512i Z1 = _mm512_and_si512(_mm512_add_epi32(Z0, one), m255);
-        /* the hashes, four to a lane: [p[X0], p[X1]], then [A, A1, B, B1] = [p[X0] + Y0, p[X0] + Y1,
-         * p[X1] + Y0, p[X1] + Y1] (mod 256, as the doubled table) looked up, then plus Z0 and Z1 */
-        __m512i px = dup_pairs(lookup16(&T, _mm512_or_si512(X0, _mm512_slli_epi32(X1, 8))));
-        __m512i yy = _mm512_or_si512(Y0, _mm512_slli_epi32(Y1, 8));
-        __m512i ab = lookup16(&T, _mm512_add_epi8(px, _mm512_or_si512(yy, _mm512_slli_epi32(yy, 16))));
-        __m512i H0 = lookup16(&T, _mm512_add_epi8(ab, spread4(Z0))); /* [h000, h010, h100, h110] */
-        __m512i H1 = lookup16(&T, _mm512_add_epi8(ab, spread4(Z1))); /* [h001, h011, h101, h111] */
+        /* the hashes, four to a lane, in bytes (mod 256, as the doubled table): [p[X0], p[X0], p[X1],
+         * p[X1]], then [A, A1, B, B1] = [p[X0] + Y0, p[X0] + Y1, p[X1] + Y0, p[X1] + Y1] looked up, then
+         * plus Z0 and Z1 = Z0 + 1 */
+        __m512i px = lookup16(&T, spread4_plus(X0, 0x01010000));
+        __m512i ab = lookup16(&T, _mm512_add_epi8(px, spread4_plus(Y0, 0x01000100)));
+        __m512i z0 = _mm512_add_epi8(ab, spread4(Z0));
+        __m512i H0 = lookup16(&T, z0);                                              /* [h000, h010, h100, h110] */
+        __m512i H1 = lookup16(&T, _mm512_add_epi8(z0, _mm512_set1_epi8(1))); /* [h001, h011, h101, h111] */
         __m512 x1 = _mm512_sub_ps(x, onef), y1 = _mm512_sub_ps(y, onef), z1 = _mm512_sub_ps(z, onef);
         __m512 u = fade16(x), v = fade16(y), w = fade16(z);
         /* corners 000, 100, 010, 110, 001, 101, 011, 111: each vector made where it is used (all of them
@@ -229,7 +227,6 @@ AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes
     const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
                        _mm512_loadu_si512(n->perm + 192)};
     const strided_loads L = strided_loads_init(stride, 16);
-    const __m512i one = _mm512_set1_epi32(1), m255 = _mm512_set1_epi32(255);
     const __m512 onef = _mm512_set1_ps(1.0f), scale = _mm512_set1_ps(0.507f);
     const tables512 E = {_mm512_loadu_ps(G2[0]), _mm512_loadu_ps(G2[1]), _mm512_loadu_ps(G2[2])};
     size_t i = 0;
@@ -238,11 +235,8 @@ AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes
         if (not_finite16(x) | not_finite16(y)) break;
         __m512i X0, Y0;
         x = axis16(x, &X0), y = axis16(y, &Y0);
-        __m512i X1 = _mm512_and_si512(_mm512_add_epi32(X0, one), m255);
-        __m512i Y1 = _mm512_and_si512(_mm512_add_epi32(Y0, one), m255);
-        __m512i px = dup_pairs(lookup16(&T, _mm512_or_si512(X0, _mm512_slli_epi32(X1, 8))));
-        __m512i yy = _mm512_or_si512(Y0, _mm512_slli_epi32(Y1, 8));
-        __m512i H = lookup16(&T, _mm512_add_epi8(px, _mm512_or_si512(yy, _mm512_slli_epi32(yy, 16)))); /* [h00, h01, h10, h11] */
+        __m512i px = lookup16(&T, spread4_plus(X0, 0x01010000));
+        __m512i H = lookup16(&T, _mm512_add_epi8(px, spread4_plus(Y0, 0x01000100))); /* [h00, h01, h10, h11] */
         __m512 x1 = _mm512_sub_ps(x, onef), y1 = _mm512_sub_ps(y, onef);
         __m512 u = fade16(x), v = fade16(y);
         __m512 G[4][3]; /* corners 00, 10, 01, 11 */

@@ -33,12 +33,7 @@ AVX512 static inline __m512i lookup16(const perm512 *t, __m512i idx) /* each byt
     return _mm512_mask_blend_epi8(_mm512_movepi8_mask(idx), lo, hi);
 }
 
-AVX512 static inline __m512i dup_pairs(__m512i v) /* bytes [a, a, b, b] of each lane from bytes [a, b, ., .] */
-{
-    return _mm512_shuffle_epi8(v, _mm512_set4_epi32(0x0D0D0C0C, 0x09090808, 0x05050404, 0x01010000));
-}
-
-AVX512 static inline __m512i spread4(__m512i a) /* a (0..255) in every byte */
+AVX512 static inline __m512i spread4(__m512i a) /* a's low byte in every byte of its lane */
 {
     return _mm512_shuffle_epi8(a, _mm512_set4_epi32(0x0C0C0C0C, 0x08080808, 0x04040404, 0x00000000));
 }
@@ -46,12 +41,13 @@ AVX512 static inline __m512i spread4(__m512i a) /* a (0..255) in every byte */
 
 AVX512 static inline __mmask8 not_finite8(__m512d x) { return _mm512_fpclass_pd_mask(x, 0x01 | 0x08 | 0x10 | 0x80); }
 
-/* floor and the offset in the cell (exact), and the lower corner's index & 255: the conversion is exact
- * below 2^63 and gives 0x8000000000000000 above (a multiple of 256 there, as every double past 2^60) */
+/* floor and the offset in the cell (exact), and the lower corner's index, of which the hashes read the
+ * low byte (the index mod 256): the conversion is exact below 2^63 and gives 0x8000000000000000 above
+ * (a multiple of 256 there, as every double past 2^60) */
 AVX512 static inline __m512d axis8(__m512d x, __m256i *i0)
 {
     __m512d f = _mm512_roundscale_pd(x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
-    *i0 = _mm512_cvtepi64_epi32(_mm512_and_si512(_mm512_cvttpd_epi64(f), _mm512_set1_epi64(255)));
+    *i0 = _mm512_cvtepi64_epi32(_mm512_cvttpd_epi64(f));
     return _mm512_add_pd(_mm512_sub_pd(x, f), _mm512_setzero_pd());
 }
 
@@ -134,18 +130,17 @@ AVX512 static inline void store_interleaved8(double *out, const __m512d *g, int 
 AVX512 static inline void hashes(const perm512 *T, __m512i X0, __m512i Y0, __m512i Z0, int dims, __m512i *H0,
                                  __m512i *H1)
 {
-    const __m512i one = _mm512_set1_epi32(1), m255 = _mm512_set1_epi32(255);
-    __m512i X1 = _mm512_and_si512(_mm512_add_epi32(X0, one), m255), Y1 = _mm512_and_si512(_mm512_add_epi32(Y0, one), m255);
-    __m512i px = dup_pairs(lookup16(T, _mm512_or_si512(X0, _mm512_slli_epi32(X1, 8))));
-    __m512i yy = _mm512_or_si512(Y0, _mm512_slli_epi32(Y1, 8));
-    __m512i ab = lookup16(T, _mm512_add_epi8(px, _mm512_or_si512(yy, _mm512_slli_epi32(yy, 16))));
+    /* in bytes (mod 256, as the doubled table): [p[X0], p[X0], p[X1], p[X1]] with X1 = X0 + 1, then
+     * [A, A1, B, B1] = [p[X0] + Y0, p[X0] + Y1, p[X1] + Y0, p[X1] + Y1] looked up, then plus Z0, Z0 + 1 */
+    __m512i px = lookup16(T, _mm512_add_epi8(spread4(X0), _mm512_set1_epi32(0x01010000)));
+    __m512i ab = lookup16(T, _mm512_add_epi8(px, _mm512_add_epi8(spread4(Y0), _mm512_set1_epi32(0x01000100))));
     if (dims == 2) {
         *H0 = ab;
         return;
     }
-    __m512i Z1 = _mm512_and_si512(_mm512_add_epi32(Z0, one), m255);
-    *H0 = lookup16(T, _mm512_add_epi8(ab, spread4(Z0)));
-    *H1 = lookup16(T, _mm512_add_epi8(ab, spread4(Z1)));
+    __m512i z0 = _mm512_add_epi8(ab, spread4(Z0));
+    *H0 = lookup16(T, z0);
+    *H1 = lookup16(T, _mm512_add_epi8(z0, _mm512_set1_epi8(1)));
 }
 
 /* One half (8 points) of a 3D group, the hashes W0 = [h000, h010, h100, h110], W1 = [h001, h011, h101,
