@@ -7,6 +7,7 @@
 #                     under AddressSanitizer + UndefinedBehaviorSanitizer, the package's Python tests against
 #                     that sanitized library, and the tools' and reports' tests against the sanitized tools
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
+#   ./run.sh wheel    the Python wheel, libudm1 inside it (scikit-build-core), into dist/ (manylinux tag)
 #   ./run.sh fuzz [S] every libFuzzer target for S seconds (default 60), clang + ASan + UBSan (TESTING.md)
 #
 # Each command installs what is missing (Debian packages, Python packages into
@@ -53,7 +54,7 @@ test)
     (cd tests/python && LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" \
         ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
-        "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening)'))
+        "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel)'))
     udm1_log "the tools' tests again and the report tests, against the sanitized tools and benchmarks of build-asan"
     udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library; two pytest runs side by side)"
     asan_tools_pytest() { # asan_tools_pytest <log> <test files...>: one pytest run, its own temporary folder
@@ -121,6 +122,15 @@ bench)
     UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_distributed.py --tool "$ROOT/build/bin/udm1-pt" \
         --out "$ROOT/build/bench_distributed"
     ;;
+wheel)
+    udm1_bootstrap "$ROOT"
+    udm1_log "building the Python wheel (pyproject.toml: scikit-build-core builds libudm1 into the package) into dist/"
+    rm -rf build/wheel
+    "$PY" -m pip wheel . --no-deps -q -w build/wheel
+    udm1_log "auditwheel repair: the manylinux tag the wheel is compatible with (it needs no other library)"
+    PATH="$ROOT/.venv/bin:$PATH" "$PY" -m auditwheel repair build/wheel/udm1-*.whl -w dist
+    udm1_log "install it with: pip install $(ls -t dist/udm1-*.whl | head -1)"
+    ;;
 fuzz)
     shift || true
     UDM1_DEBIAN_PACKAGES+=(clang-14 libclang-rt-14-dev)
@@ -132,7 +142,7 @@ fuzz)
     "$PY" tools/fuzz_run.py --build "$ROOT/build-fuzz" --seconds "${1:-60}" "${@:2}"
     ;;
 *)
-    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench|fuzz])" >&2
+    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench|wheel|fuzz])" >&2
     exit 2
     ;;
 esac

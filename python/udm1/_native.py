@@ -4,9 +4,10 @@ The shared library is looked for, in order:
 
 1. the path in the environment variable ``UDM1_LIBRARY`` (nothing else is
    tried when it is set);
-2. the build trees of a source checkout (``build/libudm1``, then
+2. this package's own directory: the copy a wheel or ``pip install`` put
+   there (``udm1/libudm1.so.1``);
+3. the build trees of a source checkout (``build/libudm1``, then
    ``build-asan/libudm1``, relative to the repository that holds this package);
-3. this package's own directory (an installed copy);
 4. the system's library path (``ctypes.util.find_library("udm1")``).
 """
 
@@ -150,10 +151,10 @@ def _candidates():
         yield env
         return
     here = Path(__file__).resolve().parent
+    yield str(here / "libudm1.so.1")
     repo = here.parent.parent
     for build in ("build", "build-asan"):
         yield str(repo / build / "libudm1" / "libudm1.so.1")
-    yield str(here / "libudm1.so.1")
     found = ctypes.util.find_library("udm1")
     if found:
         yield found
@@ -177,7 +178,8 @@ def _load():
             continue
         return lib, path
     raise ImportError(
-        "udm1: cannot load libudm1; build it (cmake --build build) or set UDM1_LIBRARY. Tried: "
+        "udm1: cannot load libudm1; install the package (pip install .), build it (cmake --build build) or set "
+        "UDM1_LIBRARY. Tried: "
         + "; ".join(tried)
     )
 
