@@ -54,7 +54,7 @@ test)
     (cd tests/python && LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" \
         ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
-        "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel)'))
+        "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba)'))
     udm1_log "the tools' tests again and the report tests, against the sanitized tools and benchmarks of build-asan"
     udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library; two pytest runs side by side)"
     asan_tools_pytest() { # asan_tools_pytest <log> <test files...>: one pytest run, its own temporary folder
@@ -85,7 +85,6 @@ test)
     ;;
 bench)
     shift || true
-    UDM1_DEBIAN_PACKAGES+=(libllvm19)  # Mitsuba 3's llvm_ad_rgb variant, the fast anchor of bench_pt.py
     udm1_bootstrap "$ROOT"
     udm1_bootstrap_fastnoisesimd "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
