@@ -117,6 +117,9 @@ bench)
     udm1_log "the paper's experiment inside pbrt-v4: its samplers and udm1's (Sampler \"udm1\") on the Crown and veach-mis"
     udm1_log "(bench/bench_pbrt_samplers.py, about 20 minutes; skipped with a message where ../shared is absent)"
     "$PY" bench/bench_pbrt_samplers.py --out "$ROOT/build/bench_pbrt"
+    udm1_log "udm1's samplers inside Mitsuba 3 (udm1.mitsuba) against Mitsuba's own, llvm_ad_rgb and scalar_rgb"
+    udm1_log "(bench/bench_mitsuba_sampler.py, about 10 minutes)"
+    "$PY" bench/bench_mitsuba_sampler.py --out "$ROOT/build/bench_mitsuba_sampler"
     udm1_log "scale-out: udm1.distributed on 1 and 2 local Dask workers against the tools alone (bench/bench_distributed.py)"
     UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_distributed.py --tool "$ROOT/build/bin/udm1-pt" \
         --out "$ROOT/build/bench_distributed"
