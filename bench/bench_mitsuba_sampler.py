@@ -14,7 +14,8 @@ Cornell box (mi.cornell_box(), its path integrator):
 
 Variants: llvm_ad_rgb (the vectorized JIT variant a speed-minded user picks; needs libllvm19, skipped
 with a message without it) at --size, and scalar_rgb at --scalar-size (udm1's scalar sampler is a
-Python call per draw: slower by design there, measured on a smaller image).
+Python call per draw: slower by design there, measured on a smaller image, and on one render thread:
+Mitsuba's render threads calling Python contend for the GIL, which costs more than they gain).
 
     python bench/bench_mitsuba_sampler.py [--size 128] [--spps 16,64,256] [--seeds 4] [--out DIR]
 """
@@ -58,13 +59,20 @@ def load(mi, sampler: dict, size: int, spp: int):
     return mi.load_dict(d)
 
 
-def render(mi, scene, spp: int, seed: int) -> tuple[np.ndarray, float]:
+def render(mi, scene, spp: int, seed: int, threads: int = 0) -> tuple[np.ndarray, float]:
+    """One render, timed; threads > 0 caps Mitsuba's render threads for it."""
     import drjit as dr
-    t0 = time.perf_counter()
-    img = mi.render(scene, spp=spp, seed=seed)
-    arr = np.array(img)  # evaluates the image
-    dr.sync_thread()
-    return arr, time.perf_counter() - t0
+    before = dr.thread_count()
+    if threads:
+        dr.set_thread_count(threads)
+    try:
+        t0 = time.perf_counter()
+        img = mi.render(scene, spp=spp, seed=seed)
+        arr = np.array(img)  # evaluates the image
+        dr.sync_thread()
+        return arr, time.perf_counter() - t0
+    finally:
+        dr.set_thread_count(before)
 
 
 def interp_time(points, target):
@@ -92,23 +100,27 @@ def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Pa
         np.save(ref_path, ref)
         print(f"[{variant}] reference in {t:.1f} s", flush=True)
     samplers = MITSUBA + udm1_samplers(size, not variant.startswith("scalar"))
+    # a Python sampler in a scalar variant serializes Mitsuba's render threads on the GIL, and their contention
+    # costs more than one thread: udm1's rows there render on one thread (Mitsuba's on all)
+    threads = {name: (1 if variant.startswith("scalar") and name.startswith("udm1") else 0) for name, _ in samplers}
     rows = []
     for spp in spps:
         scenes = {}
         for name, s in samplers:
             scenes[name] = load(mi, s, size, spp)
-            render(mi, scenes[name], spp, 999)  # compile (JIT) / warm up
+            render(mi, scenes[name], spp, 999, threads[name])  # compile (JIT) / warm up
         mse = {n: [] for n in scenes}
         secs = {n: [] for n in scenes}
         for seed in range(seeds):
             for name, scene in scenes.items():
-                img, t = render(mi, scene, spp, seed)
+                img, t = render(mi, scene, spp, seed, threads[name])
                 mse[name].append(float(np.mean((img - ref) ** 2)))
                 secs[name].append(t)
             print(f"[{variant}] {spp} spp, seed {seed + 1}/{seeds} done", flush=True)
         for name in scenes:
             taken = scenes[name].sensors()[0].sampler().sample_count()
             rows.append({"variant": variant, "sampler": name, "spp": spp, "spp_taken": taken,
+                         "threads": threads[name] or os.cpu_count(),
                          "rmse": math.sqrt(sum(mse[name]) / seeds), "seconds": sum(secs[name]) / seeds})
     base = {r["spp"]: r["seconds"] for r in rows if r["sampler"] == "independent"}
     for r in rows:
@@ -128,7 +140,7 @@ def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Pa
             equal.append({"variant": variant, "target_rmse": target, "target_of": f"independent at {spp} spp",
                           "best_udm1": bo, "udm1_seconds": ours[bo], "best_mitsuba": bt, "mitsuba_seconds": theirs[bt],
                           "speedup": theirs[bt] / ours[bo], "times": times})
-    return {"rows": rows, "equal_error": equal, "size": size, "seeds": seeds, "ref_spp": ref_spp}
+    return {"variant": variant, "rows": rows, "equal_error": equal, "size": size, "seeds": seeds, "ref_spp": ref_spp}
 
 
 def print_result(res: dict):
@@ -156,18 +168,21 @@ def main(argv=None) -> int:
     ap.add_argument("--variants", default="llvm_ad_rgb,scalar_rgb")
     ap.add_argument("--out", default=str(ROOT / "build" / "bench_mitsuba_sampler"))
     args = ap.parse_args(argv)
-    try:
-        import mitsuba  # noqa: F401
-    except ImportError:
-        print("bench_mitsuba_sampler: Mitsuba 3 is not installed (pip install mitsuba): skipped", file=sys.stderr)
-        return 0
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     results = []
+    try:
+        import mitsuba  # noqa: F401
+    except ImportError:
+        why = "Mitsuba 3 is not installed (pip install mitsuba)"
+        print(f"bench_mitsuba_sampler: {why}: skipped", file=sys.stderr)
+        (out / "results.json").write_text(json.dumps([{"skipped": why}]))
+        return 0
     for variant in args.variants.split(","):
         if variant.startswith("llvm") and not Path(LLVM_PATH).exists():
-            print(f"bench_mitsuba_sampler: {LLVM_PATH} is missing (apt-get install libllvm19): {variant} skipped",
-                  file=sys.stderr)
+            why = f"{LLVM_PATH} is missing (apt-get install libllvm19)"
+            print(f"bench_mitsuba_sampler: {why}: {variant} skipped", file=sys.stderr)
+            results.append({"variant": variant, "skipped": why})
             continue
         scalar = variant.startswith("scalar")
         res = run_variant(variant, args.scalar_size if scalar else args.size,

@@ -227,6 +227,7 @@ for _suffix, _ptr in (("u64", ctypes.c_void_p), ("f64", ctypes.c_void_p), ("f32"
 _proto("udm1_cursor_start", _S, ctypes.POINTER(Cursor), _SEQ, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_uint32)
 _proto("udm1_cursor_1d_f64", ctypes.c_double, ctypes.POINTER(Cursor))
 _proto("udm1_cursor_1d", ctypes.c_float, ctypes.POINTER(Cursor))
+_proto("udm1_cursor_fill", None, ctypes.POINTER(Cursor), ctypes.c_uint32, f32p)
 _proto("udm1_cursor_padded", ctypes.c_uint32, ctypes.POINTER(Cursor))
 _proto("udm1_discrepancy", _S, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_uint32, ctypes.c_size_t, ctypes.c_uint32, f64p)
 _proto("udm1_discrepancy_random", _S, ctypes.c_size_t, ctypes.c_uint32, ctypes.c_uint32, f64p)

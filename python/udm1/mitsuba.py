@@ -42,6 +42,8 @@ every draw, so a dimension means the same draw on every path.
 from __future__ import annotations
 
 import ctypes
+import os
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -54,6 +56,7 @@ SEED_SALT = int.from_bytes(b"udm1SEED", "big")
 M64 = (1 << 64) - 1
 WEYL_PRESETS = {"wr", "wr-ao", "we", "wgr", "wmmr", "hwmmr", "rd", "golden", "wopt"}
 RANDOMIZE = ("default", "none", "shift", "owen", "permute", "screen")
+BUFFER = 16  # scalar variants: the draws of a sample made in one cursor fill
 
 
 def _mix64_int(z: int) -> int:
@@ -121,6 +124,7 @@ def sampler_class():
             else:
                 self._cursor = _native.Cursor()
                 self._stream, self._index, self._started = 0, 0, False
+                self._buf, self._pos = [], 0
 
         # ---- configuration ----
         def _copy(self):
@@ -132,6 +136,7 @@ def sampler_class():
                 s._dim, s._stale, s._render_seed = mi.UInt32(0), False, self._render_seed
             else:
                 s._cursor, s._stream, s._index, s._started = _native.Cursor(), 0, 0, False
+                s._buf, s._pos = [], 0
             return s
 
         def set_sample_count(self, spp):
@@ -151,6 +156,7 @@ def sampler_class():
                 s.__dict__.update(self.__dict__)  # Dr.Jit arrays are values: sharing them is a copy
             else:
                 s._stream, s._index, s._started = self._stream, self._index, self._started
+                s._buf, s._pos = list(self._buf), self._pos
                 ctypes.memmove(ctypes.byref(s._cursor), ctypes.byref(self._cursor), ctypes.sizeof(_native.Cursor))
             return s
 
@@ -163,10 +169,12 @@ def sampler_class():
             def seed(self, seed, wavefront_size=0xFFFFFFFF):
                 super().seed(int(seed) & 0xFFFFFFFF, wavefront_size)  # (Mitsuba's own seeds are 32-bit)
                 self._stream, self._index, self._started = int(seed) & M64, 0, False
+                self._buf, self._pos = [], 0
 
             def advance(self):  # (not the base's: from Python it calls this override back)
                 self._index += 1
                 self._started = False  # started at the next draw: Mitsuba advances past a point set's last sample
+                self._buf, self._pos = [], 0
 
             def _cursor_ref(self):
                 if not self._started:
@@ -175,13 +183,26 @@ def sampler_class():
                     self._started = True
                 return ctypes.byref(self._cursor)
 
+            def _next(self) -> float:
+                """The next draw: a sample's first BUFFER draws come from one cursor fill (a Python call per
+                draw is the cost here, not the library's), the rest one by one."""
+                if self._pos < len(self._buf):
+                    self._pos += 1
+                    return self._buf[self._pos - 1]
+                c = self._cursor_ref()
+                if self._pos == 0 and BUFFER:
+                    out = (ctypes.c_float * BUFFER)()
+                    _native.lib.udm1_cursor_fill(c, BUFFER, out)
+                    self._buf, self._pos = list(out), 1
+                    return self._buf[0]
+                return _native.lib.udm1_cursor_1d(c)
+
             def next_1d(self, active=True):
-                return _native.lib.udm1_cursor_1d(self._cursor_ref())
+                return self._next()
 
             def next_2d(self, active=True):
-                c = self._cursor_ref()
-                x = _native.lib.udm1_cursor_1d(c)
-                return mi.Point2f(x, _native.lib.udm1_cursor_1d(c))
+                x = self._next()
+                return mi.Point2f(x, self._next())
 
         # ---- vector variants: Dr.Jit arrays over the wavefront ----
         else:
@@ -219,22 +240,24 @@ def sampler_class():
                 spp_pass = self._spp_per_pass()
                 lane = dr.arange(mi.UInt32, lanes)
                 pixel = lane // spp_pass
-                sample = mi.UInt64(self._pass * spp_pass) + mi.UInt64(lane % spp_pass)
+                # per-render numbers enter the kernels as opaque parameters, not literals: one compilation
+                # serves every render seed and pass
+                sample = dr.opaque(mi.UInt64, self._pass * spp_pass) + mi.UInt64(lane % spp_pass)
                 seq, o = self._seq, self._o
                 screen = o["randomize"] == "screen"
                 if screen:
                     w = o["film_width"]
                     stream = (mi.UInt64(pixel // w) << 32) | mi.UInt64(pixel % w)
                 else:
-                    stream = (mi.UInt64(self._render_seed) << 32) + mi.UInt64(pixel)
+                    stream = (dr.opaque(mi.UInt64, self._render_seed) << 32) + mi.UInt64(pixel)
                 S = _mix64_int(seq.seed ^ SEED_SALT)
-                self._S = S
+                self._S = dr.opaque(mi.UInt64, S)
                 self._n = sample
                 self._dim = dr.zeros(mi.UInt32, lanes)
                 self._weyl = o["preset"] in WEYL_PRESETS
                 mode = seq.randomization
                 self._mode = mode
-                T = _mix64(_mix64(stream + GOLDEN_GAMMA) ^ S)  # udm1_stream_key(S, stream)
+                T = _mix64(_mix64(stream + GOLDEN_GAMMA) ^ self._S)  # udm1_stream_key(S, stream)
                 # the key padding hashes: the stream itself in screen mode, else its key
                 self._pkey = stream if screen else T
                 if self._weyl:
@@ -261,16 +284,27 @@ def sampler_class():
                     self._table_fill(stream, sample, lanes)
 
             def _table_fill(self, stream, sample, lanes):
-                """The library's values of every lane for dimensions [0, D): D float32 columns."""
+                """The library's values of every lane for dimensions [0, D): D float32 columns, filled by
+                udm1_seq_fill_points_f64 on every core (ctypes releases the GIL during the call)."""
                 dr.eval(stream, sample)
                 s_np = np.asarray(stream.numpy(), dtype=np.uint64)
                 i_np = np.asarray(sample.numpy(), dtype=np.uint64)
                 d = self._seq.d
                 table = np.empty((d, lanes), dtype=np.float32)
-                for j in range(d):
-                    v = self._seq.points_at(s_np, i_np, dims=range(j, j + 1))[:, 0]
-                    # the float32 value is the top 24 bits: exact from the double's top 53
-                    table[j] = (np.floor(v * 16777216.0) * (1.0 / 16777216.0)).astype(np.float32)
+
+                def fill(a, b):
+                    for j in range(d):  # a row of the table at a time: contiguous writes
+                        v = self._seq.points_at(s_np[a:b], i_np[a:b], dims=range(j, j + 1))[:, 0]
+                        # the float32 value is the top 24 bits: exact from the double's top 53
+                        v *= 16777216.0
+                        np.floor(v, out=v)
+                        v *= 1.0 / 16777216.0
+                        table[j, a:b] = v
+
+                workers = max(1, min(os.cpu_count() or 1, lanes // 4096))
+                bounds = np.linspace(0, lanes, workers + 1).astype(int)
+                with ThreadPoolExecutor(workers) as pool:
+                    list(pool.map(fill, bounds[:-1], bounds[1:]))
                 self._table = mi.Float(table.ravel())
                 self._lanes = lanes
                 self._lane = dr.arange(mi.UInt32, lanes)
@@ -278,7 +312,7 @@ def sampler_class():
             def _raw(self, j):
                 """Raw 64-bit value of dimension j (per lane) of each lane's (stream, sample)."""
                 inside = j < self._seq.d
-                kp = _mix64(mi.UInt64(self._S) + (mi.UInt64(j) + 1) * GOLDEN_GAMMA)
+                kp = _mix64(self._S + (mi.UInt64(j) + 1) * GOLDEN_GAMMA)
                 pad = _mix64(_mix64(self._pkey + kp) + (self._n + 1) * GOLDEN_GAMMA)
                 if not self._weyl:
                     return inside, pad
