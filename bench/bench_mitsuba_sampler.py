@@ -146,10 +146,10 @@ def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Pa
 def print_result(res: dict):
     print(f"\n{res['rows'][0]['variant']}: {res['size']}x{res['size']}, {res['seeds']} seeds, reference "
           f"{res['ref_spp']} spp")
-    print(f"{'sampler':<18} {'spp':>5} {'taken':>6} {'RMSE':>10} {'seconds':>9} {'x indep. time':>14}")
+    print(f"{'sampler':<18} {'spp':>5} {'taken':>6} {'threads':>7} {'RMSE':>10} {'seconds':>9} {'x indep. time':>14}")
     for r in res["rows"]:
-        print(f"{r['sampler']:<18} {r['spp']:>5} {r['spp_taken']:>6} {r['rmse']:10.5f} {r['seconds']:9.3f} "
-              f"{r['x_independent_time']:14.2f}")
+        print(f"{r['sampler']:<18} {r['spp']:>5} {r['spp_taken']:>6} {r['threads']:>7} {r['rmse']:10.5f} "
+              f"{r['seconds']:9.3f} {r['x_independent_time']:14.2f}")
     for e in res["equal_error"]:
         print(f"equal error {e['target_rmse']:.5f} ({e['target_of']}): best udm1 {e['best_udm1']} "
               f"{e['udm1_seconds']:.3f} s, best Mitsuba {e['best_mitsuba']} {e['mitsuba_seconds']:.3f} s: "

@@ -89,6 +89,14 @@ def plan(args, out: Path) -> list[Step]:
     reps = "4" if args.quick else ("64" if args.full else "32")
     seconds = "0.01" if args.quick else ("0.5" if args.full else "0.1")
     noise_reps = "1" if args.quick else "5"
+    if args.quick:
+        mitsuba_args = ["--size", "32", "--spps", "4,16", "--seeds", "1", "--ref-spp", "256", "--scalar-size", "16",
+                        "--scalar-spps", "4", "--scalar-seeds", "1"]
+    elif args.full:
+        mitsuba_args = []  # the benchmark's own settings (BENCHMARKS.md)
+    else:
+        mitsuba_args = ["--size", "64", "--spps", "16,64", "--seeds", "2", "--ref-spp", "2048", "--scalar-size", "24",
+                        "--scalar-spps", "16", "--scalar-seeds", "1"]
     ao = [py, str(HERE / "ao_report.py"), "--ao", tools["ao"], *o, *q]
     if args.full:
         ao += ["--size", "512x512", "--sweep-size", "256x256"]
@@ -114,6 +122,9 @@ def plan(args, out: Path) -> list[Step]:
         Step("tent", "Beyond the paper: the tent transform (+tent) on the integrands, against Sobol and PMJ02",
              [[tools["bench_samplers"], "error", "--samplers", ",".join(TENT_SAMPLERS), "--reps", reps, *q]],
              ["tent.csv"], stdout={0: "tent.csv"}),
+        Step("mitsuba", "udm1's samplers inside Mitsuba 3 (udm1.mitsuba) against Mitsuba's own",
+             [[py, str(ROOT / "bench" / "bench_mitsuba_sampler.py"), "--out", str(out / "mitsuba"), *mitsuba_args]],
+             ["mitsuba/results.json"]),
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
              [[py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]], ["screen.json"],
              "screen.html"),

@@ -489,6 +489,33 @@ def renderers_section(doc, out: Path, state):
         doc.image(f"renderers/{sc['scene']}_error_vs_time.png", f"{sc['scene']}: error against time")
 
 
+def mitsuba_section(doc, out: Path, state):
+    doc.heading(2, "udm1's samplers inside Mitsuba 3", "mitsuba")
+    if not_shown(doc, state, "mitsuba"):
+        return
+    results = load(out, "mitsuba/results.json")
+    doc.para("Mitsuba 3's Cornell box (its path integrator) rendered with Mitsuba's own samplers and with udm1's "
+             "(`udm1.mitsuba`, bench/bench_mitsuba_sampler.py): RMSE against an independent-sampler reference at "
+             "equal spp, render time relative to Mitsuba's independent sampler, and the time each needs to reach "
+             "the independent sampler's error.")
+    for res in results:
+        if res.get("skipped"):
+            doc.para(f"**{res.get('variant', 'Mitsuba 3')}: not measured**: {res['skipped']}.")
+            continue
+        v = res["variant"]
+        doc.para(f"**{v}**, {res['size']} x {res['size']}, {res['seeds']} renders per point, reference "
+                 f"{res['ref_spp']} spp.")
+        doc.table(f"mitsuba_{v}", f"{v}: equal spp",
+                  [("sampler", "sampler", ""), ("spp", "spp", "d"), ("spp_taken", "spp taken", "d"),
+                   ("rmse", "RMSE", ".5f"), ("seconds", "seconds", ".3f"),
+                   ("x_independent_time", "time / independent's", ".2f")], res["rows"])
+        doc.table(f"mitsuba_{v}_equal", f"{v}: equal error",
+                  [("target_of", "target", ""), ("target_rmse", "RMSE", ".5f"), ("best_udm1", "best udm1", ""),
+                   ("udm1_seconds", "its seconds", ".3f"), ("best_mitsuba", "best Mitsuba", ""),
+                   ("mitsuba_seconds", "its seconds", ".3f"), ("speedup", "Mitsuba / udm1", ".2f")],
+                  res["equal_error"])
+
+
 def ratio(a: float, b: float) -> float:
     """a / b, with an exact (zero-error) b shown as an infinite gain rather than dropped."""
     if b == 0:
@@ -581,7 +608,7 @@ def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
     else:
         doc.para("**No plots**: none of the samplers, ao and pt steps finished.")
     for section in (sequences_section, integration_section, throughput_section, noise_section, ao_section,
-                    pt_section, beyond_section):
+                    pt_section, mitsuba_section, beyond_section):
         guarded(doc, section, out, state)
     if "crown" in state:
         guarded(doc, pt_section, out, state, "crown", "crown/")
