@@ -509,11 +509,14 @@ def mitsuba_section(doc, out: Path, state):
                   [("sampler", "sampler", ""), ("spp", "spp", "d"), ("spp_taken", "spp taken", "d"),
                    ("rmse", "RMSE", ".5f"), ("seconds", "seconds", ".3f"),
                    ("x_independent_time", "time / independent's", ".2f")], res["rows"])
+        for e in res["equal_error"]:
+            if e.get("not_compared"):
+                doc.para(f"Equal error at {e['target_rmse']:.5f} ({e['target_of']}): not compared: {e['not_compared']}.")
         doc.table(f"mitsuba_{v}_equal", f"{v}: equal error",
                   [("target_of", "target", ""), ("target_rmse", "RMSE", ".5f"), ("best_udm1", "best udm1", ""),
                    ("udm1_seconds", "its seconds", ".3f"), ("best_mitsuba", "best Mitsuba", ""),
                    ("mitsuba_seconds", "its seconds", ".3f"), ("speedup", "Mitsuba / udm1", ".2f")],
-                  res["equal_error"])
+                  [e for e in res["equal_error"] if not e.get("not_compared")])
 
 
 def ratio(a: float, b: float) -> float:
