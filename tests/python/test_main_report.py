@@ -111,7 +111,7 @@ def test_main_report(tmp_path):
     out = tmp_path / "report"
     r = run(out)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert "[1/8 sequences]" in r.stderr and "[8/8 screen]" in r.stderr  # progress on the terminal
+    assert "[1/9 sequences]" in r.stderr and "[9/9 screen]" in r.stderr  # progress on the terminal
     report = check_page(out)
     assert {s: v["status"] for s, v in report["steps"].items()} == {s: "ok" for s in report["steps"]}
     tables = report["tables"]
@@ -136,6 +136,11 @@ def test_main_report(tmp_path):
     presets = {p.name for p in udm1.presets() if p.max_dimensions >= 2}  # every 2D-capable sampler
     assert {row["sampler"] for row in tables["throughput"]["rows"] if row["d"] == 2} == presets | {"(memset)"}
     assert any(row["anchor"].startswith("FastNoise") for row in tables["noise_speed"]["rows"])
+    for res in json.loads((out / "mitsuba" / "results.json").read_text()):  # both Mitsuba variants, every sampler
+        rows = tables[f"mitsuba_{res['variant']}"]["rows"]
+        assert [(x["sampler"], x["spp"], x["rmse"]) for x in rows] == [(x["sampler"], x["spp"], x["rmse"])
+                                                                      for x in res["rows"]]
+        assert {"independent", "udm1 wr", "udm1 sobol-owen"} <= {x["sampler"] for x in rows}
     screen = json.loads((out / "screen.json").read_text())["rows"]
     tent = tables["tent"]["rows"]
     assert {r["integrand"] for r in tent} == {r["integrand"] for r in samplers["error"]} and all(
@@ -175,7 +180,7 @@ def test_main_report(tmp_path):
     final = check_page(out)
     assert {s: v["status"] for s, v in final["steps"].items()} == {
         "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "reused", "ao": "ok", "pt": "ok",
-        "tent": "reused", "screen": "ok"}
+        "mitsuba": "reused", "tent": "reused", "screen": "ok"}
     assert "ao" in final["tables"]
 
 
