@@ -8,7 +8,7 @@ Dask cluster, and AO / path-tracing renders split by sample ranges and tiles).
 
 from ._native import library_path
 from .exact_sum import ExactSum
-from .integrate import Integral, integrate
+from .integrate import TRANSFORMS, Integral, ToleranceNotMet, ToleranceResult, integrate
 from .metrics import (
     discrepancy,
     discrepancy_random,
@@ -36,6 +36,9 @@ __all__ = [
     "discrepancy_random",
     "integrand",
     "integrate",
+    "ToleranceNotMet",
+    "ToleranceResult",
+    "TRANSFORMS",
     "integrand_exact",
     "integrands",
     "min_distance",

@@ -5,11 +5,18 @@ bit however the index range [0, n) is split: in chunks here, or over a Dask clus
 
     est = udm1.integrate(lambda x: np.prod(x, axis=1), "wr", d=4, n=1 << 20, seed=1)
     est.value, est.stderr
+
+To a tolerance instead of a sample count (see `integrate` and `ToleranceResult`):
+
+    r = udm1.integrate(f, "wr", d=8, abs_tol=1e-6, transform="c1")
+    r.estimate, r.error_bound, r.n_total, r.met
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+import time
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -104,11 +111,176 @@ def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 
     return Integral(spec, first, count, total, total_sq)
 
 
-def integrate(f, sampler: str, d: int, n: int, *, seed: int = 0, randomize=True, stream: int = 0,
-              chunk: int = 1 << 16) -> Integral:
-    """The estimate of the integral of f over [0, 1)^d from samples [0, n) of `sampler`, in one
-    process. udm1.distributed.integrate gives the same Integral bit for bit from a cluster."""
+def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, randomize=True, stream: int = 0,
+              chunk: int = 1 << 16, abs_tol: float | None = None, rel_tol: float | None = None,
+              n_max: int = 1 << 24, n_init: int = 1 << 10, replications: int = 16, confidence: float = 0.99,
+              transform: str | None = None, strict: bool = True):
+    """The integral of f over [0, 1)^d with `sampler`, in one process.
+
+    With n: the estimate from samples [0, n), an `Integral` (udm1.distributed.integrate gives the same
+    bit for bit from a cluster).
+
+    With abs_tol and/or rel_tol: samples until the estimate is within max(abs_tol, rel_tol |I|) of
+    the integral I at the given confidence, and returns a `ToleranceResult`. The rule is randomized
+    replications: `replications` independent randomizations of the sampler (the streams 0, 1, ... of
+    one seed: independent random shifts for Kronecker sequences, independent scramblings for nets;
+    n_init points each, doubled until the tolerance is met or n_max evaluations would be passed), and
+    a Student-t interval over the replicates' estimates. Assumption: the replicates are independent
+    and unbiased (true by construction) and their mean is close to normal (the t interval is then
+    conservative for the sizes used here; heavy-tailed replicates, e.g. of a discontinuous integrand
+    at small n, can make it optimistic). Each replicate is summed exactly, so the result does not
+    depend on how the work was split. `transform` periodizes f first (TRANSFORMS: "tent" = "baker",
+    "c0", "c1", "c2"), which helps Kronecker and lattice rules on non-periodic integrands. If the
+    tolerance is not met within n_max, raises ToleranceNotMet whose `.result` holds the partial
+    estimate (met False); strict=False returns that result instead."""
+    if abs_tol is not None or rel_tol is not None:
+        if n is not None:
+            raise ValueError("udm1.integrate: give n, or a tolerance (abs_tol, rel_tol), not both")
+        return integrate_to_tolerance(f, sampler, d, abs_tol=abs_tol, rel_tol=rel_tol, n_max=n_max, n_init=n_init,
+                                      replications=replications, confidence=confidence, transform=transform,
+                                      seed=seed, randomize=randomize, chunk=chunk, strict=strict)
+    if n is None:
+        raise ValueError("udm1.integrate: give n (the sample count) or a tolerance (abs_tol, rel_tol)")
     n = integer(n, "n", 1)
     spec = IntegralSpec(str(sampler), u32(d, "d"), n, u64(seed, "seed"), randomize, u64(stream, "stream"))
     _preset(spec.sampler)
-    return integrate_range(f, spec, 0, spec.n, chunk)
+    g = periodized(f, transform) if transform else f
+    return integrate_range(g, spec, 0, spec.n, chunk)
+
+
+# ---- periodizing transforms ----
+
+def _poly(c):
+    return np.polynomial.polynomial.Polynomial(c)
+
+
+# name: (phi, phi') with phi a map of [0, 1] onto itself; f(phi(x)) prod phi'(x) has f's integral
+_C0 = _poly([0, 0, 3, -2])                    # 3x^2 - 2x^3, phi' = 6x(1 - x): C0 at the ends
+_C1 = _poly([0, 0, 0, 10, -15, 6])            # phi' = 30 x^2 (1 - x)^2
+_C2 = _poly([0, 0, 0, 0, 35, -84, 70, -20])   # phi' = 140 x^3 (1 - x)^3
+TRANSFORMS = {
+    "tent": (lambda x: 1 - np.abs(2 * x - 1), None),  # measure-preserving: no weight (Hickernell 2002)
+    "baker": (lambda x: 1 - np.abs(2 * x - 1), None),  # the baker's transform: the tent, by its other name
+    "c0": (_C0, _C0.deriv()),
+    "c1": (_C1, _C1.deriv()),
+    "c2": (_C2, _C2.deriv()),
+}
+
+
+def periodized(f, transform: str):
+    """f composed with a periodizing transform of every coordinate, times its Jacobian: the same
+    integral over [0, 1)^d, and a periodic integrand (tent: continuous; c0, c1, c2: with 0, 1 or 2
+    derivatives vanishing at the ends too)."""
+    if transform not in TRANSFORMS:
+        raise ValueError(f"udm1.integrate: transform {transform!r} is not one of {', '.join(TRANSFORMS)}")
+    phi, dphi = TRANSFORMS[transform]
+
+    def g(x):
+        y = np.asarray(f(phi(x)), dtype=np.float64)
+        return y if dphi is None else y.reshape(-1) * np.prod(dphi(x), axis=1)
+
+    return g
+
+
+# ---- integration to a tolerance ----
+
+class ToleranceNotMet(RuntimeError):
+    """The tolerance was not reached within n_max evaluations; `.result` is the partial estimate."""
+
+    def __init__(self, message: str, result: "ToleranceResult"):
+        super().__init__(message)
+        self.result = result
+
+
+@dataclass
+class ToleranceResult:
+    """An integral to a tolerance: the estimate, the error bound at the confidence asked (the
+    interval's half-width), points per replicate n and evaluations in all, the time, and whether the
+    tolerance was met. history: (n, estimate, bound) after each doubling."""
+
+    estimate: float
+    error_bound: float
+    n: int
+    n_total: int
+    replications: int
+    seconds: float
+    met: bool
+    abs_tol: float | None
+    rel_tol: float | None
+    confidence: float
+    criterion: str = "replications"
+    history: list = field(default_factory=list)
+
+    def tolerance(self) -> float:
+        return _tolerance(self.abs_tol, self.rel_tol, self.estimate)
+
+
+def _tolerance(abs_tol, rel_tol, estimate: float) -> float:
+    return max(abs_tol or 0.0, (rel_tol or 0.0) * abs(estimate))
+
+
+def _t_quantile(q: float, dof: int) -> float:
+    from scipy.stats import t
+    return float(t.ppf(q, dof))
+
+
+def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=None, n_max: int = 1 << 24,
+                           n_init: int = 1 << 10, replications: int = 16, confidence: float = 0.99,
+                           transform: str | None = None, seed: int = 0, randomize=True, chunk: int = 1 << 16,
+                           strict: bool = True, ranges=None) -> ToleranceResult:
+    """udm1.integrate with a tolerance (see there). `ranges(f, specs, first, count)`, if given, computes
+    the replicates' Integrals of [first, first + count) (udm1.distributed passes a cluster's)."""
+    t0 = time.perf_counter()
+    for name, tol in (("abs_tol", abs_tol), ("rel_tol", rel_tol)):
+        if tol is not None and not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
+            raise ValueError(f"udm1.integrate: {name} must be a positive finite number, not {tol!r}")
+    if abs_tol is None and rel_tol is None:
+        raise ValueError("udm1.integrate: give abs_tol or rel_tol")
+    if not (isinstance(confidence, float) and 0.5 <= confidence < 1):
+        raise ValueError(f"udm1.integrate: confidence must be in [0.5, 1), not {confidence!r}")
+    replications = integer(replications, "replications", 2)
+    n_init = integer(n_init, "n_init", 2)
+    n_max = integer(n_max, "n_max", 1)
+    if n_init * replications > n_max:
+        raise ValueError(f"udm1.integrate: n_max {n_max} is below the first round's n_init x replications = "
+                         f"{n_init * replications}")
+    info = _preset(str(sampler))
+    d = u32(d, "d")
+    g = periodized(f, transform) if transform else f
+    quantile = _t_quantile(0.5 + confidence / 2, replications - 1)
+    seed = u64(seed, "seed")
+
+    def specs(n_set):
+        return [IntegralSpec(str(sampler), d, n_set, seed, randomize, r) for r in range(replications)]
+
+    if ranges is None:
+        def ranges(fn, sp, first, count):
+            return [integrate_range(fn, s, first, count, chunk) for s in sp]
+
+    n, parts, history = n_init, None, []
+    while True:
+        if info.point_set:  # a point set of n points: a new set at each n
+            parts = ranges(g, specs(n), 0, n)
+        else:  # an extensible sequence: the next [n / 2, n) joins the sums of [0, n / 2)
+            sp = specs(n_max)
+            if parts is None:
+                parts = ranges(g, sp, 0, n)
+            else:
+                more = ranges(g, sp, n // 2, n - n // 2)
+                parts = [a + b for a, b in zip(parts, more)]
+        means = np.array([p.value for p in parts])
+        estimate = float(np.mean(means))
+        bound = quantile * float(np.std(means, ddof=1)) / math.sqrt(replications)
+        history.append((n, estimate, bound))
+        met = bound <= _tolerance(abs_tol, rel_tol, estimate)
+        if met or 2 * n * replications > n_max:
+            break
+        n *= 2
+    result = ToleranceResult(estimate, bound, n, n * replications, replications, time.perf_counter() - t0, met,
+                             abs_tol, rel_tol, confidence, history=history)
+    if not met and strict:
+        raise ToleranceNotMet(
+            f"udm1.integrate: tolerance {_tolerance(abs_tol, rel_tol, estimate):.3g} not met within n_max = {n_max} "
+            f"evaluations (error bound {bound:.3g} at {n} points x {replications} replications; estimate "
+            f"{estimate!r}); the partial result is in .result (or pass strict=False)", result)
+    return result
