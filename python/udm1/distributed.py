@@ -38,7 +38,8 @@ import time
 import uuid
 from dataclasses import dataclass, field
 
-from .integrate import Integral, IntegralSpec, _preset, integrate_range
+from .integrate import integrate_to_tolerance as _integrate_to_tolerance
+from .integrate import Integral, IntegralSpec, ToleranceResult, _preset, integrate_range
 
 __all__ = ["connect", "integrate", "render", "split_range", "split_tiles", "tool_path", "RenderResult"]
 
@@ -198,6 +199,37 @@ def integrate(f, sampler: str, d: int, n: int, *, seed: int = 0, randomize=True,
     for r in results[1:]:
         total = total + r["integral"]
     return total
+
+
+def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=None, n_max: int = 1 << 24,
+                           n_init: int = 1 << 10, replications: int = 16, confidence: float = 0.99,
+                           transform: str | None = None, seed: int = 0, randomize=True, blocks: int | None = None,
+                           chunk: int = 1 << 16, strict: bool = True, client=None, address: str | None = None,
+                           progress: bool = False) -> ToleranceResult:
+    """udm1.integrate(f, sampler, d, abs_tol=..., rel_tol=...) over a Dask cluster: at each doubling
+    every replicate's new index range is split into `blocks` blocks (default: enough for 4 tasks per
+    worker thread over all replicates), replicates x blocks tasks, each summed exactly on a worker.
+    The same stopping rule on the same exact sums: the result equals udm1.integrate's bit for bit
+    (its `seconds` aside)."""
+    with _client(client, address) as c:
+        def ranges(fn, specs, first, count):
+            per = blocks or max(1, -(-4 * _threads(c) // len(specs)))
+            items = [(a, b, s) for s in specs for a, b in split_range(count, min(per, count))]
+            results = _run_all(c, _tolerance_task, [(first + a, b, s) for a, b, s in items],
+                               what=f"{len(specs)} replicates of [{first}, {first + count})", progress=progress,
+                               on_done=None, extra=(fn, int(chunk)))
+            totals = {}
+            for (a, b, s), r in zip(items, results):
+                totals[s.stream] = r["integral"] if s.stream not in totals else totals[s.stream] + r["integral"]
+            return [totals[s.stream] for s in specs]
+
+        return _integrate_to_tolerance(f, sampler, d, abs_tol=abs_tol, rel_tol=rel_tol, n_max=n_max, n_init=n_init,
+                                       replications=replications, confidence=confidence, transform=transform,
+                                       seed=seed, randomize=randomize, chunk=chunk, strict=strict, ranges=ranges)
+
+
+def _tolerance_task(first: int, count: int, spec: IntegralSpec, f, chunk: int) -> dict:
+    return _integral_task(first, count, f, spec, chunk)
 
 
 # --------------------------------------------------------------------------------------- renders

@@ -157,6 +157,21 @@ def test_distributed_integral_equals_one_process(client, sampler, d, n):
         assert est.sum == whole.sum and est.value == whole.value and est.count == n
 
 
+def test_distributed_tolerance_equals_one_process(client):
+    # replicates x index blocks as tasks, the same stopping rule on the same exact sums: bit for bit
+    def f(x):
+        return np.cos(2 * np.pi * 0.1 + x @ np.array([0.7, 1.1]))
+
+    for sampler, transform in (("wr", None), ("sobol-owen", "tent")):
+        one = udm1.integrate(f, sampler, 2, abs_tol=1e-5, seed=4, transform=transform)
+        many = ud.integrate_to_tolerance(f, sampler, 2, abs_tol=1e-5, seed=4, transform=transform, client=client,
+                                         blocks=3)
+        assert (many.estimate, many.error_bound, many.n, many.history) == (one.estimate, one.error_bound, one.n,
+                                                                          one.history)
+    with pytest.raises(udm1.ToleranceNotMet):
+        ud.integrate_to_tolerance(f, "wr", 2, abs_tol=1e-14, n_max=4096, n_init=128, replications=4, client=client)
+
+
 def test_any_scheduler_address(client):
     # connect(address) and address= reach an existing scheduler (here the fixture's cluster)
     address = client.scheduler.address
