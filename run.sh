@@ -120,6 +120,9 @@ bench)
     udm1_log "udm1's samplers inside Mitsuba 3 (udm1.mitsuba) against Mitsuba's own, llvm_ad_rgb and scalar_rgb"
     udm1_log "(bench/bench_mitsuba_sampler.py, about 10 minutes)"
     "$PY" bench/bench_mitsuba_sampler.py --out "$ROOT/build/bench_mitsuba_sampler"
+    udm1_log "integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's six families (bench/bench_integrate.py;"
+    udm1_log "1000 trials per case: hours; --trials N for fewer)"
+    "$PY" bench/bench_integrate.py --out "$ROOT/build/bench_integrate"
     udm1_log "scale-out: udm1.distributed on 1 and 2 local Dask workers against the tools alone (bench/bench_distributed.py)"
     UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_distributed.py --tool "$ROOT/build/bin/udm1-pt" \
         --out "$ROOT/build/bench_distributed"
