@@ -202,7 +202,7 @@ def integrate(f, sampler: str, d: int, n: int, *, seed: int = 0, randomize=True,
 
 
 def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=None, n_max: int = 1 << 24,
-                           n_init: int = 1 << 10, replications: int = 16, confidence: float = 0.99,
+                           n_init: int = 1 << 8, replications: int = 16, confidence: float = 0.99,
                            transform: str | None = None, seed: int = 0, randomize=True, blocks: int | None = None,
                            chunk: int = 1 << 16, strict: bool = True, client=None, address: str | None = None,
                            progress: bool = False) -> ToleranceResult:

@@ -113,7 +113,7 @@ def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 
 
 def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, randomize=True, stream: int = 0,
               chunk: int = 1 << 16, abs_tol: float | None = None, rel_tol: float | None = None,
-              n_max: int = 1 << 24, n_init: int = 1 << 10, replications: int = 16, confidence: float = 0.99,
+              n_max: int = 1 << 24, n_init: int = 1 << 8, replications: int = 16, confidence: float = 0.99,
               transform: str | None = None, strict: bool = True):
     """The integral of f over [0, 1)^d with `sampler`, in one process.
 
@@ -225,7 +225,7 @@ def _t_quantile(q: float, dof: int) -> float:
 
 
 def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=None, n_max: int = 1 << 24,
-                           n_init: int = 1 << 10, replications: int = 16, confidence: float = 0.99,
+                           n_init: int = 1 << 8, replications: int = 16, confidence: float = 0.99,
                            transform: str | None = None, seed: int = 0, randomize=True, chunk: int = 1 << 16,
                            strict: bool = True, ranges=None) -> ToleranceResult:
     """udm1.integrate with a tolerance (see there). `ranges(f, specs, first, count)`, if given, computes

@@ -71,7 +71,7 @@ def test_rel_tol_and_history():
     r = udm1.integrate(product_peak, "sobol-owen", 2, rel_tol=1e-4, seed=3)
     assert r.met and r.error_bound <= 1e-4 * abs(r.estimate)
     ns = [h[0] for h in r.history]
-    assert ns == [1024 * 2 ** k for k in range(len(ns))] and ns[-1] == r.n
+    assert ns == [256 * 2 ** k for k in range(len(ns))] and ns[-1] == r.n
 
 
 @pytest.mark.parametrize("name", sorted(udm1.TRANSFORMS))
