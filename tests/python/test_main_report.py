@@ -111,7 +111,7 @@ def test_main_report(tmp_path):
     out = tmp_path / "report"
     r = run(out)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert "[1/9 sequences]" in r.stderr and "[9/9 screen]" in r.stderr  # progress on the terminal
+    assert "[1/10 sequences]" in r.stderr and "[10/10 screen]" in r.stderr  # progress on the terminal
     report = check_page(out)
     assert {s: v["status"] for s, v in report["steps"].items()} == {s: "ok" for s in report["steps"]}
     tables = report["tables"]
@@ -141,6 +141,10 @@ def test_main_report(tmp_path):
         assert [(x["sampler"], x["spp"], x["rmse"]) for x in rows] == [(x["sampler"], x["spp"], x["rmse"])
                                                                       for x in res["rows"]]
         assert {"independent", "udm1 wr", "udm1 sobol-owen"} <= {x["sampler"] for x in rows}
+    tolerance = json.loads((out / "tolerance" / "results.json").read_text())["rows"]  # every method of every case
+    assert [(x["family"], x["d"], x["method"], x["success"]) for x in tables["tolerance"]["rows"]] == \
+        [(x["family"], x["d"], x["method"], x["success"]) for x in tolerance]
+    assert {x["method"] for x in tolerance} >= {"udm1 sobol-owen", "QMCPy CubQMCNetG", "scipy qmc_quad"}
     screen = json.loads((out / "screen.json").read_text())["rows"]
     tent = tables["tent"]["rows"]
     assert {r["integrand"] for r in tent} == {r["integrand"] for r in samplers["error"]} and all(
@@ -180,7 +184,7 @@ def test_main_report(tmp_path):
     final = check_page(out)
     assert {s: v["status"] for s, v in final["steps"].items()} == {
         "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "reused", "ao": "ok", "pt": "ok",
-        "mitsuba": "reused", "tent": "reused", "screen": "ok"}
+        "mitsuba": "reused", "tolerance": "reused", "tent": "reused", "screen": "ok"}
     assert "ao" in final["tables"]
 
 

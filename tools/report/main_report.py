@@ -89,6 +89,8 @@ def plan(args, out: Path) -> list[Step]:
     reps = "4" if args.quick else ("64" if args.full else "32")
     seconds = "0.01" if args.quick else ("0.5" if args.full else "0.1")
     noise_reps = "1" if args.quick else "5"
+    tolerance_args = (["--trials", "1", "--dims", "2,8", "--families", "oscillatory,gaussian"] if args.quick else
+                      ["--trials", "50"] if args.full else ["--trials", "10"])
     if args.quick:
         mitsuba_args = ["--size", "32", "--spps", "4,16", "--seeds", "1", "--ref-spp", "256", "--scalar-size", "16",
                         "--scalar-spps", "4", "--scalar-seeds", "1"]
@@ -125,6 +127,9 @@ def plan(args, out: Path) -> list[Step]:
         Step("mitsuba", "udm1's samplers inside Mitsuba 3 (udm1.mitsuba) against Mitsuba's own",
              [[py, str(ROOT / "bench" / "bench_mitsuba_sampler.py"), "--out", str(out / "mitsuba"), *mitsuba_args]],
              ["mitsuba/results.json"]),
+        Step("tolerance", "Integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's families",
+             [[py, str(ROOT / "bench" / "bench_integrate.py"), "--out", str(out / "tolerance"), *tolerance_args]],
+             ["tolerance/results.json"]),
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
              [[py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]], ["screen.json"],
              "screen.html"),

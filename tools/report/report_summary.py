@@ -519,6 +519,20 @@ def mitsuba_section(doc, out: Path, state):
                   [e for e in res["equal_error"] if not e.get("not_compared")])
 
 
+def tolerance_section(doc, out: Path, state):
+    doc.heading(2, "Integration to a tolerance", "tolerance")
+    if not_shown(doc, state, "tolerance"):
+        return
+    res = load(out, "tolerance/results.json")
+    doc.para(f"`udm1.integrate(..., abs_tol=...)` (16 randomized replicates, Student-t at 99 %) against QMCPy's "
+             f"criteria and scipy's qmc_quad on Genz's families (bench/bench_integrate.py): {res['trials']} trial(s) "
+             f"per case with random coefficients, tolerance {res['rel']:g} x |I|, at most {res['n_max']} "
+             "evaluations; the share of trials within the tolerance, the median evaluations and the median time.")
+    doc.table("tolerance", "integration to a tolerance",
+              [("family", "family", ""), ("d", "d", "d"), ("method", "method", ""), ("success", "within tolerance", ".0%"),
+               ("median_n", "median evaluations", ".0f"), ("median_seconds", "median seconds", ".4f")], res["rows"])
+
+
 def ratio(a: float, b: float) -> float:
     """a / b, with an exact (zero-error) b shown as an infinite gain rather than dropped."""
     if b == 0:
@@ -611,7 +625,7 @@ def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
     else:
         doc.para("**No plots**: none of the samplers, ao and pt steps finished.")
     for section in (sequences_section, integration_section, throughput_section, noise_section, ao_section,
-                    pt_section, mitsuba_section, beyond_section):
+                    pt_section, mitsuba_section, tolerance_section, beyond_section):
         guarded(doc, section, out, state)
     if "crown" in state:
         guarded(doc, pt_section, out, state, "crown", "crown/")
