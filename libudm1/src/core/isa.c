@@ -11,11 +11,13 @@ static int supported(void)
 {
 #if defined(UDM1_HAVE_ISA_KERNELS) && defined(__x86_64__) && defined(__GNUC__)
     __builtin_cpu_init();
+    /* each level includes the one below (the AVX-512 level may run AVX2 + FMA code) */
+    if (!(__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2")))
+        return UDM1_ISA_BASELINE;
     if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
         __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512bw"))
         return UDM1_ISA_AVX512;
-    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2"))
-        return UDM1_ISA_AVX2;
+    return UDM1_ISA_AVX2;
 #endif
     return UDM1_ISA_BASELINE;
 }
@@ -39,6 +41,21 @@ int udm1_isa_level(void)
     l = s < c ? s : c;
     atomic_store_explicit(&level, l, memory_order_relaxed); /* every thread computes the same value */
     return l;
+}
+
+static atomic_int vbmi = -1;
+
+int udm1_isa_vbmi(void)
+{
+    int v = atomic_load_explicit(&vbmi, memory_order_relaxed);
+    if (UDM1_LIKELY(v >= 0)) return v;
+    v = 0;
+#if defined(UDM1_HAVE_ISA_KERNELS) && defined(__x86_64__) && defined(__GNUC__)
+    __builtin_cpu_init();
+    v = udm1_isa_level() == UDM1_ISA_AVX512 && __builtin_cpu_supports("avx512vbmi");
+#endif
+    atomic_store_explicit(&vbmi, v, memory_order_relaxed);
+    return v;
 }
 
 const char *udm1_isa(void)

@@ -12,4 +12,8 @@ enum udm1_isa_level { UDM1_ISA_BASELINE = 0, UDM1_ISA_AVX2 = 1, UDM1_ISA_AVX512 
 /* The level in use (computed on the first call, then constant). */
 UDM1_HIDDEN int udm1_isa_level(void);
 
+/* Whether the AVX-512 kernels that need VBMI's byte permutations (noise, cellular noise) may run: the
+ * level in use is AVX512 and the processor has AVX-512 VBMI (computed on the first call). */
+UDM1_HIDDEN int udm1_isa_vbmi(void);
+
 #endif /* UDM1_ISA_H */

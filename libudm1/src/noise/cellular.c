@@ -53,16 +53,9 @@
 #undef CELLULAR_REUSE_TYPES
 #pragma GCC pop_options
 #include "core/isa.h"
-static int with_fma(void)
-{
-    static int known = -1;
-    if (known < 0) {
-        __builtin_cpu_init();
-        known = __builtin_cpu_supports("fma") && __builtin_cpu_supports("avx2") ? 1 : 0;
-    }
-    return known && udm1_isa_level() >= UDM1_ISA_AVX2;
-}
-#define SEARCH(P, n, u, c, s) (with_fma() ? cellular_search_##P##_fma(n, u, c, s) : cellular_search_##P(n, u, c, s))
+/* (the AVX2 and AVX-512 levels imply AVX2 and FMA: core/isa.c) */
+#define SEARCH(P, n, u, c, s)                                                                                     \
+    (udm1_isa_level() >= UDM1_ISA_AVX2 ? cellular_search_##P##_fma(n, u, c, s) : cellular_search_##P(n, u, c, s))
 #else
 #define SEARCH(P, n, u, c, s) cellular_search_##P(n, u, c, s)
 #endif

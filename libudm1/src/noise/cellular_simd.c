@@ -17,6 +17,7 @@
 #if defined(UDM1_HAVE_ISA_KERNELS)
 #include <immintrin.h>
 
+#include "noise/byte_table.h"
 #include "noise/strided_loads.h"
 
 #define REAL double
@@ -41,23 +42,6 @@
 
 #define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi,fma")))
 
-typedef struct {
-    __m512i t[4]; /* a table of 256 bytes */
-} table256;
-
-AVX512 static inline table256 table_of(const uint8_t *bytes)
-{
-    table256 r;
-    for (int k = 0; k < 4; ++k) r.t[k] = _mm512_loadu_si512((const void *)(bytes + 64 * k));
-    return r;
-}
-
-AVX512 static inline __m512i lookup(const table256 *t, __m512i idx) /* each byte b of idx -> table[b] */
-{
-    __m512i lo = _mm512_permutex2var_epi8(t->t[0], idx, t->t[1]), hi = _mm512_permutex2var_epi8(t->t[2], idx, t->t[3]);
-    return _mm512_mask_blend_epi8(_mm512_movepi8_mask(idx), lo, hi);
-}
-
 AVX512 static inline __m512i pack4(__m128i a, __m128i b, __m128i c, __m128i d)
 {
     __m512i z = _mm512_castsi128_si512(a);
@@ -73,16 +57,16 @@ typedef struct {
     uint8_t O[3][28][16];
 } cells16;
 
-AVX512 static inline void hash_cells(const udm1_noise *n, const table256 *perm, uint32_t dims, __m128i ib[3][3],
+AVX512 static inline void hash_cells(const udm1_noise *n, const byte_table *perm, uint32_t dims, __m128i ib[3][3],
                                      cells16 *out)
 {
-    __m512i A = lookup(perm, pack4(ib[0][0], ib[0][1], ib[0][2], ib[0][2]));
+    __m512i A = byte_table_lookup(perm, pack4(ib[0][0], ib[0][1], ib[0][2], ib[0][2]));
     __m128i a[3] = {_mm512_castsi512_si128(A), _mm512_extracti32x4_epi32(A, 1), _mm512_extracti32x4_epi32(A, 2)};
     __m128i b[12]; /* (dx, dy) = (j % 3, j / 3): perm[A[dx] + Y[dy]] */
     for (int j = 0; j < 9; ++j) b[j] = _mm_add_epi8(a[j % 3], ib[1][j / 3]);
     b[9] = b[10] = b[11] = b[8];
     __m512i B[3];
-    for (int z = 0; z < 3; ++z) B[z] = lookup(perm, pack4(b[4 * z], b[4 * z + 1], b[4 * z + 2], b[4 * z + 3]));
+    for (int z = 0; z < 3; ++z) B[z] = byte_table_lookup(perm, pack4(b[4 * z], b[4 * z + 1], b[4 * z + 2], b[4 * z + 3]));
     const uint32_t cells = dims == 3 ? 27 : 9;
     __m512i Hz[7];
     int nz;
@@ -98,13 +82,13 @@ AVX512 static inline void hash_cells(const udm1_noise *n, const table256 *perm, 
             h[c] = _mm_add_epi8(_mm_load_si128((const __m128i *)(bb[j / 4] + 16 * (j % 4))), ib[2][c / 9]);
         }
         h[27] = h[26];
-        for (int z = 0; z < 7; ++z) Hz[z] = lookup(perm, pack4(h[4 * z], h[4 * z + 1], h[4 * z + 2], h[4 * z + 3]));
+        for (int z = 0; z < 7; ++z) Hz[z] = byte_table_lookup(perm, pack4(h[4 * z], h[4 * z + 1], h[4 * z + 2], h[4 * z + 3]));
         nz = 7;
     }
     for (int z = 0; z < nz; ++z) _mm512_storeu_si512((void *)out->H[4 * z], Hz[z]);
     for (uint32_t ax = 0; ax < dims; ++ax) {
-        table256 f = table_of(n->feature[ax]);
-        for (int z = 0; z < nz; ++z) _mm512_storeu_si512((void *)out->O[ax][4 * z], lookup(&f, Hz[z]));
+        byte_table f = byte_table_load(n->feature[ax]);
+        for (int z = 0; z < nz; ++z) _mm512_storeu_si512((void *)out->O[ax][4 * z], byte_table_lookup(&f, Hz[z]));
     }
     (void)cells;
 }
@@ -178,7 +162,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
     cellular_setup_f32 u;
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f32(&u, n, dims, p->metric, k, p->jitter, p->exponent);
-    const table256 perm = table_of(n->perm);
+    const byte_table perm = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 16);
     const __m512 c0 = _mm512_set1_ps(u.c0), c1 = _mm512_set1_ps(u.c1), zero = _mm512_setzero_ps();
     const __m512 inf = _mm512_set1_ps(INFINITY), margin = _mm512_set1_ps(0x1p-20f);
@@ -305,7 +289,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
     cellular_setup_f64 u;
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f64(&u, n, dims, p->metric, k, p->jitter, p->exponent);
-    const table256 perm = table_of(n->perm);
+    const byte_table perm = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 8);
     const __m512d c0 = _mm512_set1_pd(u.c0), c1 = _mm512_set1_pd(u.c1), zero = _mm512_setzero_pd();
     const __m512d inf = _mm512_set1_pd(INFINITY), margin = _mm512_set1_pd(0x1p-20);
@@ -401,20 +385,10 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
     return i;
 }
 
-static int has_vbmi(void)
-{
-    static int known = -1;
-    if (known < 0) {
-        __builtin_cpu_init();
-        known = __builtin_cpu_supports("avx512vbmi") ? 1 : 0;
-    }
-    return known;
-}
-
 static int vector_case(const udm1_cellular_params *p, uint32_t dims, size_t stride)
 {
     return p->metric <= UDM1_CELLULAR_CHEBYSHEV && (dims == 2 || dims == 3) && stride <= (1u << 26) &&
-           udm1_isa_level() == UDM1_ISA_AVX512 && has_vbmi();
+           udm1_isa_vbmi();
 }
 
 size_t udm1_cellular_fast_f64(const udm1_noise *n, const udm1_cellular_params *p, uint32_t dims,

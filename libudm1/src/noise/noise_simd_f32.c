@@ -15,21 +15,12 @@
 #if defined(UDM1_HAVE_ISA_KERNELS)
 #include <immintrin.h>
 
+#include "noise/byte_table.h"
 #include "noise/strided_loads.h"
 
 /* ---- AVX-512 (F, VL, DQ, BW, VBMI): 16 points ---- */
 #define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi")))
 
-typedef struct {
-    __m512i p0, p1, p2, p3; /* the permutation's 256 bytes */
-} perm512;
-
-/* each byte b of idx -> perm[b] */
-AVX512 static inline __m512i lookup16(const perm512 *t, __m512i idx)
-{
-    __m512i lo = _mm512_permutex2var_epi8(t->p0, idx, t->p1), hi = _mm512_permutex2var_epi8(t->p2, idx, t->p3);
-    return _mm512_mask_blend_epi8(_mm512_movepi8_mask(idx), lo, hi);
-}
 
 
 AVX512 static inline __mmask16 not_finite16(__m512 x) /* NaN or infinite */
@@ -139,16 +130,11 @@ AVX512 static inline void store_interleaved16(float *out, const __m512 *g, int k
     }
 }
 
-AVX512 static inline __m512i spread4(__m512i a) /* a's low byte in every byte of its lane */
-{
-    return _mm512_shuffle_epi8(a, _mm512_set4_epi32(0x0C0C0C0C, 0x08080808, 0x04040404, 0x00000000));
-}
-
 /* a's low byte plus the bytes of `plus` (each 0 or 1) in the bytes of its lane, mod 256: the indices
  * [i, i, i + 1, i + 1] or [i, i + 1, i, i + 1] of a cell's corners in one shuffle and one add */
 AVX512 static inline __m512i spread4_plus(__m512i a, int plus)
 {
-    return _mm512_add_epi8(spread4(a), _mm512_set1_epi32(plus));
+    return _mm512_add_epi8(byte_table_spread4(a), _mm512_set1_epi32(plus));
 }
 
 /* The 3D kernel, specialized by the compiler for the values alone (with_gradient 0: nothing else live
@@ -158,8 +144,7 @@ AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const
                                                                           size_t count, float *value, float *gradient,
                                                                           const int with_gradient)
 {
-    const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
-                       _mm512_loadu_si512(n->perm + 192)};
+    const byte_table T = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 16);
     const __m512 onef = _mm512_set1_ps(1.0f);
     const tables512 E = {_mm512_loadu_ps(EDGES[0]), _mm512_loadu_ps(EDGES[1]), _mm512_loadu_ps(EDGES[2])};
@@ -173,11 +158,11 @@ AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const
         /* the hashes, four to a lane, in bytes (mod 256, as the doubled table): [p[X0], p[X0], p[X1],
          * p[X1]], then [A, A1, B, B1] = [p[X0] + Y0, p[X0] + Y1, p[X1] + Y0, p[X1] + Y1] looked up, then
          * plus Z0 and Z1 = Z0 + 1 */
-        __m512i px = lookup16(&T, spread4_plus(X0, 0x01010000));
-        __m512i ab = lookup16(&T, _mm512_add_epi8(px, spread4_plus(Y0, 0x01000100)));
-        __m512i z0 = _mm512_add_epi8(ab, spread4(Z0));
-        __m512i H0 = lookup16(&T, z0);                                              /* [h000, h010, h100, h110] */
-        __m512i H1 = lookup16(&T, _mm512_add_epi8(z0, _mm512_set1_epi8(1))); /* [h001, h011, h101, h111] */
+        __m512i px = byte_table_lookup(&T, spread4_plus(X0, 0x01010000));
+        __m512i ab = byte_table_lookup(&T, _mm512_add_epi8(px, spread4_plus(Y0, 0x01000100)));
+        __m512i z0 = _mm512_add_epi8(ab, byte_table_spread4(Z0));
+        __m512i H0 = byte_table_lookup(&T, z0);                                              /* [h000, h010, h100, h110] */
+        __m512i H1 = byte_table_lookup(&T, _mm512_add_epi8(z0, _mm512_set1_epi8(1))); /* [h001, h011, h101, h111] */
         __m512 x1 = _mm512_sub_ps(x, onef), y1 = _mm512_sub_ps(y, onef), z1 = _mm512_sub_ps(z, onef);
         __m512 u = fade16(x), v = fade16(y), w = fade16(z);
         /* corners 000, 100, 010, 110, 001, 101, 011, 111: each vector made where it is used (all of them
@@ -224,8 +209,7 @@ AVX512 static size_t noise3_avx512(const udm1_noise *n, const float *const *axes
 AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
                                    float *value, float *gradient)
 {
-    const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
-                       _mm512_loadu_si512(n->perm + 192)};
+    const byte_table T = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 16);
     const __m512 onef = _mm512_set1_ps(1.0f), scale = _mm512_set1_ps(0.507f);
     const tables512 E = {_mm512_loadu_ps(G2[0]), _mm512_loadu_ps(G2[1]), _mm512_loadu_ps(G2[2])};
@@ -235,8 +219,8 @@ AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes
         if (not_finite16(x) | not_finite16(y)) break;
         __m512i X0, Y0;
         x = axis16(x, &X0), y = axis16(y, &Y0);
-        __m512i px = lookup16(&T, spread4_plus(X0, 0x01010000));
-        __m512i H = lookup16(&T, _mm512_add_epi8(px, spread4_plus(Y0, 0x01000100))); /* [h00, h01, h10, h11] */
+        __m512i px = byte_table_lookup(&T, spread4_plus(X0, 0x01010000));
+        __m512i H = byte_table_lookup(&T, _mm512_add_epi8(px, spread4_plus(Y0, 0x01000100))); /* [h00, h01, h10, h11] */
         __m512 x1 = _mm512_sub_ps(x, onef), y1 = _mm512_sub_ps(y, onef);
         __m512 u = fade16(x), v = fade16(y);
         __m512 G[4][3]; /* corners 00, 10, 01, 11 */
@@ -438,23 +422,13 @@ AVX2 static size_t noise2_avx2(const udm1_noise *n, const float *const *axes, si
     return i;
 }
 
-static int has_vbmi(void)
-{
-    static int known = -1;
-    if (known < 0) {
-        __builtin_cpu_init();
-        known = __builtin_cpu_supports("avx512vbmi") ? 1 : 0;
-    }
-    return known;
-}
-
 size_t udm1_noise_eval_fast_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
                                 size_t count, float *value, float *gradient)
 {
     if (n->kind != UDM1_NOISE_IMPROVED || n->period[0] || n->period[1] || n->period[2]) return 0;
     if (dims < 2 || dims > 3 || stride > (1u << 26)) return 0; /* (a gather's offsets must fit an int) */
     int level = udm1_isa_level();
-    if (level == UDM1_ISA_AVX512 && has_vbmi())
+    if (udm1_isa_vbmi())
         return dims == 3 ? noise3_avx512(n, axes, stride, count, value, gradient)
                          : noise2_avx512(n, axes, stride, count, value, gradient);
     if (level >= UDM1_ISA_AVX2) /* (AVX-512 without VBMI takes the AVX2 kernel) */

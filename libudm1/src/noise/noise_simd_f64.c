@@ -19,24 +19,11 @@
 #if defined(UDM1_HAVE_ISA_KERNELS)
 #include <immintrin.h>
 
+#include "noise/byte_table.h"
 #include "noise/strided_loads.h"
 
 #define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi")))
 
-typedef struct {
-    __m512i p0, p1, p2, p3; /* the permutation's 256 bytes */
-} perm512;
-
-AVX512 static inline __m512i lookup16(const perm512 *t, __m512i idx) /* each byte b of idx -> perm[b] */
-{
-    __m512i lo = _mm512_permutex2var_epi8(t->p0, idx, t->p1), hi = _mm512_permutex2var_epi8(t->p2, idx, t->p3);
-    return _mm512_mask_blend_epi8(_mm512_movepi8_mask(idx), lo, hi);
-}
-
-AVX512 static inline __m512i spread4(__m512i a) /* a's low byte in every byte of its lane */
-{
-    return _mm512_shuffle_epi8(a, _mm512_set4_epi32(0x0C0C0C0C, 0x08080808, 0x04040404, 0x00000000));
-}
 
 
 AVX512 static inline __mmask8 not_finite8(__m512d x) { return _mm512_fpclass_pd_mask(x, 0x01 | 0x08 | 0x10 | 0x80); }
@@ -127,20 +114,20 @@ AVX512 static inline void store_interleaved8(double *out, const __m512d *g, int 
 
 /* The hashes of 16 points: [h000, h010, h100, h110] and [h001, h011, h101, h111] (3D), or [h00, h01, h10,
  * h11] (2D, H1 not made), from the lower corners' indices */
-AVX512 static inline void hashes(const perm512 *T, __m512i X0, __m512i Y0, __m512i Z0, int dims, __m512i *H0,
+AVX512 static inline void hashes(const byte_table *T, __m512i X0, __m512i Y0, __m512i Z0, int dims, __m512i *H0,
                                  __m512i *H1)
 {
     /* in bytes (mod 256, as the doubled table): [p[X0], p[X0], p[X1], p[X1]] with X1 = X0 + 1, then
      * [A, A1, B, B1] = [p[X0] + Y0, p[X0] + Y1, p[X1] + Y0, p[X1] + Y1] looked up, then plus Z0, Z0 + 1 */
-    __m512i px = lookup16(T, _mm512_add_epi8(spread4(X0), _mm512_set1_epi32(0x01010000)));
-    __m512i ab = lookup16(T, _mm512_add_epi8(px, _mm512_add_epi8(spread4(Y0), _mm512_set1_epi32(0x01000100))));
+    __m512i px = byte_table_lookup(T, _mm512_add_epi8(byte_table_spread4(X0), _mm512_set1_epi32(0x01010000)));
+    __m512i ab = byte_table_lookup(T, _mm512_add_epi8(px, _mm512_add_epi8(byte_table_spread4(Y0), _mm512_set1_epi32(0x01000100))));
     if (dims == 2) {
         *H0 = ab;
         return;
     }
-    __m512i z0 = _mm512_add_epi8(ab, spread4(Z0));
-    *H0 = lookup16(T, z0);
-    *H1 = lookup16(T, _mm512_add_epi8(z0, _mm512_set1_epi8(1)));
+    __m512i z0 = _mm512_add_epi8(ab, byte_table_spread4(Z0));
+    *H0 = byte_table_lookup(T, z0);
+    *H1 = byte_table_lookup(T, _mm512_add_epi8(z0, _mm512_set1_epi8(1)));
 }
 
 /* One half (8 points) of a 3D group, the hashes W0 = [h000, h010, h100, h110], W1 = [h001, h011, h101,
@@ -210,8 +197,7 @@ AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1
                                                                      size_t count, double *value, double *gradient,
                                                                      const int with_gradient)
 {
-    const perm512 T = {_mm512_loadu_si512(n->perm), _mm512_loadu_si512(n->perm + 64), _mm512_loadu_si512(n->perm + 128),
-                       _mm512_loadu_si512(n->perm + 192)};
+    const byte_table T = byte_table_load(n->perm);
     edges16 E;
     for (int c = 0; c < 3; ++c) {
         double t[16];
@@ -273,22 +259,12 @@ AVX512 static size_t noise_f64_avx512(const udm1_noise *n, uint32_t dims, const 
                     : kernel_f64(n, 2, axes, stride, count, value, NULL, 0);
 }
 
-static int has_vbmi(void)
-{
-    static int known = -1;
-    if (known < 0) {
-        __builtin_cpu_init();
-        known = __builtin_cpu_supports("avx512vbmi") ? 1 : 0;
-    }
-    return known;
-}
-
 size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
                                 size_t count, double *value, double *gradient)
 {
     if (n->kind != UDM1_NOISE_IMPROVED || n->period[0] || n->period[1] || n->period[2]) return 0;
     if (dims < 2 || dims > 3) return 0;
-    if (udm1_isa_level() == UDM1_ISA_AVX512 && has_vbmi() && stride <= (1u << 26))
+    if (udm1_isa_vbmi() && stride <= (1u << 26))
         return noise_f64_avx512(n, dims, axes, stride, count, value, gradient);
     /* otherwise the 4-lane kernels of noise_simd.c, for packed points and values alone */
     if (gradient || !value) return 0;
