@@ -91,24 +91,7 @@ def _preset(name: str) -> Preset:
 def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16) -> Integral:
     """f over sample indices [first, first + count) of spec's sequence, in chunks of `chunk` points.
     f takes an (m, d) float64 array and returns m finite values."""
-    if not (0 <= first and 0 <= count and first + count <= spec.n):
-        raise ValueError(f"udm1.integrate: range [{first}, {first + count}) is not inside [0, {spec.n})")
-    seq = spec.sequence()
-    total, total_sq = ExactSum(), ExactSum()
-    for start in range(first, first + count, chunk):
-        m = min(chunk, first + count - start)
-        x = seq.points(m, start, stream=spec.stream)
-        y = np.asarray(f(x), dtype=np.float64)
-        if y.shape not in ((m,), (m, 1)):
-            raise ValueError(f"udm1.integrate: f returned shape {y.shape} for {m} points (want ({m},))")
-        y = y.reshape(m)
-        bad = np.flatnonzero(~np.isfinite(y))
-        if bad.size:
-            k = int(bad[0])
-            raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k} (point {x[k].tolist()})")
-        total.add(y)
-        total_sq.add(y * y)
-    return Integral(spec, first, count, total, total_sq)
+    return replicate_ranges(f, [spec], first, count, chunk)[0]
 
 
 def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, randomize=True, stream: int = 0,
@@ -149,13 +132,13 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
 
 
 def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> list[Integral]:
-    """integrate_range of [first, first + count) for replicates that differ only in their stream, with
-    one sequence and one call of f per chunk for all of them (f sees the replicates' points stacked):
-    the same Integrals, bit for bit, at a fraction of the calls."""
+    """integrate_range of [first, first + count) for each spec. Specs that differ only in their stream
+    (replicates) share one sequence and one call of f per chunk (f sees their points stacked): the same
+    Integrals, bit for bit, at a fraction of the calls."""
     base = specs[0]
     if any((s.sampler, s.d, s.n, s.seed, s.randomize) != (base.sampler, base.d, base.n, base.seed, base.randomize)
            for s in specs):
-        return [integrate_range(f, s, first, count, chunk) for s in specs]
+        return [replicate_ranges(f, [s], first, count, chunk)[0] for s in specs]
     if not (0 <= first and 0 <= count and first + count <= base.n):
         raise ValueError(f"udm1.integrate: range [{first}, {first + count}) is not inside [0, {base.n})")
     seq = base.sequence()
@@ -163,7 +146,8 @@ def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> 
     step = max(1, chunk // len(specs))
     for start in range(first, first + count, step):
         m = min(step, first + count - start)
-        x = np.concatenate([seq.points(m, start, stream=s.stream) for s in specs])
+        x = np.concatenate([seq.points(m, start, stream=s.stream) for s in specs]) if len(specs) > 1 else \
+            seq.points(m, start, stream=base.stream)
         y = np.asarray(f(x), dtype=np.float64)
         if y.shape not in ((x.shape[0],), (x.shape[0], 1)):
             raise ValueError(f"udm1.integrate: f returned shape {y.shape} for {x.shape[0]} points (want ({x.shape[0]},))")
@@ -171,8 +155,8 @@ def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> 
         bad = np.flatnonzero(~np.isfinite(y))
         if bad.size:
             k = int(bad[0])
-            raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k % m} of replicate stream "
-                             f"{specs[k // m].stream} (point {x[k].tolist()})")
+            which = f" of stream {specs[k // m].stream}" if len(specs) > 1 else ""
+            raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k % m}{which} (point {x[k].tolist()})")
         for r, (total, total_sq) in enumerate(sums):
             yr = y[r * m:(r + 1) * m]
             total.add(yr)
