@@ -1,6 +1,7 @@
 // ao_render.cpp - see ao_render.h.
 #include "ao_render.h"
 
+#include "udm1app/pixel_order.h"
 #include "udm1app/sampler.h"
 
 #include <tbb/blocked_range2d.h>
@@ -117,9 +118,23 @@ Vec3 cosine_direction(Vec3 n, double u1, double u2)
     return Vec3(d[0], d[1], d[2]);
 }
 
+// The samples [first, first + count) of pixel (x, y), dims values each, as the pixel order names them: one
+// fill per pixel, or per sample in Z-order. False with udm1_last_error() set on failure.
+static bool fill_pixel(const udm1_seq *seq, const udm1app::PixelOrder &order, int x, int y, uint64_t first, uint32_t count,
+                       uint32_t dim0, uint32_t dims, double *out)
+{
+    if (!order.zorder) return udm1_seq_fill_f64(seq, order.stream(x, y), first, count, dim0, dims, out, dims) == UDM1_OK;
+    for (uint32_t i = 0; i < count; ++i)
+        if (udm1_seq_fill_f64(seq, 0, order.index(x, y, first + i), 1, dim0, dims, out + (size_t)i * dims, dims) != UDM1_OK)
+            return false;
+    return true;
+}
+
 udm1_seq *make_sampler(const Options &opt)
 {
-    return udm1app::create_render_sampler(opt.sampler, opt.jitter ? 4 : 2, false, opt.spp, opt.seed, opt.randomize, "AO");
+    if (opt.jitter && opt.direction_dim)
+        throw std::runtime_error("--direction-dims is for renders without --jitter (which takes dims 0..3)");
+    return udm1app::create_render_sampler(opt.sampler, opt.jitter ? 4 : opt.direction_dim + 2, false, opt.spp, opt.seed, opt.randomize, "AO");
 }
 
 double ao_at(const udm1scene::EmbreeScene &rt, Vec3 p, Vec3 n, const udm1_seq *seq, uint64_t stream, uint32_t spp,
@@ -145,6 +160,8 @@ Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, co
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
     udm1app::check_pixel_bounds(bounds, view.width, view.height);
+    const udm1app::PixelOrder order = udm1app::make_pixel_order(opt.sampler, opt.randomize, opt.spp, opt.seed,
+                                                                view.width, view.height);
     udm1_seq *seq = make_sampler(opt);
     std::unique_ptr<udm1_seq, void (*)(udm1_seq *)> seq_owner(seq, udm1_seq_destroy);  // freed on every path
     Image img;
@@ -167,9 +184,8 @@ Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, co
         uint64_t local_rays = 0;
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                uint64_t stream = ((uint64_t)y << 32) | (uint32_t)x;
                 uv.resize((size_t)count * dims);
-                if (udm1_seq_fill_f64(seq, stream, opt.first, count, 0, dims, uv.data(), dims) != UDM1_OK) {
+                if (!fill_pixel(seq, order, x, y, opt.first, count, opt.jitter ? 0 : opt.direction_dim, dims, uv.data())) {
                     std::lock_guard<std::mutex> lock(error_mutex);
                     error = udm1_last_error();  // per thread: copy it here
                     failed = true;

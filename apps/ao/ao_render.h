@@ -27,6 +27,7 @@ struct Options {
     int width = 0, height = 0;       // 0: 256 x 256 for built-in scenes, else the scene's film
     double max_distance = 1e300;     // occlusion ray length
     bool jitter = false;             // the 4D variant: dims 0,1 jitter the primary ray, 2,3 the direction
+    uint32_t direction_dim = 0;      // without jitter: the direction from dims (D, D + 1), D even
     Method method = Method::Stream;  // the fastest here (bench/bench_ao.cpp, BENCHMARKS.md)
 };
 

@@ -40,11 +40,14 @@ const char *USAGE =
     "  --spp-first F   render only sample indices [F, F + C) of the --spp N ... (-o IMAGE.exr keeps exact\n"
     "  --spp-count C   ... counts: merge joins ranges and tiles into the whole render, bit for bit)\n"
     "  --pixel-bounds X0,Y0,X1,Y1  render only the pixels [X0, X1) x [Y0, Y1) (a tile)\n"
-    "  --randomize R   none|default|shift|permute|owen|screen (default: the sampler's default; screen:\n"
-    "                  Weyl sets, blue-noise error across pixels)\n"
+    "  --randomize R   none|default|shift|permute|owen|screen|screen-fixed (default: the sampler's own;\n"
+    "                  screen: blue-noise error across pixels, at every spp for Weyl sequences, Z-order at\n"
+    "                  power-of-two spp for sobol/sobol-owen; screen-fixed: Weyl, blue at exactly --spp)\n"
+    "  --frame F       an animation's frame F: its own randomization (default 0)\n"
     "  --size WxH      image size (default: 256x256 for built-in scenes, else the scene's film)\n"
     "  --maxdist D     occlusion ray length (default: unbounded)\n"
     "  --jitter        jitter the primary ray too (4D: dims 0,1 pixel, 2,3 direction)\n"
+    "  --direction-dims D  without --jitter: the direction from dims D, D + 1 (D even; default 0)\n"
     "  --method M      single|packet|stream: how occlusion rays go to Embree (default stream, the fastest)\n"
     "  --threads N     default: all cores\n"
     "prints one line: sampler, spp, seconds, rays per second.\n";
@@ -58,6 +61,10 @@ public:
     {
         if (flag == "--maxdist") ao_.max_distance = udm1app::parse_double(value(), flag, 1e-12, 1e300);
         else if (flag == "--jitter") ao_.jitter = true;
+        else if (flag == "--direction-dims") {
+            ao_.direction_dim = (uint32_t)udm1app::parse_u64(value(), flag, 0, 1024);
+            if (ao_.direction_dim % 2) throw udm1app::Error("--direction-dims " + std::to_string(ao_.direction_dim) + " is odd");
+        }
         else if (flag == "--method")
             ao_.method = udm1app::parse_choice<udm1ao::Method>(
                 value(), flag, {{"single", udm1ao::Method::Single}, {"packet", udm1ao::Method::Packet},
@@ -87,9 +94,10 @@ public:
         udm1ao::Options a = options(s);
         char buf[512];
         std::snprintf(buf, sizeof buf,
-                      "udm1-ao %s scene %016llx size %dx%d sampler %s spp %u seed %llu randomize %u maxdist %.17g jitter %d",
+                      "udm1-ao %s scene %016llx size %dx%d sampler %s spp %u seed %llu randomize %u maxdist %.17g jitter %d dir %u",
                       udm1_version_string(), (unsigned long long)scene_.digest(), a.width, a.height, a.sampler.c_str(),
-                      a.spp, (unsigned long long)a.seed, a.randomize, a.max_distance, (int)a.jitter);
+                      a.spp, (unsigned long long)a.seed, a.randomize, a.max_distance, (int)a.jitter,
+                      a.direction_dim);
         return buf;
     }
 

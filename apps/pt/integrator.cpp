@@ -1,6 +1,7 @@
 // integrator.cpp - see integrator.h.
 #include "integrator.h"
 
+#include "udm1app/pixel_order.h"
 #include "udm1app/sampler.h"
 
 #include "estimator.h"
@@ -84,6 +85,8 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
     udm1app::check_pixel_bounds(bounds, view.width, view.height);  // before anything is allocated
+    const udm1app::PixelOrder order = udm1app::make_pixel_order(opt.sampler, opt.randomize, opt.spp, opt.seed,
+                                                                view.width, view.height);
     Sequence seq_owner = make_sequence(opt, path_dims(max_depth));  // freed on every path
     udm1_seq *seq = seq_owner.get();
     Accumulator acc;
@@ -106,10 +109,10 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
         if (diffuse || general) {
             LoopCounts n;
             if (diffuse)
-                diffuse->render(seq, camera, r.cols().begin(), r.cols().end(), r.rows().begin(), r.rows().end(), opt.first,
+                diffuse->render(seq, order, camera, r.cols().begin(), r.cols().end(), r.rows().begin(), r.rows().end(), opt.first,
                                 count, scene.film_scale, &acc, &n);
             else
-                general->render(seq, max_depth, camera, r.cols().begin(), r.cols().end(), r.rows().begin(),
+                general->render(seq, order, max_depth, camera, r.cols().begin(), r.cols().end(), r.rows().begin(),
                                 r.rows().end(), opt.first, count, scene.film_scale, &acc, &n);
             rays += n.rays, nonfinite += n.nonfinite, clamped += n.clamped;
             return;
@@ -117,11 +120,11 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
         uint64_t local_rays = 0, local_nonfinite = 0, local_clamped = 0;
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                uint64_t stream = ((uint64_t)y << 32) | (uint32_t)x;
                 int64_t *px = &acc.sum[3 * ((size_t)(y - acc.y0) * acc.width + (x - acc.x0))];
                 udm1_stream pixel;  // the pixel's randomization, once: its samples' domains draw inline
-                udm1_stream_init(&pixel, seq, stream, 0, stream_dims(max_depth));
-                for (uint64_t i = opt.first; i < opt.first + count; ++i) {
+                udm1_stream_init(&pixel, seq, order.stream(x, y), 0, stream_dims(max_depth));
+                for (uint64_t n = opt.first; n < opt.first + count; ++n) {
+                    const uint64_t i = order.index(x, y, n);
                     udm1_domain sample = udm1_domain_root(&pixel, i);
                     double uv[4];
                     udm1_domain_draw_f64(sample, camera.has_lens() ? 4 : 2, uv);

@@ -345,9 +345,9 @@ DiffuseWavefront::DiffuseWavefront(const Scene &scene, const udm1scene::EmbreeSc
 // (the vectorized shading) and shadows() (occlusion, the light samples that arrive; ended paths retired).
 class DiffuseWavefront::Batch {
 public:
-    Batch(const DiffuseWavefront &w, const udm1_seq *seq, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
-          double film_scale, Accumulator *acc, LoopCounts *counts)
-        : w_(w), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count),
+    Batch(const DiffuseWavefront &w, const udm1_seq *seq, const udm1app::PixelOrder &order, int x0, int x1, int y0,
+          int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts)
+        : w_(w), order_(order), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count),
           film_scale_(film_scale), acc_(acc), counts_(counts), b_(buffers())
     {
         b_.paths.normals = !w.choice_.fixed;
@@ -355,7 +355,7 @@ public:
         streams_.resize((size_t)W_ * (size_t)(y1 - y0));
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
-                udm1_stream_init(&streams_[(size_t)(y - y0) * W_ + (x - x0)], seq, ((uint64_t)y << 32) | (uint32_t)x, 0,
+                udm1_stream_init(&streams_[(size_t)(y - y0) * W_ + (x - x0)], seq, order.stream(x, y), 0,
                                  stream_dims(w.max_depth_));
     }
     // The camera rays of paths [start, start + n) of the tile (path k: pixel k / count, sample
@@ -387,6 +387,7 @@ private:
     void finish(size_t j);
 
     const DiffuseWavefront &w_;
+    const udm1app::PixelOrder &order_;
     int x0_, y0_, W_;
     uint64_t first_, count_;
     double film_scale_;
@@ -423,7 +424,7 @@ void DiffuseWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64
         uint64_t s = start % count_;
         int p = (int)(start / count_);
         for (size_t k = 0; k < n; ++k) {
-            P.index[k] = first_ + s, P.pixel[k] = p;
+            P.index[k] = order_.index(x0_ + p % W_, y0_ + p / W_, first_ + s), P.pixel[k] = p;
             if (++s == count_) s = 0, ++p;  // the next pixel
         }
     }
@@ -606,10 +607,11 @@ void DiffuseWavefront::Batch::shadows()
     n_ = keep;
 }
 
-void DiffuseWavefront::render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
-                       uint64_t first, uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts) const
+void DiffuseWavefront::render(const udm1_seq *seq, const udm1app::PixelOrder &order, const udm1scene::CameraRays &camera,
+                              int x0, int x1, int y0, int y1, uint64_t first, uint64_t count, double film_scale,
+                              Accumulator *acc, LoopCounts *counts) const
 {
-    Batch batch(*this, seq, x0, x1, y0, y1, first, count, film_scale, acc, counts);
+    Batch batch(*this, seq, order, x0, x1, y0, y1, first, count, film_scale, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
         batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));

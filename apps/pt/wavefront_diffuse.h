@@ -21,6 +21,7 @@
 #pragma once
 
 #include "integrator.h"
+#include "udm1app/pixel_order.h"
 
 #include <string>
 #include <vector>
@@ -40,8 +41,10 @@ public:
     // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them,
     // scaled by film_scale, to acc's fixed-point sums (as the scalar loop does). Safe from many
     // threads at once for disjoint pixels.
-    void render(const udm1_seq *seq, const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1,
-                uint64_t first, uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts) const;
+    // order: how the pixels' samples are named to the library (udm1app/pixel_order.h).
+    void render(const udm1_seq *seq, const udm1app::PixelOrder &order, const udm1scene::CameraRays &camera, int x0,
+                int x1, int y0, int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc,
+                LoopCounts *counts) const;
 
     // Per triangle (its geometry's first entry + the triangle's index) and per light: what the loop reads.
     struct Triangles {

@@ -66,15 +66,16 @@ Buffers &buffers()  // one set per thread, reused from batch to batch
 // the others compacted).
 class GeneralWavefront::Batch {
 public:
-    Batch(const GeneralWavefront &w, const udm1_seq *seq, int max_depth, int x0, int x1, int y0, int y1,
-          uint64_t first, uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts)
-        : w_(w), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count), film_scale_(film_scale), acc_(acc),
+    Batch(const GeneralWavefront &w, const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth, int x0,
+          int x1, int y0, int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc,
+          LoopCounts *counts)
+        : w_(w), order_(order), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count), film_scale_(film_scale), acc_(acc),
           counts_(counts), b_(buffers())
     {
         streams_.resize((size_t)W_ * (size_t)(y1 - y0));  // the tile's pixels' streams, once
         for (int y = y0; y < y1; ++y)
             for (int x = x0; x < x1; ++x)
-                udm1_stream_init(&streams_[(size_t)(y - y0) * W_ + (x - x0)], seq, ((uint64_t)y << 32) | (uint32_t)x, 0,
+                udm1_stream_init(&streams_[(size_t)(y - y0) * W_ + (x - x0)], seq, order.stream(x, y), 0,
                                  stream_dims(max_depth));
     }
     void camera(const udm1scene::CameraRays &camera, uint64_t start, size_t n);
@@ -86,6 +87,7 @@ private:
     void finish(size_t j);
 
     const GeneralWavefront &w_;
+    const udm1app::PixelOrder &order_;
     int x0_, y0_, W_;
     uint64_t first_, count_;
     double film_scale_;
@@ -123,7 +125,7 @@ void GeneralWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64
     for (size_t k = 0; k < n; ++k) {
         PathState &path = b_.paths[k];
         path = PathState();
-        path.pixel = &streams_[p], path.index = first_ + s;
+        path.pixel = &streams_[p], path.index = order_.index(x0_ + p % W_, y0_ + p / W_, first_ + s);
         b_.pixel[k] = p;
         double uv[4];
         udm1_domain_draw_f64(udm1_domain_root(path.pixel, path.index), camera.has_lens() ? 4 : 2, uv);
@@ -201,11 +203,11 @@ void GeneralWavefront::Batch::shadows()
     n_ = keep;
 }
 
-void GeneralWavefront::render(const udm1_seq *seq, int max_depth, const udm1scene::CameraRays &camera, int x0, int x1,
-                              int y0, int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc,
-                              LoopCounts *counts) const
+void GeneralWavefront::render(const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth,
+                              const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1, uint64_t first,
+                              uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts) const
 {
-    Batch batch(*this, seq, max_depth, x0, x1, y0, y1, first, count, film_scale, acc, counts);
+    Batch batch(*this, seq, order, max_depth, x0, x1, y0, y1, first, count, film_scale, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
         batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));

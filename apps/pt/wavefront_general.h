@@ -10,6 +10,7 @@
 #pragma once
 
 #include "estimator.h"
+#include "udm1app/pixel_order.h"
 
 namespace udm1pt {
 
@@ -19,9 +20,10 @@ public:
     // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them, scaled by
     // film_scale, to acc's fixed-point sums (as the scalar loop does). Safe from many threads at once for
     // disjoint pixels. seq: the render's sequence, of stream_dims(max_depth) dimensions or fewer.
-    void render(const udm1_seq *seq, int max_depth, const udm1scene::CameraRays &camera, int x0, int x1, int y0,
-                int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc,
-                LoopCounts *counts) const;
+    // order: how the pixels' samples are named to the library (udm1app/pixel_order.h).
+    void render(const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth,
+                const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
+                double film_scale, Accumulator *acc, LoopCounts *counts) const;
 
 private:
     class Batch;  // a thread's batch of paths through the stages of a bounce (wavefront_general.cpp)

@@ -45,7 +45,8 @@ const char *USAGE =
     "  -n N          points (default 256)            -d D        dimensions (default 2)\n"
     "  --seed S      seed (default 1)                --stream S  stream / pixel id (default 0)\n"
     "  --first F     first index (default 0)         --reps R    randomizations (default 16)\n"
-    "  --randomize none|default|shift|permute|owen (default: default)\n"
+    "  --randomize none|default|shift|permute|owen|screen (default: default; screen: progressive\n"
+    "                screen-space shifts, pixel (x, y) as stream (y << 32) | x, Weyl sequences)\n"
     "  --size S      image size (plot 512, spectrum 128)\n"
     "  --width W --height H --spp S   zone plate (512 x 512, 16 spp)\n"
     "  -o FILE       output file (.csv, .npy, .png, .exr, .tif)\n";
@@ -122,6 +123,8 @@ void make(const Options &o, uint32_t dims, uint64_t points, Seq &seq)
     desc.dimensions = dims;
     desc.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? points : 0;
     desc.seed = o.seed;
+    if (o.randomize == udm1app::RANDOMIZE_SCREEN_FIXED)
+        throw Error("--randomize screen-fixed is the renderers' (it needs their spp); udm1-seq takes screen");
     desc.randomize = o.randomize;
     if (udm1_seq_create_desc(&desc, &seq.s) != UDM1_OK) throw Error(udm1_last_error());
 }

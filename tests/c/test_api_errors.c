@@ -100,14 +100,19 @@ static void test_create_errors(void)
     d.screen_spp = 1; /* only with UDM1_RANDOMIZE_SCREEN */
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
     CHECK(mentions("screen_spp"));
-    d.randomize = UDM1_RANDOMIZE_SCREEN; /* which needs it */
-    d.screen_spp = 0;
-    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
-    CHECK(mentions("screen_spp"));
-    d.preset = "sobol"; /* and a Weyl sequence */
+    d.randomize = UDM1_RANDOMIZE_SCREEN; /* which needs a Weyl sequence, fixed N or progressive (0) */
+    d.preset = "sobol";
     d.screen_spp = 16;
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
     CHECK(mentions("Weyl"));
+    d.screen_spp = 0;
+    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_ERROR_INVALID_ARGUMENT);
+    CHECK(mentions("Weyl"));
+    d.preset = "wr";
+    CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_OK);
+    CHECK(udm1_seq_randomization(s) == UDM1_RANDOMIZE_SCREEN);
+    udm1_seq_destroy(s);
+    d.screen_spp = 16;
     d.preset = "wr";
     CHECK_STATUS(udm1_seq_create_desc(&d, &s), UDM1_OK);
     CHECK(udm1_seq_randomization(s) == UDM1_RANDOMIZE_SCREEN);

@@ -12,6 +12,10 @@
 #include <string.h>
 
 /* A sequence, or NULL when the preset lacks that randomization (screen: 16 samples per pixel) */
+/* the tests' name for UDM1_RANDOMIZE_SCREEN with desc.screen_spp = 0 (progressive); SCREEN itself is
+ * tested with screen_spp = 16 */
+#define SCREEN_PROGRESSIVE (UDM1_RANDOMIZE_SCREEN + 1u)
+
 static udm1_seq *try_make(const char *preset, uint32_t dims, uint64_t k, uint64_t seed, uint32_t randomize)
 {
     udm1_seq_desc d;
@@ -20,7 +24,7 @@ static udm1_seq *try_make(const char *preset, uint32_t dims, uint64_t k, uint64_
     d.dimensions = dims;
     d.point_count = k;
     d.seed = seed;
-    d.randomize = randomize;
+    d.randomize = randomize == SCREEN_PROGRESSIVE ? UDM1_RANDOMIZE_SCREEN : randomize;
     if (randomize == UDM1_RANDOMIZE_SCREEN) d.screen_spp = 16;
     udm1_seq *s = NULL;
     return udm1_seq_create_desc(&d, &s) == UDM1_OK ? s : NULL;
@@ -41,7 +45,7 @@ static udm1_seq *variant(const udm1_preset_info *info, uint32_t randomize)
     udm1_seq_desc_init(&desc);
     desc.preset = info->name, desc.dimensions = info->max_dimensions < 9 ? info->max_dimensions : 9;
     desc.point_count = (info->flags & UDM1_PRESET_POINT_SET) ? 64 : 0;
-    desc.seed = 11, desc.randomize = randomize;
+    desc.seed = 11, desc.randomize = randomize == SCREEN_PROGRESSIVE ? UDM1_RANDOMIZE_SCREEN : randomize;
     if (randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = 16;
     udm1_seq *s = NULL;
     return udm1_seq_create_desc(&desc, &s) == UDM1_OK ? s : NULL;
@@ -107,7 +111,7 @@ static void check_preset(const char *name, uint32_t D, uint64_t K, uint32_t rand
     static const size_t counts[] = {0, 17, 1031, 1, 2, 7, 16, 255};
     size_t nf = thorough ? 6 : 3, nc = thorough ? 8 : 3;
     udm1_seq *s = try_make(name, D, K, 42, randomize);
-    if (!s && randomize == UDM1_RANDOMIZE_SCREEN) return; /* screen-space: the Weyl presets only */
+    if (!s && randomize >= UDM1_RANDOMIZE_SCREEN) return; /* screen-space: the Weyl presets only */
     CHECKF(s != NULL, "%s randomize %u: %s", name, randomize, udm1_last_error());
     if (!s) return;
     for (size_t fi = 0; fi < nf; ++fi)
@@ -135,7 +139,7 @@ static void test_bulk_equals_samples(void)
         uint32_t dims[3] = {1, info.max_dimensions < 3 ? info.max_dimensions : 3,
                             info.max_dimensions < 23 ? info.max_dimensions : 23};
         for (int di = 0; di < 3; ++di)
-            for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_SCREEN; ++r)
+            for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= SCREEN_PROGRESSIVE; ++r)
                 check_preset(info.name, dims[di], point_set ? 1000 : 0, r, r == UDM1_RANDOMIZE_DEFAULT && di == 1);
         if (point_set) check_preset(info.name, dims[1], 1, UDM1_RANDOMIZE_DEFAULT, 1);
     }
@@ -332,7 +336,7 @@ static void test_fill_points(void)
     for (size_t p = 0; p < udm1_preset_count(); ++p) {
         udm1_preset_info info;
         udm1_preset_get(p, &info);
-        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_SCREEN; ++r) {
+        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= SCREEN_PROGRESSIVE; ++r) {
             udm1_seq *s = variant(&info, r);
             if (!s) continue; /* a randomization the preset lacks */
             for (uint32_t first = 0; first < 12; first += 5) {

@@ -19,13 +19,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* the tests' name for UDM1_RANDOMIZE_SCREEN with desc.screen_spp = 0 (progressive); SCREEN itself is
+ * tested with screen_spp = 16 */
+#define SCREEN_PROGRESSIVE (UDM1_RANDOMIZE_SCREEN + 1u)
+
 static udm1_seq *variant(const udm1_preset_info *info, uint32_t dims, uint32_t randomize)
 {
     udm1_seq_desc desc;
     udm1_seq_desc_init(&desc);
     desc.preset = info->name, desc.dimensions = info->max_dimensions < dims ? info->max_dimensions : dims;
     desc.point_count = (info->flags & UDM1_PRESET_POINT_SET) ? 64 : 0;
-    desc.seed = 11, desc.randomize = randomize;
+    desc.seed = 11, desc.randomize = randomize == SCREEN_PROGRESSIVE ? UDM1_RANDOMIZE_SCREEN : randomize;
     if (randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = 16;
     udm1_seq *s = NULL;
     return udm1_seq_create_desc(&desc, &s) == UDM1_OK ? s : NULL;
@@ -51,7 +55,7 @@ static void test_stream_equals_cursor(void)
     for (size_t p = 0; p < udm1_preset_count(); ++p) {
         udm1_preset_info info;
         udm1_preset_get(p, &info);
-        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_SCREEN; ++r) {
+        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= SCREEN_PROGRESSIVE; ++r) {
             udm1_seq *s = variant(&info, 9, r);
             if (!s) continue;
             uint64_t K = udm1_seq_point_count(s);
@@ -115,7 +119,7 @@ static void test_domains_agree(void)
     for (size_t p = 0; p < udm1_preset_count(); ++p) {
         udm1_preset_info info;
         udm1_preset_get(p, &info);
-        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_SCREEN; ++r) {
+        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= SCREEN_PROGRESSIVE; ++r) {
             udm1_seq *s = variant(&info, 6, r);
             if (!s) continue;
             uint64_t K = udm1_seq_point_count(s);

@@ -167,3 +167,66 @@ def to_f64(u: int) -> float:
 
 def to_f32(u: int) -> float:
     return (u >> 40) * 2.0 ** -24
+
+
+# ---- progressive screen-space randomization (weyl/screen.c), transcribed from its comment ----
+
+SCREEN_R = [0xDB4F0B9175AE2165, 0xBBE0563303A4615F, 0xA0F2EC75A1FE1575, 0x89E182857D9ED688]
+SCREEN_COUNTS = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256]
+
+
+def _signed64(v: int) -> int:
+    v &= M64
+    return v - (1 << 64) if v >> 63 else v
+
+
+def screen_pair(a: int, b: int, single: bool) -> list[int]:
+    """The chosen (G_2p, G_2p+1, H_2p, H_2p+1) for the top 64 bits a, b of a pair's generators."""
+    import math
+    modes, energy = [], []
+    for h2 in range(0, 1 if single else 33):
+        for h1 in range(-32, 33):
+            if h2 == 0 and h1 <= 0:
+                continue
+            d = abs(_signed64(h1 * a + h2 * b)) >> 32
+            r2 = 1 + h1 * h1 + h2 * h2
+            w = (1 << 40) // (r2 * math.isqrt(r2))
+            row = []
+            for n in SCREEN_COUNTS:
+                t = (804 * n * d) >> 30
+                row.append((w * ((1 << 40) // ((1 << 20) + t * t))) >> 20)
+            modes.append((h1, h2))
+            energy.append(row)
+    total = [sum(col) for col in zip(*energy)]
+    r1 = ((1 << 32) // 4) ** 2
+    best, chosen = None, None
+    for c in range(1, 65):
+        g = [((1 << 63) + c * r) & M64 for r in SCREEN_R]
+        low, top = [0] * len(SCREEN_COUNTS), [0] * len(SCREEN_COUNTS)
+        for (h1, h2), row in zip(modes, energy):
+            su = _signed64(h1 * g[0] + h2 * g[1]) >> 32
+            sv = _signed64(h1 * g[2] + h2 * g[3]) >> 32
+            q = su * su + sv * sv
+            if q >= r1:
+                continue
+            win = ((r1 - q) >> 16) * 65536 // (r1 >> 16)
+            for k, e in enumerate(row):
+                e = (e >> 16) * win
+                low[k] += e
+                top[k] = max(top[k], e)
+        score = max(float(low[k] + 4 * top[k]) / float(total[k]) for k in range(len(SCREEN_COUNTS)))
+        if best is None or score < best:
+            best, chosen = score, g
+    return chosen
+
+
+def screen_generators(alpha_his: list[int]) -> list[tuple[int, int]]:
+    """(G_j, H_j) of every dimension from the top 64 bits of the generators."""
+    out = []
+    for j in range(0, len(alpha_his), 2):
+        single = j + 1 == len(alpha_his)
+        g = screen_pair(alpha_his[j], 0 if single else alpha_his[j + 1], single)
+        out.append((g[0], g[2]))
+        if not single:
+            out.append((g[1], g[3]))
+    return out

@@ -1,5 +1,6 @@
-"""UDM1_RANDOMIZE_SCREEN: pixel (x, y) takes points m N + n of one randomly shifted sequence, m its Morton
-index and N the samples per pixel. Pinned: the Morton layout and the segments; each pixel unbiased over
+"""UDM1_RANDOMIZE_SCREEN with screen_spp = N, the fixed scheme (test_screen_progressive.py has N = 0):
+pixel (x, y) takes points m N + n of one randomly shifted sequence, m its Morton index and N the samples
+per pixel. Pinned: the Morton layout and the segments; each pixel unbiased over
 seeds; bulk = per-sample = split; Weyl sequences only; and the point of it: the error image of a
 per-pixel integral is blue noise (low screen frequencies carry less energy than white noise) at no cost
 in MSE."""
@@ -53,13 +54,13 @@ def test_each_pixel_unbiased_over_seeds():
     assert abs(est.mean() - np.pi * 0.09) < 4 * est.std() / np.sqrt(len(est))
 
 
-def test_weyl_sequences_only_and_spp_needed():
+def test_weyl_sequences_only_and_spp_only_with_screen():
     with pytest.raises(udm1.UDM1Error, match="Weyl"):
         udm1.Sequence("sobol", 2, randomize="screen", screen_spp=4)
     with pytest.raises(udm1.UDM1Error, match="Weyl"):
         udm1.Sequence("episwr", 2, point_count=4, randomize="screen", screen_spp=4)
-    with pytest.raises(udm1.UDM1Error, match="screen_spp"):
-        udm1.Sequence("wr", 2, randomize="screen")
+    with pytest.raises(udm1.UDM1Error, match="Weyl"):
+        udm1.Sequence("sobol", 2, randomize="screen")  # progressive (screen_spp 0): Weyl sequences too
     with pytest.raises(udm1.UDM1Error, match="screen_spp"):
         udm1.Sequence("wr", 2, randomize="shift", screen_spp=4)
 

@@ -226,11 +226,13 @@ HEAD = 'LookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective" "float fov" [ 45 ]\nWo
 TRI = 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
 
 
-@pytest.mark.parametrize("sampler,jitter", [("episwr", False), ("wr-ao", False), ("sobol-owen", True)])
-def test_ranges_and_tiles_merge_to_the_whole_render(sampler, jitter, tmp_path):
+@pytest.mark.parametrize("sampler,jitter,randomize", [("episwr", False, "default"), ("wr-ao", False, "default"),
+                                                     ("sobol-owen", True, "default"), ("wr", False, "screen"),
+                                                     ("wr", True, "screen-fixed")])
+def test_ranges_and_tiles_merge_to_the_whole_render(sampler, jitter, randomize, tmp_path):
     # each tile split into its own uneven ranges (a point set, a sequence, the jittered 4D variant):
     # the merged counts are the whole render's, bit for bit, in the EXR and the PNG
-    common = ["--sampler", sampler, "--spp", "12", "--size", "37x23"] + (["--jitter"] if jitter else [])
+    common = ["--sampler", sampler, "--spp", "12", "--size", "37x23", "--randomize", randomize] + (["--jitter"] if jitter else [])
     ok(*common, "-o", str(tmp_path / "whole.exr"), "--png", str(tmp_path / "whole.png"))
     tiles = {"0,0,20,23": [(0, 12)], "20,0,37,9": [(0, 7), (7, 5)], "20,9,37,23": [(0, 1), (1, 10), (11, 1)]}
     parts = []
@@ -354,3 +356,54 @@ def test_what_ambient_occlusion_does_not_need_is_noted(tmp_path):
     assert any("appearance left out" in n for n in notes), r.stderr
     ok("--scene", str(plain), "--spp", "4", "--size", "8x8", "-o", str(tmp_path / "b.exr"))
     assert ok("compare", str(tmp_path / "a.exr"), str(tmp_path / "b.exr")).stdout.startswith("mse 0 ")  # the same image
+
+
+def test_screen_is_progressive_checkpoints_are_prefixes(tmp_path):
+    # --randomize screen (progressive) with Weyl sequences: the first k samples of a longer render are a
+    # k-sample render, bit for bit; --checkpoints writes those prefixes in one run. The fixed scheme is not
+    # progressive: its k-sample render is another set of points.
+    common = ["--sampler", "wr", "--size", "24x20", "--randomize"]
+    r = ok(*common, "screen", "--spp", "16", "--checkpoints", "1,3,16", "-o", str(tmp_path / "ck.exr"))
+    assert "wrote 3 checkpoints" in r.stdout
+    for k in (1, 3, 16):
+        ok(*common, "screen", "--spp", str(k), "-o", str(tmp_path / f"s{k}.exr"))
+        r = ok("compare", str(tmp_path / f"ck.{k}.exr"), str(tmp_path / f"s{k}.exr"), "--exact")
+        assert "identical" in r.stdout and "mse 0 " in r.stdout, (k, r.stdout)
+    ok(*common, "screen-fixed", "--spp", "16", "--checkpoints", "3", "-o", str(tmp_path / "fx.exr"))
+    ok(*common, "screen-fixed", "--spp", "3", "-o", str(tmp_path / "f3.exr"))
+    r = ok("compare", str(tmp_path / "fx.3.exr"), str(tmp_path / "f3.exr"), "--exact")
+    assert "mse 0 " not in r.stdout, r.stdout
+    for args, words in ((["--checkpoints", "3,2", "-o", "x.exr"], "not ascending"),
+                        (["--checkpoints", "17", "-o", "x.exr"], "--checkpoints"),
+                        (["--checkpoints", "4", "--spp-first", "2", "-o", "x.exr"], "--checkpoints"),
+                        (["--checkpoints", "4", "--png", "x.png"], "-o NAME.exr")):
+        r = run(*common, "screen", "--spp", "16", *args, cwd=tmp_path)
+        assert r.returncode != 0 and words in r.stderr and len(r.stderr.strip().splitlines()) == 1, (args, r.stderr)
+        assert not list(tmp_path.glob("x.*")), args
+
+
+def test_zorder_sobol_and_frames(tmp_path):
+    # --randomize screen with sobol-owen: the Z-order scheme, at power-of-two spp only, deterministic
+    common = ["--sampler", "sobol-owen", "--randomize", "screen", "--size", "20x12"]
+    outs = []
+    for threads in ("1", "3"):
+        ok(*common, "--spp", "8", "--threads", threads, "-o", str(tmp_path / f"z{threads}.exr"))
+        outs.append((tmp_path / f"z{threads}.exr").read_bytes())
+    assert outs[0] == outs[1]
+    ok(*common, "--spp", "8", "--spp-first", "0", "--spp-count", "3", "-o", str(tmp_path / "za.exr"))
+    ok(*common, "--spp", "8", "--spp-first", "3", "--spp-count", "5", "-o", str(tmp_path / "zb.exr"))
+    ok("merge", str(tmp_path / "zb.exr"), str(tmp_path / "za.exr"), "-o", str(tmp_path / "zm.exr"))
+    assert (tmp_path / "zm.exr").read_bytes() == outs[0]
+    r = run(*common, "--spp", "6", "-o", str(tmp_path / "bad.exr"))
+    assert r.returncode != 0 and "power-of-two" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    r = run("--sampler", "pmj02", "--randomize", "screen", "--spp", "4", "--size", "8x8", "-o", str(tmp_path / "p.exr"))
+    assert r.returncode != 0 and "Weyl" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not (tmp_path / "bad.exr").exists() and not (tmp_path / "p.exr").exists()
+    # --frame: frame 0 is the render itself; other frames are other randomizations of the same scheme
+    wr = ["--sampler", "wr", "--randomize", "screen", "--size", "20x12", "--spp", "4"]
+    ok(*wr, "-o", str(tmp_path / "f.exr"))
+    ok(*wr, "--frame", "0", "-o", str(tmp_path / "f0.exr"))
+    ok(*wr, "--frame", "1", "-o", str(tmp_path / "f1.exr"))
+    assert (tmp_path / "f0.exr").read_bytes() == (tmp_path / "f.exr").read_bytes()
+    r = ok("compare", str(tmp_path / "f1.exr"), str(tmp_path / "f0.exr"))
+    assert not r.stdout.startswith("mse 0 "), r.stdout

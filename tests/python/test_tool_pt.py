@@ -73,9 +73,10 @@ def test_furnace_through_the_tool(scene, tmp_path):
         assert np.all(np.abs(mean_of(r) - 2.0) < 0.02), (strategy, r.stdout)
 
 
-@pytest.mark.parametrize("randomize", ["default", "screen"])
-def test_identical_across_runs_threads_and_ranges(tmp_path, randomize):
-    common = ["--sampler", "wmmr", "--spp", "12", "--size", "40x30", "--randomize", randomize]
+@pytest.mark.parametrize("sampler,randomize,spp", [("wmmr", "default", 12), ("wmmr", "screen", 12),
+                                                  ("wmmr", "screen-fixed", 12), ("sobol-owen", "screen", 16)])
+def test_identical_across_runs_threads_and_ranges(tmp_path, sampler, randomize, spp):
+    common = ["--sampler", sampler, "--spp", str(spp), "--size", "40x30", "--randomize", randomize]
     outs = []
     for threads in ("1", "2", "8"):
         out = tmp_path / f"t{threads}.exr"
@@ -85,7 +86,7 @@ def test_identical_across_runs_threads_and_ranges(tmp_path, randomize):
     outs.append((tmp_path / "again.exr").read_bytes())
     assert all(o == outs[0] for o in outs)
     # three uneven ranges, each with its own thread count, merged in any order: the whole render, bit for bit
-    for first, count, threads in ((0, 5, "1"), (5, 1, "2"), (6, 6, "8")):
+    for first, count, threads in ((0, 5, "1"), (5, 1, "2"), (6, spp - 6, "8")):
         ok(*common, "--spp-first", str(first), "--spp-count", str(count), "--threads", threads,
            "-o", str(tmp_path / f"r{first}.exr"))
     ok("merge", str(tmp_path / "r6.exr"), str(tmp_path / "r0.exr"), str(tmp_path / "r5.exr"),
@@ -556,10 +557,10 @@ def test_sweep_against_a_reference(tmp_path):
     assert (tmp_path / "wmmr-16spp.png").exists()
 
 
-def test_screen_randomization_needs_a_weyl_sequence(tmp_path):
-    for sampler in ("sobol-owen", "pmj02"):
-        r = run("--sampler", sampler, "--randomize", "screen", "--spp", "4", "--size", "8x8", "-o", str(tmp_path / "x.exr"))
-        assert r.returncode != 0 and "Weyl" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+def test_screen_randomization_needs_a_weyl_sequence_or_zorder_sobol(tmp_path):
+    for sampler, spp, words in (("pmj02", "4", "Weyl"), ("halton", "4", "Weyl"), ("sobol-owen", "12", "power-of-two")):
+        r = run("--sampler", sampler, "--randomize", "screen", "--spp", spp, "--size", "8x8", "-o", str(tmp_path / "x.exr"))
+        assert r.returncode != 0 and words in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
         assert not (tmp_path / "x.exr").exists()
     r = run("--randomize", "blue", "-o", str(tmp_path / "x.exr"))
     assert r.returncode != 0 and "screen" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
@@ -839,3 +840,14 @@ def test_the_project_scenes_render(name, tmp_path):
     mean = mean_of(r)
     assert np.all(np.isfinite(mean)) and np.all(mean > 0.01), mean
     assert "warning" not in r.stdout, r.stdout
+
+
+def test_screen_is_progressive_checkpoints_are_prefixes(tmp_path):
+    # the path tracer's domains under progressive screen shifts: the first k samples of a longer render
+    # are a k-sample render, bit for bit (scalar and wavefront loops)
+    common = ["--sampler", "wmmr", "--size", "20x16", "--randomize", "screen"]
+    ok(*common, "--spp", "8", "--checkpoints", "2,5", "-o", str(tmp_path / "ck.exr"))
+    for k in (2, 5):
+        ok(*common, "--spp", str(k), "-o", str(tmp_path / f"s{k}.exr"))
+        r = ok("compare", str(tmp_path / f"ck.{k}.exr"), str(tmp_path / f"s{k}.exr"), "--exact")
+        assert "identical" in r.stdout and "mse 0 " in r.stdout, (k, r.stdout)

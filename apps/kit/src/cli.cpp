@@ -41,7 +41,8 @@ uint32_t parse_randomize(const std::string &text)
     if (text == "permute") return UDM1_RANDOMIZE_PERMUTE;
     if (text == "owen") return UDM1_RANDOMIZE_OWEN;
     if (text == "screen") return UDM1_RANDOMIZE_SCREEN;
-    throw Error("--randomize '" + text + "' is not one of none, default, shift, permute, owen, screen");
+    if (text == "screen-fixed") return RANDOMIZE_SCREEN_FIXED;
+    throw Error("--randomize '" + text + "' is not one of none, default, shift, permute, owen, screen, screen-fixed");
 }
 
 std::vector<std::string> parse_list(const std::string &text, const std::string &flag)

@@ -64,6 +64,8 @@ RenderSettings parse(Renderer &r, int argc, char **argv)
         else if (a == "--spp-count") s.count = parse_u64(value(a), a, 1, d.max_spp);
         else if (a == "--pixel-bounds") parse_pixel_bounds(value(a), a, s.bounds);
         else if (a == "--seed") s.seed = parse_u64(value(a), a, 0, UINT64_MAX);
+        else if (a == "--frame") s.frame = parse_u64(value(a), a, 0, UINT32_MAX);
+        else if (a == "--checkpoints") only("render", a), s.checkpoints = value(a);
         else if (a == "--randomize") s.randomize = parse_randomize(value(a));
         else if (a == "--size") {
             parse_size(value(a), a, 16384, MAX_RENDER_PIXELS, &s.width, &s.height);
@@ -227,6 +229,63 @@ bool reuse_reference(const Renderer &r, const RenderSettings &s, const std::stri
     return true;
 }
 
+// "K1,K2,..." (ascending, in 1..spp) or "every" (1..spp) as sample counts; throws Error.
+std::vector<uint64_t> parse_checkpoints(const RenderSettings &s)
+{
+    std::vector<uint64_t> ks;
+    if (s.checkpoints == "every") {
+        for (uint64_t k = 1; k <= s.spp; ++k) ks.push_back(k);
+        return ks;
+    }
+    for (const std::string &item : parse_list(s.checkpoints, "--checkpoints")) {
+        ks.push_back(parse_u64(item, "--checkpoints", 1, s.spp));
+        if (ks.size() > 1 && ks.back() <= ks[ks.size() - 2])
+            throw Error("--checkpoints '" + s.checkpoints + "' is not ascending");
+    }
+    return ks;
+}
+
+// NAME.exr -> NAME.K.exr
+std::string checkpoint_path(const std::string &output, uint64_t k)
+{
+    return output.substr(0, output.size() - 4) + "." + std::to_string(k) + output.substr(output.size() - 4);
+}
+
+// A render's prefixes: samples [0, K) of every pixel for each checkpoint K, each written as NAME.K.exr
+// (exact sums: the prefix of a render equals the render of that range, bit for bit). The samples between
+// checkpoints are rendered once.
+int run_checkpoints(Renderer &r, const RenderSettings &s, const std::string &made_by)
+{
+    if (s.output.empty() || !is_exr_path(s.output)) throw Error("--checkpoints needs -o NAME.exr (it writes NAME.K.exr)", 2);
+    if (s.part()) throw Error("--checkpoints renders from sample 0, every pixel: no --spp-first/--spp-count/--pixel-bounds", 2);
+    const std::vector<uint64_t> ks = parse_checkpoints(s);
+    PartialImage total;
+    uint64_t done = 0;
+    for (uint64_t k : ks) {
+        RenderSettings slice = s;
+        slice.first = done, slice.count = k - done;
+        RenderStats stats;
+        PartialImage part = r.render(slice, &stats);
+        if (done == 0) {
+            total = part;
+        } else {
+            for (size_t i = 0; i < total.sum.size(); ++i) total.sum[i] += part.sum[i];
+            total.count += part.count, total.nonfinite += part.nonfinite, total.clamped += part.clamped;
+        }
+        total.made_by = made_by;
+        const std::string path = checkpoint_path(s.output, k);
+        write_partial(path, total);
+        if (isatty(2))
+            std::fprintf(stderr, "\r%s: %llu of %llu spp", r.defaults().tool, (unsigned long long)k,
+                         (unsigned long long)ks.back());
+        done = k;
+    }
+    if (isatty(2)) std::fprintf(stderr, "\n");
+    std::printf("wrote %zu checkpoints, %s .. %s\n", ks.size(), checkpoint_path(s.output, ks.front()).c_str(),
+                checkpoint_path(s.output, ks.back()).c_str());
+    return 0;
+}
+
 int run_render(Renderer &r, RenderSettings s)
 {
     const Renderer::Defaults &d = r.defaults();
@@ -249,6 +308,7 @@ int run_render(Renderer &r, RenderSettings s)
     for (const std::string &path : {s.output, s.png})  // a bad output path fails before the render
         if (!path.empty()) AtomicFile probe(path);
     if (s.command == "sweep") return run_sweep(r, s);
+    if (!s.checkpoints.empty()) return run_checkpoints(r, s, made_by);
     RenderStats stats;
     PartialImage image = r.render(s, &stats);
     image.made_by = made_by;

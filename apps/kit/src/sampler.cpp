@@ -1,6 +1,9 @@
 // sampler.cpp - a render's sampler from its command-line name (sampler.h).
 #include "udm1app/sampler.h"
 
+#include "udm1app/cli.h"
+#include "udm1app/pixel_order.h"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -22,7 +25,12 @@ udm1_seq *create_render_sampler(const std::string &name, uint32_t dims, bool cli
     desc.point_count = (info.flags & UDM1_PRESET_POINT_SET) ? spp : 0;
     desc.seed = seed;
     desc.randomize = randomize;
-    if (randomize == UDM1_RANDOMIZE_SCREEN) desc.screen_spp = spp;  // the whole render's spp: ranges merge
+    if (randomize == RANDOMIZE_SCREEN_FIXED) {  // the whole render's spp: ranges merge
+        desc.randomize = UDM1_RANDOMIZE_SCREEN;
+        desc.screen_spp = spp;
+    } else if (randomize == UDM1_RANDOMIZE_SCREEN && zorder_sampler(name)) {
+        desc.randomize = UDM1_RANDOMIZE_DEFAULT;  // Z-order: one stream, its own scrambling (pixel_order.h)
+    }
     udm1_seq *seq = nullptr;
     if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
     return seq;

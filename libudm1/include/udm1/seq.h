@@ -176,13 +176,17 @@ typedef enum udm1_randomize {
     UDM1_RANDOMIZE_PERMUTE = 3, /* random digital shift: base 2, XOR with r_j; base b (Halton,
                                    Hammersley), a random permutation of the digits at each position */
     UDM1_RANDOMIZE_OWEN = 4,    /* nested uniform (Owen) scrambling by hashing, keyed by r_j */
-    UDM1_RANDOMIZE_SCREEN = 5   /* Weyl sequences (1.4): screen-space decorrelation (Z-order). With
-                                   stream = ((uint64_t)y << 32) | x for pixel (x, y) and N =
-                                   desc.screen_spp, point n of the pixel is point m*N + n (mod 2^64)
-                                   of one sequence shifted by u_j(seed), m the pixel's Morton index:
-                                   neighbouring pixels hold consecutive segments of one low-
-                                   discrepancy sequence, so their errors cancel locally and the error
-                                   image is blue noise; each pixel stays unbiased over seeds */
+    UDM1_RANDOMIZE_SCREEN = 5   /* Weyl sequences: screen-space decorrelation, pixel (x, y) as stream
+                                   ((uint64_t)y << 32) | x; its error image is blue noise (its low screen
+                                   frequencies damped) and each pixel stays unbiased over seeds.
+                                   desc.screen_spp = 0 (1.8), progressive: point n of the pixel is
+                                   point n of the sequence shifted by u_j(seed) + x G_j + y H_j, G and
+                                   H screen generators chosen from the sequence's generators: blue at
+                                   every sample count, so a render may stop or continue anywhere.
+                                   desc.screen_spp = N >= 1 (1.4), fixed: point n of the pixel is point
+                                   m*N + n (mod 2^64) of one sequence shifted by u_j(seed), m the
+                                   pixel's Morton index: blue at N samples per pixel.
+                                   docs/screen-space.md has both constructions */
 } udm1_randomize;
 
 typedef enum udm1_alpha_kind {
@@ -221,8 +225,8 @@ typedef struct udm1_seq_desc {
     uint32_t randomize;        /* udm1_randomize; PRNGs and "pattern" presets (cmj, grps) take an
                                   independent stream per stream id unless NONE, and then
                                   apply SHIFT/PERMUTE/OWEN on top if asked */
-    uint32_t screen_spp;       /* UDM1_RANDOMIZE_SCREEN only: the samples per pixel N (1.4; the field
-                                  was `reserved`, 0, before); else 0 */
+    uint32_t screen_spp;       /* UDM1_RANDOMIZE_SCREEN: 0 progressive, or the samples per pixel N of
+                                  the fixed scheme (1.4; the field was `reserved`, 0, before); else 0 */
 } udm1_seq_desc;
 
 /* Fill desc with defaults: struct_size set, dimensions 0, preset NULL,

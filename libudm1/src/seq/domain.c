@@ -47,10 +47,12 @@ static udm1_status domain_fill(const char *fn, const udm1_domain *d, uint32_t n,
     uint32_t first = (uint32_t)first64;
     uint64_t key = d->key, m = permuted_index(d->index, seq->point_count, (uint32_t)(key >> 32));
     uint32_t inside = first >= seq->dims ? 0 : seq->dims - first < n ? seq->dims - first : n;
-    if (seq->kind == &udm1_weyl_kind) { /* its own shift; in screen mode after the pixel's segment base */
+    if (seq->kind == &udm1_weyl_kind) { /* its own shift; in screen mode after the pixel's segment base
+                                           (fixed N) or on top of the pixel's shift (progressive) */
         for (uint32_t j = 0; j < inside; ++j) {
             uint32_t dim = first + j;
-            raw[j] = udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + udm1_shift(key, seq->dim_key[dim]),
+            uint64_t pixel = seq->screen_gen ? udm1_screen_pixel_shift(seq, st->stream, dim) : 0;
+            raw[j] = udm1_weyl_raw(&seq->gen[dim], seq->offset[dim] + pixel + udm1_shift(key, seq->dim_key[dim]),
                                    m + st->index_base);
         }
     } else if (inside && seq->kind->base2) { /* the values, then the domain's words on them */

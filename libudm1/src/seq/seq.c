@@ -1,6 +1,7 @@
 /* seq.c - udm1_seq: validation of a descriptor, creation from presets or generators, destruction,
  * queries, and random access to single values. */
 #include "seq/value.h"
+#include "weyl/screen.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -74,17 +75,15 @@ udm1_status udm1_user_generator(const char *fn, uint32_t j, const udm1_alpha *a,
     return UDM1_OK;
 }
 
-/* UDM1_RANDOMIZE_SCREEN: Weyl sequences (not point sets) and a sample count per pixel (screen_shift.h). */
+/* UDM1_RANDOMIZE_SCREEN: Weyl sequences (not point sets); screen_spp N >= 1 fixes the samples per pixel
+ * (weyl/weyl.h), 0 is progressive (weyl/screen.h). */
 static udm1_status screen_init(const char *fn, udm1_seq *seq, uint32_t spp)
 {
     if (!seq->gen || seq->point_count)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
                          "%s: UDM1_RANDOMIZE_SCREEN applies to Weyl sequences (not point sets), not '%s'", fn, seq->name);
-    if (spp == 0)
-        return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT,
-                         "%s: UDM1_RANDOMIZE_SCREEN needs desc.screen_spp, the samples per pixel (>= 1)", fn);
     seq->screen_spp = spp;
-    return UDM1_OK;
+    return spp ? UDM1_OK : udm1_screen_generators(fn, seq);
 }
 
 udm1_status udm1_seq_create_desc(const udm1_seq_desc *caller_desc, udm1_seq **out)
@@ -212,6 +211,7 @@ void udm1_seq_destroy(udm1_seq *seq)
     free(seq->data);
     free(seq->offset);
     free(seq->dim_key);
+    free(seq->screen_gen);
     free(seq->owned_name);
     free(seq);
 }

@@ -34,7 +34,7 @@ enum udm1_mode {
     UDM1_MODE_PERMUTE = 2, /* base 2: XOR with r_j; base b: a random permutation per digit */
     UDM1_MODE_OWEN = 3,    /* nested uniform (Owen) scrambling by hashing */
     UDM1_MODE_STREAMS = 4, /* PRNGs: an independent stream per stream id, no transform */
-    UDM1_MODE_SCREEN = 5   /* Weyl: a shift from the pixel's Morton index (screen_shift.h) */
+    UDM1_MODE_SCREEN = 5   /* Weyl: screen-space shifts (weyl/weyl.h, weyl/screen.h) */
 };
 
 typedef struct udm1_seq udm1_seq_t;
@@ -77,7 +77,8 @@ struct udm1_seq {
     uint64_t *offset;      /* dims base offsets o_j (0.64) */
     uint64_t *dim_key;     /* dims per-dimension hash keys K_j */
     void *data;            /* other kinds: their tables (freed with free()) */
-    uint64_t screen_spp;   /* UDM1_MODE_SCREEN: samples per pixel N (weyl/weyl.h) */
+    uint64_t screen_spp;   /* UDM1_MODE_SCREEN: samples per pixel N (weyl/weyl.h), 0: progressive */
+    uint64_t *screen_gen;  /* progressive UDM1_MODE_SCREEN: G_j, H_j of every dimension (weyl/screen.h) */
     char *owned_name;      /* with tent: "NAME+tent" (name points here) */
 };
 

@@ -6,6 +6,7 @@
 #include "samplers/samplers.h"
 #include "seq/scramble.h"
 #include "seq/value.h"
+#include "weyl/screen.h"
 
 #include <string.h>
 
@@ -70,8 +71,8 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
             s.table_mode = mode;
         }
     }
-    for (uint32_t j = 0; j < own; ++j) {
-        s.base[j] = seq->offset[first + j];
+    for (uint32_t j = 0; j < own; ++j) { /* progressive screen mode: the pixel's shift is part of the base */
+        s.base[j] = seq->offset[first + j] + (seq->screen_gen ? udm1_screen_pixel_shift(seq, stream, first + j) : 0);
         s.dim_key[j] = seq->dim_key[first + j];
     }
     *st = s;

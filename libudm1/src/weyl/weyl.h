@@ -5,21 +5,28 @@
  *                        fixed point (weyl/generators.h), O_j the base offset plus the shift below.
  *
  * UDM1_RANDOMIZE_SHIFT:  point n of stream s is {o_j + r_j(seed, s) + n alpha_j}, r_j a hash (hash.h).
- * UDM1_RANDOMIZE_SCREEN: stream s = (y << 32) | x names pixel (x, y); with N = desc.screen_spp, point
- *   n of that pixel is point m N + n of one randomly shifted sequence:
- *       {o_j + u_j(seed) + (m N + n) alpha_j},   u_j = mix(S + K_j),
+ * UDM1_RANDOMIZE_SCREEN, progressive (desc.screen_spp = 0): stream s = (y << 32) | x names pixel
+ *   (x, y); point n of that pixel is
+ *       {o_j + u_j(seed) + x G_j + y H_j + n alpha_j},   u_j = mix(S + K_j),
+ *   the screen generators G_j, H_j of weyl/screen.h (x G_j + y H_j taken modulo 2^64). Every pixel keeps
+ *   the sequence's own points, shifted; the shifts turn each Fourier mode of the error into a plane wave
+ *   of high screen frequency, at every sample count (docs/screen-space.md).
+ * UDM1_RANDOMIZE_SCREEN, fixed N = desc.screen_spp >= 1: point n of pixel (x, y) is point m N + n of
+ *   one randomly shifted sequence:
+ *       {o_j + u_j(seed) + (m N + n) alpha_j},
  *   m the pixel's Morton (Z-order) index (the bits of x and y interleaved, x in the even bits) and the
  *   index m N + n taken modulo 2^64. Pixels close on screen are close in Morton order, so a block of
  *   neighbouring pixels holds consecutive segments of one low-discrepancy sequence: together they are
- *   a well-spread set, their errors cancel locally and the error image is blue noise (the Z-order
- *   scheme of Ahmed and Wonka 2020, pbrt-v4's ZSobol, here exact for Kronecker sequences at any
- *   index). Over seeds u_j is uniform, so every pixel's estimate stays unbiased.
+ *   a well-spread set, their errors cancel locally and the error image is blue noise at N samples (the
+ *   Z-order scheme of Ahmed and Wonka 2020, pbrt-v4's ZSobol, here exact for Kronecker sequences at any
+ *   index). Over seeds u_j is uniform, so every pixel's estimate stays unbiased in both schemes.
  * Like core/hash.h, every step here is part of the ABI. */
 #ifndef UDM1_WEYL_H
 #define UDM1_WEYL_H
 
 #include "core/hash.h"
 #include "seq/seq.h"
+#include "weyl/screen.h"
 
 /* Raw value: top 64 bits of (offset * 2^64 + n * A) mod 2^128. */
 static inline uint64_t udm1_weyl_raw(const udm1_generator *g, uint64_t offset, uint64_t n)
@@ -59,14 +66,15 @@ static inline uint64_t udm1_seq_stream_key(const udm1_seq_t *seq, uint64_t strea
 static inline uint64_t udm1_weyl_shift(const udm1_seq_t *seq, uint64_t skey, uint32_t dim)
 {
     if (seq->mode == UDM1_MODE_SHIFT) return udm1_shift(skey, seq->dim_key[dim]);
-    if (seq->mode == UDM1_MODE_SCREEN) return udm1_shift(seq->seed_key, seq->dim_key[dim]);
+    if (seq->mode == UDM1_MODE_SCREEN)
+        return udm1_shift(seq->seed_key, seq->dim_key[dim]) + (seq->screen_spp ? 0 : udm1_screen_pixel_shift(seq, skey, dim));
     return 0;
 }
 
-/* The sequence index of point n of a stream: n, or in screen mode m N + n (mod 2^64). */
+/* The sequence index of point n of a stream: n, or in fixed-N screen mode m N + n (mod 2^64). */
 static inline uint64_t udm1_screen_index(const udm1_seq_t *seq, uint64_t skey, uint64_t n)
 {
-    return seq->mode == UDM1_MODE_SCREEN ? n + udm1_morton(skey) * seq->screen_spp : n;
+    return seq->mode == UDM1_MODE_SCREEN && seq->screen_spp ? n + udm1_morton(skey) * seq->screen_spp : n;
 }
 
 /* Raw value of a Weyl sequence in mode NONE, SHIFT or SCREEN: base offset, shift and index as above. */

@@ -23,7 +23,12 @@ struct Error : std::runtime_error {
 uint64_t parse_u64(const std::string &text, const std::string &what, uint64_t lo, uint64_t hi);
 double parse_double(const std::string &text, const std::string &what, double lo, double hi);
 
-// udm1_randomize from "none", "default", "shift", "permute", "owen", "screen".
+// An app-level randomization past udm1_randomize: "screen-fixed", the library's screen scheme with the
+// render's spp fixed (UDM1_RANDOMIZE_SCREEN with desc.screen_spp = spp); "screen" is the progressive one.
+constexpr uint32_t RANDOMIZE_SCREEN_FIXED = 0x100;
+
+// udm1_randomize from "none", "default", "shift", "permute", "owen", "screen", or RANDOMIZE_SCREEN_FIXED
+// from "screen-fixed".
 uint32_t parse_randomize(const std::string &text);
 
 // "a,b,c" as its items; an empty item is an Error naming `flag`.

@@ -33,6 +33,8 @@ struct RenderSettings {
     uint32_t spp = 0, seeds = 1, threads = 0;
     uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
     uint64_t seed = 1, first = 0, count = 0;  // count 0: up to spp
+    uint64_t frame = 0;                        // an animation's frame: its own seed (frame_seed)
+    std::string checkpoints;                   // render: "K1,K2,..." or "every": prefix images [0, K)
     int bounds[4] = {0, 0, 0, 0};              // all zero: every pixel
     int width = 0, height = 0;                 // 0: the renderer's default for the scene
     bool size_given = false, sampler_given = false, spp_given = false, exact = false;
@@ -85,11 +87,16 @@ public:
     virtual int run_command(const RenderSettings &s) { (void)s; return 2; }
 };
 
+// The sampler seed of an animation's frame: the seed itself for frame 0, else seed + frame * 2^64 / phi
+// (mod 2^64): each frame an independent randomization of the same scheme, so that consecutive frames'
+// errors are uncorrelated while each frame keeps its screen-space structure.
+inline uint64_t frame_seed(uint64_t seed, uint64_t frame) { return seed + frame * 0x9E3779B97F4A7C15ull; }
+
 // A renderer's own options with the shared settings of s applied (its Options type has the fields
 // sampler, spp, seed, randomize, first, count, bounds, width and height).
 template <class Options> Options with_settings(Options o, const RenderSettings &s)
 {
-    o.sampler = s.sampler, o.spp = s.spp, o.seed = s.seed, o.randomize = s.randomize;
+    o.sampler = s.sampler, o.spp = s.spp, o.seed = frame_seed(s.seed, s.frame), o.randomize = s.randomize;
     o.first = static_cast<decltype(o.first)>(s.first), o.count = static_cast<decltype(o.count)>(s.count);
     for (int k = 0; k < 4; ++k) o.bounds[k] = s.bounds[k];
     o.width = s.width, o.height = s.height;
