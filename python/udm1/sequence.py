@@ -103,9 +103,11 @@ class Sequence:
     ``Sequence("wr", 8, randomize=False)``: the deterministic sequence.
     ``randomize`` is True (the preset's default), False, or one of "shift",
     "permute", "owen", "screen" (see udm1.h).
-    ``Sequence("wr", 2, seed=1, randomize="screen", screen_spp=16)``: screen-space
-    decorrelation: with stream ``(y << 32) | x``, pixel (x, y) takes points
-    ``m * 16 + n`` of one shifted sequence, m its Morton index (blue-noise error).
+    ``Sequence("wr", 2, seed=1, randomize="screen")``: screen-space blue noise at
+    every sample count: with stream ``(y << 32) | x``, pixel (x, y) keeps the
+    sequence's points shifted by ``x G + y H`` (docs/screen-space.md).
+    ``screen_spp=16``: the fixed scheme, pixel (x, y) takes points ``m * 16 + n``
+    of one shifted sequence, m its Morton index (blue at 16 samples).
     ``Sequence(alphas=[udm1.Sqrt(2), udm1.Sqrt(13)])``: your own generators.
     ``Sequence("episwr", 2, point_count=64, seed=1)``: a point set of K points.
 

@@ -145,11 +145,14 @@ def test_main_report(tmp_path):
     assert [(x["family"], x["d"], x["method"], x["success"]) for x in tables["tolerance"]["rows"]] == \
         [(x["family"], x["d"], x["method"], x["success"]) for x in tolerance]
     assert {x["method"] for x in tolerance} >= {"udm1 sobol-owen", "QMCPy CubQMCNetG", "scipy qmc_quad"}
-    screen = json.loads((out / "screen.json").read_text())["rows"]
+    screen = json.loads((out / "screen.json").read_text())["summary"]
     tent = tables["tent"]["rows"]
     assert {r["integrand"] for r in tent} == {r["integrand"] for r in samplers["error"]} and all(
         r["gain_wr"] > 0 and r["best_tent"].endswith("+tent") and r["best_anchor"] in ("sobol-owen", "pmj02") for r in tent)
-    assert tables["screen"]["rows"] == screen and {r["randomize"] for r in screen} == {"shift", "screen", "default"}
+    assert [(r["source"], r["pair"], r["scheme"], r["worst_low"]) for r in tables["screen"]["rows"]] == \
+        [(r["source"], str(r["pair"]), r["scheme"], r["worst_low"]) for r in screen]
+    assert {r["scheme"] for r in screen} == {"shift", "progressive", "fixed-N", "Z-order"}
+    assert {r["source"] for r in screen} == {"ao", "pt", "ao-shape", "pt-shape"}
     claims = tables["claims"]["rows"]
     assert {c["figure"] for c in claims} == {"6", "8", "10", "8, 10"}
     assert all(c["verdict"].split(" ")[0] in ("holds", "tie", "fails", "partly") for c in claims)
