@@ -374,7 +374,7 @@ def main(argv=None) -> int:
     ref = folder / "pt-reference.exr"
     run(args.pt, "reference", *pt_common, "--spp", "512" if q else "8192", "-o", str(ref))
     pt_truth = display(read_exr(ref))
-    errors = measure_renderer(args.pt, pt_common, pt_truth, spp_max, grid, 2 * seeds, folder)
+    errors = measure_renderer(args.pt, pt_common, pt_truth, spp_max, grid, seeds, folder)
     rows += errors.rows("pt", "all")
     log(f"pt: worst progressive low-frequency share "
         f"{max(r['low_share'] for r in rows if r['source'] == 'pt' and r['scheme'] == 'progressive'):.2f}")
@@ -433,7 +433,7 @@ fixed-N screen scheme (`--randomize screen-fixed`, rendered at each N: its best 
 (`--randomize screen` on sobol-owen, powers of two). Low-frequency share: the error image's power below 1/8
 cycle per pixel relative to its mean (1 = white noise), mean over {seeds} seed(s); the worst over every count
 measured (every count 1 .. {spp_max} for shift and progressive, the grid {", ".join(map(str, grid))} for
-fixed-N, its powers of two for Z-order); the path tracer with twice the seeds. Renders are measured as displayed (values clipped to [0, 1]). Sources: udm1-ao with its direction on one dimension pair, udm1-pt (all dimensions), and two 2D
+fixed-N, its powers of two for Z-order). Renders are measured as displayed (values clipped to [0, 1]). Sources: udm1-ao with its direction on one dimension pair, udm1-pt (all dimensions), and two 2D
 integrands on one dimension pair through the library. Made in {time.time() - t0:.0f} s by
 `python tools/report/screen_report.py`. Raw numbers: [screen.json](screen.json).
 

@@ -182,7 +182,8 @@ typedef enum udm1_randomize {
                                    desc.screen_spp = 0 (1.8), progressive: point n of the pixel is
                                    point n of the sequence shifted by u_j(seed) + x G_j + y H_j, G and
                                    H screen generators chosen from the sequence's generators: blue at
-                                   every sample count, so a render may stop or continue anywhere.
+                                   every sample count, so a render may stop or continue anywhere
+                                   (creating one searches G and H: about 1 ms per dimension pair).
                                    desc.screen_spp = N >= 1 (1.4), fixed: point n of the pixel is point
                                    m*N + n (mod 2^64) of one sequence shifted by u_j(seed), m the
                                    pixel's Morton index: blue at N samples per pixel.
