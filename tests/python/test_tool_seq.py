@@ -65,6 +65,8 @@ def test_images_and_metrics(tmp_path):
         (["dump", "wr", "-n"], 2, "-n needs a value"),
         (["dump", "we", "-d", "3"], 2, "'we'"),
         (["dump", "wr", "--randomize", "wild"], 2, "'wild'"),
+        (["dump", "wr", "--randomize", "screen-fixed"], 2, "screen-fixed"),
+        (["dump", "sobol", "--randomize", "screen"], 2, "Weyl"),
         (["plot", "wr", "-n", "10"], 2, "-o FILE"),
         (["spectrum", "wr", "--size", "33", "-o", "x.png"], 2, "--size 33"),
         (["spectrum", "golden", "-o", "x.png"], 2, "'golden'"),
