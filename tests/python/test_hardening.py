@@ -39,7 +39,7 @@ BAD = [
     ("pt", ["--threads", "0", "-o", "{out}.exr"], "0"),
     ("pt", ["--scene", "/dev/zero", "-o", "{out}.exr"], "/dev/zero"),
     ("pt", ["--sampler", "lattice", "--spp", "16777217", "-o", "{out}.exr"], "16777216"),
-    ("pt", ["--sampler", "sobol", "--randomize", "screen", "-o", "{out}.exr"], "Weyl"),
+    ("pt", ["--sampler", "pmj02", "--randomize", "screen", "-o", "{out}.exr"], "Weyl"),
     ("pt", ["merge", "{out}.missing.exr", "-o", "{out}.exr"], "missing"),
     ("pt", ["compare", "/dev/zero", "/dev/zero"], "/dev/zero"),
 ]
