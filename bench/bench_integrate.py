@@ -10,7 +10,8 @@ table gives the share of trials whose error was within the tolerance, the median
 the median seconds. Methods run in turn within each trial, so the machine's drift falls on all.
 
 - udm1: `udm1.integrate(f, sampler, d, abs_tol=...)`: 16 randomized replicates (streams of one seed),
-  doubling n, Student-t at 99 %; sobol-owen, and wr with the tent transform.
+  doubling n, Student-t at 99 %; sobol-owen, wr with the tent transform, and the rank-1 lattice with
+  Baker's transform (a new K = n lattice at each doubling).
 - QMCPy: CubQMCLatticeG (its lattice with its default periodization), CubQMCNetG (digital net),
   CubQMCRepStudentT (16 replications of a digital net, Student-t), each at the same abs_tol.
 - scipy: qmc_quad (scrambled Sobol, 8 estimates) with its point count doubled until its interval
@@ -81,8 +82,9 @@ def coefficients(family: str, d: int, rng) -> tuple[np.ndarray, np.ndarray]:
     return np.maximum(a, 1e-9), rng.uniform(0, 1, d)
 
 
-def run_udm1(f, d, tol, n_max, seed, sampler, transform):
-    r = udm1.integrate(f, sampler, d, abs_tol=tol, n_max=n_max, seed=seed, transform=transform, strict=False)
+def run_udm1(f, d, tol, n_max, seed, sampler, transform, replications=16):
+    r = udm1.integrate(f, sampler, d, abs_tol=tol, n_max=n_max, seed=seed, transform=transform, strict=False,
+                       replications=replications)
     return r.estimate, r.n_total
 
 
@@ -123,6 +125,7 @@ def run_scipy(f, d, tol, n_max, seed):
 METHODS = {
     "udm1 sobol-owen": lambda f, d, tol, n_max, s: run_udm1(f, d, tol, n_max, s, "sobol-owen", None),
     "udm1 wr tent": lambda f, d, tol, n_max, s: run_udm1(f, d, tol, n_max, s, "wr", "tent"),
+    "udm1 lattice baker": lambda f, d, tol, n_max, s: run_udm1(f, d, tol, n_max, s, "lattice", "baker"),
     "QMCPy CubQMCLatticeG": lambda f, d, tol, n_max, s: run_qmcpy(f, d, tol, n_max, s, "CubQMCLatticeG"),
     "QMCPy CubQMCNetG": lambda f, d, tol, n_max, s: run_qmcpy(f, d, tol, n_max, s, "CubQMCNetG"),
     "QMCPy CubQMCRepStudentT": lambda f, d, tol, n_max, s: run_qmcpy(f, d, tol, n_max, s, "CubQMCRepStudentT"),
