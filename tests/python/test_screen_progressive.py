@@ -11,6 +11,7 @@ import pytest
 
 import reference
 import udm1
+from test_screen_randomization import low_share  # the error image's low-frequency share
 
 M64 = (1 << 64) - 1
 
@@ -90,14 +91,6 @@ def error_image(randomize, seed, spp, dims):
     p = seq.points_at(np.repeat(STREAMS, spp), n, dims=range(dims[0], dims[0] + 2)).reshape(len(STREAMS), spp, 2)
     inside = ((p[..., 0] - CX[:, None]) % 1 - 0.5) ** 2 + ((p[..., 1] - CY[:, None]) % 1 - 0.5) ** 2 < 0.09
     return (inside.mean(axis=1) - TRUTH).reshape(SIZE, SIZE)
-
-
-def low_share(err):
-    p = np.abs(np.fft.fftshift(np.fft.fft2(err - err.mean()))) ** 2
-    n = err.shape[0]
-    yy, xx = np.indices(p.shape) - n // 2
-    r = np.hypot(xx, yy)
-    return p[(r > 0) & (r < n / 8)].mean() / p[r > 0].mean()
 
 
 @pytest.mark.parametrize("dims", [(0, 1), (4, 5)])

@@ -159,14 +159,17 @@ def measure_renderer(tool, common, truth, spp_max, grid, seeds, folder, keep=())
 
 # ---- the library-level integrands on one dimension pair ----
 
-def zorder_index(x, y, n, log2_spp, bits, key):
-    """Z-order index of pixel (x, y)'s sample n: apps/kit/src/pixel_order.cpp's construction, vectorized."""
-    def mix64(z):  # core/hash.h's finalizer
-        z = z.astype(np.uint64)
+def mix64(z):
+    """core/hash.h's finalizer, on an array of uint64."""
+    z = np.asarray(z, dtype=np.uint64)
+    with np.errstate(over="ignore"):
         z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
         z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
-        return z ^ (z >> np.uint64(31))
+    return z ^ (z >> np.uint64(31))
 
+
+def zorder_index(x, y, n, log2_spp, bits, key):
+    """Z-order index of pixel (x, y)'s sample n: apps/kit/src/pixel_order.cpp's construction, vectorized."""
     def spread(v):
         v = v.astype(np.uint64) & np.uint64(0xFFFFFFFF)
         for s, m in ((16, 0x0000FFFF0000FFFF), (8, 0x00FF00FF00FF00FF), (4, 0x0F0F0F0F0F0F0F0F),
@@ -250,20 +253,13 @@ def measure_shapes(size, spp_max, grid, seeds, pairs):
                     key = int(np.uint64(seed) ^ np.uint64(0x5A4F524445520000))
                     idx = zorder_index(np.repeat(xx.ravel(), k), np.repeat(yy.ravel(), k),
                                        np.tile(np.arange(k, dtype=np.uint64), len(streams)), log2, 2 * side + log2,
-                                       mix_seed(key))
+                                       int(mix64(key)))
                     p = seq.points_at(np.zeros(len(idx), dtype=np.uint64), idx, dims=dims).reshape(len(streams), k, 2)
                     errors.add("Z-order", k, f(p[..., 0], p[..., 1], drift).mean(axis=1).reshape(size, size) - truth)
             out += errors.rows(name, j)
             log(f"{name} pair {j}: worst progressive low-frequency share "
                 f"{max(r['low_share'] for r in out if r['source'] == name and r['pair'] == j and r['scheme'] == 'progressive'):.2f}")
     return out
-
-
-def mix_seed(z: int) -> int:
-    z &= (1 << 64) - 1
-    z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & ((1 << 64) - 1)
-    z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & ((1 << 64) - 1)
-    return z ^ (z >> 31)
 
 
 def temporal(app, tool, common, truth, frames, spp, folder) -> dict:
