@@ -150,7 +150,9 @@ def _run_all(client, fn, items, *, what: str, progress: bool, on_done, extra=())
     results = [None] * len(futures)
     bar = _Progress(what, len(futures), progress)
     try:
-        for future, result in distributed.as_completed(futures, with_results=True):
+        # the client's own loop: as_completed's default is the default client's, and with two clients
+        # in one process (a cluster's and one to another scheduler) waiting on the wrong loop can hang
+        for future, result in distributed.as_completed(futures, loop=client.loop, with_results=True):
             k = index[future.key]
             results[k] = result
             bar.step(result.get("worker", "") if isinstance(result, dict) else "")
@@ -370,7 +372,7 @@ def _watch(client, leaves, merges, progress: bool, on_done, what: str) -> None:
     distributed = _distributed()
     index = {f.key: k for k, f in enumerate(leaves)}
     bar = _Progress(what + (f", {len(merges)} merges" if merges else ""), len(leaves) + len(merges), progress)
-    for future in distributed.as_completed(leaves + merges):
+    for future in distributed.as_completed(leaves + merges, loop=client.loop):  # the client's loop (_run_all)
         if future.status == "error":
             client.cancel(leaves + merges)
             future.result()  # raises the task's exception
