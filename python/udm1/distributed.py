@@ -38,8 +38,10 @@ import time
 import uuid
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .integrate import integrate_to_tolerance as _integrate_to_tolerance
-from .integrate import Integral, IntegralSpec, ToleranceResult, _preset, integrate_range
+from .integrate import Integral, IntegralSpec, ToleranceResult, _preset, integrate_range, values_range
 
 __all__ = ["connect", "integrate", "render", "split_range", "split_tiles", "tool_path", "RenderResult"]
 
@@ -205,14 +207,14 @@ def integrate(f, sampler: str, d: int, n: int, *, seed: int = 0, randomize=True,
 
 def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=None, n_max: int = 1 << 24,
                            n_init: int = 1 << 8, replications: int = 16, confidence: float = 0.99,
-                           transform: str | None = None, seed: int = 0, randomize=True, blocks: int | None = None,
-                           chunk: int = 1 << 16, strict: bool = True, client=None, address: str | None = None,
-                           progress: bool = False) -> ToleranceResult:
+                           transform: str | None = None, criterion: str | None = None, seed: int = 0,
+                           randomize=True, blocks: int | None = None, chunk: int = 1 << 16, strict: bool = True,
+                           client=None, address: str | None = None, progress: bool = False) -> ToleranceResult:
     """udm1.integrate(f, sampler, d, abs_tol=..., rel_tol=...) over a Dask cluster: at each doubling
-    every replicate's new index range is split into `blocks` blocks (default: enough for 4 tasks per
-    worker thread over all replicates), replicates x blocks tasks, each summed exactly on a worker.
-    The same stopping rule on the same exact sums: the result equals udm1.integrate's bit for bit
-    (its `seconds` aside)."""
+    the new index range (of every replicate, or of the one lattice) is split into `blocks` blocks
+    (default: enough for 4 tasks per worker thread), each summed exactly on a worker; the lattice
+    criterion also brings the values back for its Fourier transform. The same stopping rule on the same
+    exact sums: the result equals udm1.integrate's bit for bit (its `seconds` aside)."""
     with _client(client, address) as c:
         def ranges(fn, specs, first, count):
             per = blocks or max(1, -(-4 * _threads(c) // len(specs)))
@@ -225,9 +227,25 @@ def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=Non
                 totals[s.stream] = r["integral"] if s.stream not in totals else totals[s.stream] + r["integral"]
             return [totals[s.stream] for s in specs]
 
+        def values(fn, spec, first, count):
+            parts = split_range(count, min(blocks or 4 * _threads(c), count))
+            results = _run_all(c, _values_task, [(first + a, b) for a, b in parts],
+                               what=f"lattice points [{first}, {first + count})", progress=progress, on_done=None,
+                               extra=(spec, fn, int(chunk)))
+            total = results[0]["sum"]
+            for r in results[1:]:
+                total = total + r["sum"]
+            return np.concatenate([r["values"] for r in results]), total
+
         return _integrate_to_tolerance(f, sampler, d, abs_tol=abs_tol, rel_tol=rel_tol, n_max=n_max, n_init=n_init,
                                        replications=replications, confidence=confidence, transform=transform,
-                                       seed=seed, randomize=randomize, chunk=chunk, strict=strict, ranges=ranges)
+                                       criterion=criterion, seed=seed, randomize=randomize, chunk=chunk,
+                                       strict=strict, ranges=ranges, values=values)
+
+
+def _values_task(first: int, count: int, spec: IntegralSpec, f, chunk: int) -> dict:
+    y, part = values_range(f, spec, first, count, chunk)
+    return {"values": y, "sum": part, "worker": _worker_address()}
 
 
 def _tolerance_task(first: int, count: int, spec: IntegralSpec, f, chunk: int) -> dict:

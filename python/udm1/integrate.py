@@ -14,6 +14,7 @@ To a tolerance instead of a sample count (see `integrate` and `ToleranceResult`)
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from dataclasses import dataclass, field
@@ -82,10 +83,15 @@ class Integral:
 
 
 def _preset(name: str) -> Preset:
-    for p in presets():
+    for p in _presets():
         if p.name == name.split("+")[0] or p.name == name:
             return p
     raise ValueError(f"udm1.integrate: unknown sampler '{name}' (udm1.presets() lists them)")
+
+
+@functools.lru_cache(maxsize=1)
+def _presets() -> tuple[Preset, ...]:
+    return tuple(presets())  # the library's table does not change while it is loaded
 
 
 def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16) -> Integral:
@@ -97,15 +103,30 @@ def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 
 def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, randomize=True, stream: int = 0,
               chunk: int = 1 << 16, abs_tol: float | None = None, rel_tol: float | None = None,
               n_max: int = 1 << 24, n_init: int = 1 << 8, replications: int = 16, confidence: float = 0.99,
-              transform: str | None = None, strict: bool = True):
+              transform: str | None = None, criterion: str | None = None, strict: bool = True):
     """The integral of f over [0, 1)^d with `sampler`, in one process.
 
     With n: the estimate from samples [0, n), an `Integral` (udm1.distributed.integrate gives the same
     bit for bit from a cluster).
 
     With abs_tol and/or rel_tol: samples until the estimate is within max(abs_tol, rel_tol |I|) of
-    the integral I at the given confidence, and returns a `ToleranceResult`. The rule is randomized
-    replications: `replications` independent randomizations of the sampler (the streams 0, 1, ... of
+    the integral I, and returns a `ToleranceResult`. Two stopping rules (`criterion`; by default
+    "lattice" for the sampler "lattice-seq", "replications" for every other):
+
+    criterion="lattice" (sampler "lattice-seq", the embedded rank-1 lattice): one randomly shifted
+    lattice, doubled from n_init points (a power of two) until the bound from its Fourier structure is
+    within the tolerance: the points of each power of two n are a lattice, so the discrete Fourier
+    transform of the values gives f's Fourier coefficients aliased mod the lattice, and the rule's error
+    is the sum of those aliased onto the mean. The bound is FOURIER_FUDGE 2^-m times the sum of the
+    transform's magnitudes at wavenumbers [2^(m-5), 2^(m-4)) (n = 2^m), the wavenumbers ordered at each
+    doubling so that larger coefficients come first (Jimenez Rugama and Hickernell 2016, "Adaptive
+    multidimensional integration based on rank-1 lattices", the rule of QMCPy's CubQMCLatticeG, with its
+    constants). Assumption: f lies in their cone: its Fourier coefficients decay steadily, so that the
+    ones aliased onto the mean are bounded by those measured. Then the bound holds for every shift, not
+    at a confidence (`confidence` is not used; the result's is None); a spiky or discontinuous f can
+    break the assumption. Periodize a non-periodic f (transform="baker", as CubQMCLatticeG does).
+
+    criterion="replications": `replications` independent randomizations of the sampler (the streams 0, 1, ... of
     one seed: independent random shifts for Kronecker sequences, independent scramblings for nets;
     n_init points each, doubled until the tolerance is met or n_max evaluations would be passed), and
     a Student-t interval over the replicates' estimates. Assumption: the replicates are independent
@@ -121,7 +142,8 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
             raise ValueError("udm1.integrate: give n, or a tolerance (abs_tol, rel_tol), not both")
         return integrate_to_tolerance(f, sampler, d, abs_tol=abs_tol, rel_tol=rel_tol, n_max=n_max, n_init=n_init,
                                       replications=replications, confidence=confidence, transform=transform,
-                                      seed=seed, randomize=randomize, chunk=chunk, strict=strict)
+                                      criterion=criterion, seed=seed, randomize=randomize, chunk=chunk,
+                                      strict=strict)
     if n is None:
         raise ValueError("udm1.integrate: give n (the sample count) or a tolerance (abs_tol, rel_tol)")
     n = integer(n, "n", 1)
@@ -223,7 +245,7 @@ class ToleranceResult:
     met: bool
     abs_tol: float | None
     rel_tol: float | None
-    confidence: float
+    confidence: float | None  # None for the lattice criterion (a bound, not an interval)
     criterion: str = "replications"
     history: list = field(default_factory=list)
 
@@ -240,12 +262,131 @@ def _t_quantile(q: float, dof: int) -> float:
     return float(t.ppf(q, dof))
 
 
+CRITERIA = ("replications", "lattice")
+FOURIER_FUDGE = 5.0  # the bound's constant: FOURIER_FUDGE 2^-m times the measured coefficients (CubQMCLatticeG's)
+FOURIER_LAG = 4      # the coefficients measured: wavenumbers [2^(m - LAG - 1), 2^(m - LAG))
+
+
+@functools.lru_cache(maxsize=32)
+def _bit_reversal(m: int) -> np.ndarray:
+    """k -> the bit reversal of k in m bits, for k < 2^m (an involution; read-only, cached)."""
+    if m == 0:
+        r = np.zeros(1, dtype=np.intp)
+    else:  # the reversal of 2k is half that of k, plus the top bit for the odd ones
+        half = _bit_reversal(m - 1)
+        r = np.empty(1 << m, dtype=np.intp)
+        r[0::2] = half
+        r[1::2] = half + (1 << (m - 1))
+    r.flags.writeable = False
+    return r
+
+
+def _fft(y: np.ndarray) -> np.ndarray:
+    """The discrete Fourier transform of real values (scipy's real-input transform: 4x numpy's here)."""
+    from scipy.fft import fft
+
+    return fft(y)
+
+
+_TWIDDLE = {"n": 0, "w": np.ones(0, dtype=complex)}
+
+
+def _twiddle(n: int) -> np.ndarray:
+    """exp(-i pi l / n) for l < n (n a power of two), from one cached table of the largest n asked."""
+    if _TWIDDLE["n"] < n:
+        _TWIDDLE["n"], _TWIDDLE["w"] = n, np.exp(-1j * np.pi * np.arange(n) / n)
+    return _TWIDDLE["w"][::_TWIDDLE["n"] // n]
+
+
+class LatticeFourier:
+    """The discrete Fourier transform of f over the embedded lattice's first n = 2^m points, kept as n
+    doubles, and the wavenumber order of its coefficients (see integrate, criterion "lattice").
+
+    Point i of the sequence is lattice point k = bitrev_m(i) of {k z / n}: the transform over k of the
+    values, divided by n, is Y[l] = sum of f's Fourier coefficients over the wavenumbers h with
+    h.z = l (mod n), each times a phase of the shift; Y[0] is the rule's mean. Doubling adds the odd
+    lattice points: Y_2n[l] = (Y_n[l mod n] + w^l Y_odd[l mod n]) / 2, w = exp(-2 pi i / 2n), so class
+    l of n splits into l and l + n of 2n. The order puts, within each such split, the larger coefficient
+    first, level by level (the same rule as QMCPy's kappa map)."""
+
+    def __init__(self, y: np.ndarray):
+        n = y.size
+        self.m = n.bit_length() - 1
+        if n != 1 << self.m or self.m <= FOURIER_LAG:
+            raise ValueError(f"udm1.integrate: the lattice criterion needs a power of two above 2^{FOURIER_LAG} "
+                             f"points, not {n}")
+        self.y = _fft(y[_bit_reversal(self.m)]) / n
+        self.order = np.arange(n)
+        self._reorder(self.m - 1, 0)
+
+    def double(self, y_new: np.ndarray) -> None:
+        """Take the values of the next n points (sequence indices n .. 2n - 1)."""
+        n = self.y.size
+        if y_new.size != n:
+            raise ValueError(f"udm1.integrate: doubling {n} points needs {n} new values, not {y_new.size}")
+        odd = _fft(y_new[_bit_reversal(self.m)])
+        odd *= _twiddle(n)
+        odd *= 1 / n
+        y = np.empty(2 * n, dtype=complex)
+        np.add(self.y, odd, out=y[:n])
+        np.subtract(self.y, odd, out=y[n:])
+        y *= 0.5
+        self.y = y
+        self.order = np.concatenate([self.order, self.order + n])
+        self.m += 1
+        self._reorder(self.m - 1, self.m - FOURIER_LAG - 1)
+
+    def _reorder(self, top: int, bottom: int) -> None:
+        mag = self.y.real ** 2 + self.y.imag ** 2  # squared magnitudes: the same comparisons
+        order = self.order
+        ordered = mag[order]  # the magnitudes in wavenumber order, swapped along with it
+        n = order.size
+        for level in range(top, bottom, -1):
+            half = 1 << level
+            flip = np.flatnonzero(ordered[half + 1:2 * half] > ordered[1:half]) + 1
+            if flip.size:  # the same swap in every block of 2 half: the split below each pair follows it
+                at = (np.arange(0, n, 2 * half)[:, None] + flip[None, :]).ravel()
+                order[at], order[at + half] = order[at + half], order[at].copy()
+                ordered[at], ordered[at + half] = ordered[at + half], ordered[at].copy()
+
+    def bound(self) -> float:
+        lo = 1 << (self.m - FOURIER_LAG - 1)
+        return FOURIER_FUDGE * 2.0 ** -self.m * float(np.sum(np.abs(self.y[self.order[lo:2 * lo]])))
+
+
+def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16,
+                 seq: Sequence | None = None) -> tuple[np.ndarray, ExactSum]:
+    """f at sample indices [first, first + count) of spec's sequence (or `seq`, that sequence already
+    made), and their exact sum."""
+    seq = seq or spec.sequence()
+    ys = []
+    for start in range(first, first + count, chunk):
+        m = min(chunk, first + count - start)
+        ys.append(_checked(f, seq.points(m, start, stream=spec.stream), start))
+    y = np.concatenate(ys) if ys else np.empty(0)
+    return y, ExactSum().add(y)
+
+
+def _checked(f, x: np.ndarray, start: int) -> np.ndarray:
+    y = np.asarray(f(x), dtype=np.float64)
+    if y.shape not in ((x.shape[0],), (x.shape[0], 1)):
+        raise ValueError(f"udm1.integrate: f returned shape {y.shape} for {x.shape[0]} points (want ({x.shape[0]},))")
+    y = y.reshape(-1)
+    bad = np.flatnonzero(~np.isfinite(y))
+    if bad.size:
+        k = int(bad[0])
+        raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k} (point {x[k].tolist()})")
+    return y
+
+
 def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=None, n_max: int = 1 << 24,
                            n_init: int = 1 << 8, replications: int = 16, confidence: float = 0.99,
-                           transform: str | None = None, seed: int = 0, randomize=True, chunk: int = 1 << 16,
-                           strict: bool = True, ranges=None) -> ToleranceResult:
+                           transform: str | None = None, criterion: str | None = None, seed: int = 0,
+                           randomize=True, chunk: int = 1 << 16, strict: bool = True, ranges=None,
+                           values=None) -> ToleranceResult:
     """udm1.integrate with a tolerance (see there). `ranges(f, specs, first, count)`, if given, computes
-    the replicates' Integrals of [first, first + count) (udm1.distributed passes a cluster's)."""
+    the replicates' Integrals of [first, first + count), and `values(f, spec, first, count)` the values
+    and Integral of one range for the lattice criterion (udm1.distributed passes a cluster's)."""
     t0 = time.perf_counter()
     for name, tol in (("abs_tol", abs_tol), ("rel_tol", rel_tol)):
         if tol is not None and not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
@@ -257,14 +398,30 @@ def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=Non
     replications = integer(replications, "replications", 2)
     n_init = integer(n_init, "n_init", 2)
     n_max = integer(n_max, "n_max", 1)
+    info = _preset(str(sampler))
+    lattice_seq = str(sampler).split("+")[0] == "lattice-seq"
+    if criterion is None:
+        criterion = "lattice" if lattice_seq else "replications"
+    if criterion not in CRITERIA:
+        raise ValueError(f"udm1.integrate: criterion {criterion!r} is not one of {', '.join(CRITERIA)}")
+    d = u32(d, "d")
+    g = periodized(f, transform) if transform else f
+    seed = u64(seed, "seed")
+    if criterion == "lattice":
+        if not lattice_seq:
+            raise ValueError(f"udm1.integrate: criterion 'lattice' needs the sampler 'lattice-seq' (a lattice at "
+                             f"every power of two), not {sampler!r}")
+        if n_init & (n_init - 1) or n_init <= 1 << FOURIER_LAG:
+            raise ValueError(f"udm1.integrate: criterion 'lattice' needs n_init a power of two above "
+                             f"{1 << FOURIER_LAG}, not {n_init}")
+        if n_init > n_max:
+            raise ValueError(f"udm1.integrate: n_max {n_max} is below n_init = {n_init}")
+        return _lattice_to_tolerance(g, IntegralSpec(str(sampler), d, n_max, seed, randomize, 0), abs_tol, rel_tol,
+                                     n_max, n_init, chunk, strict, values, t0)
     if n_init * replications > n_max:
         raise ValueError(f"udm1.integrate: n_max {n_max} is below the first round's n_init x replications = "
                          f"{n_init * replications}")
-    info = _preset(str(sampler))
-    d = u32(d, "d")
-    g = periodized(f, transform) if transform else f
     quantile = _t_quantile(0.5 + confidence / 2, replications - 1)
-    seed = u64(seed, "seed")
 
     def specs(n_set):
         return [IntegralSpec(str(sampler), d, n_set, seed, randomize, r) for r in range(replications)]
@@ -294,9 +451,41 @@ def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=Non
         n *= 2
     result = ToleranceResult(estimate, bound, n, n * replications, replications, time.perf_counter() - t0, met,
                              abs_tol, rel_tol, confidence, history=history)
-    if not met and strict:
+    return _refuse(result, strict, n_max, f"{n} points x {replications} replications")
+
+
+def _refuse(result: ToleranceResult, strict: bool, n_max: int, where: str) -> ToleranceResult:
+    if not result.met and strict:
         raise ToleranceNotMet(
-            f"udm1.integrate: tolerance {_tolerance(abs_tol, rel_tol, estimate):.3g} not met within n_max = {n_max} "
-            f"evaluations (error bound {bound:.3g} at {n} points x {replications} replications; estimate "
-            f"{estimate!r}); the partial result is in .result (or pass strict=False)", result)
+            f"udm1.integrate: tolerance {result.tolerance():.3g} not met within n_max = {n_max} evaluations (error "
+            f"bound {result.error_bound:.3g} at {where}; estimate {result.estimate!r}); the partial result is in "
+            f".result (or pass strict=False)", result)
     return result
+
+
+def _lattice_to_tolerance(g, spec: IntegralSpec, abs_tol, rel_tol, n_max: int, n: int, chunk: int, strict: bool,
+                          values, t0: float) -> ToleranceResult:
+    """The lattice criterion (see integrate): one shifted embedded lattice, doubled until its Fourier bound
+    is within the tolerance. The estimate is the exact mean of every value (split-independent)."""
+    if values is None:
+        seq = spec.sequence()
+
+        def values(fn, sp, first, count):
+            return values_range(fn, sp, first, count, chunk, seq)
+
+    y, total = values(g, spec, 0, n)
+    fourier = LatticeFourier(y)
+    history = []
+    while True:
+        estimate, bound = total.mean(n), fourier.bound()
+        history.append((n, estimate, bound))
+        met = bound <= _tolerance(abs_tol, rel_tol, estimate)
+        if met or 2 * n > n_max:
+            break
+        y, more = values(g, spec, n, n)
+        fourier.double(y)
+        total = total + more
+        n *= 2
+    result = ToleranceResult(estimate, bound, n, n, 1, time.perf_counter() - t0, met, abs_tol, rel_tol, None,
+                             criterion="lattice", history=history)
+    return _refuse(result, strict, n_max, f"{n} lattice points")

@@ -162,12 +162,14 @@ def test_distributed_tolerance_equals_one_process(client):
     def f(x):
         return np.cos(2 * np.pi * 0.1 + x @ np.array([0.7, 1.1]))
 
-    for sampler, transform in (("wr", None), ("sobol-owen", "tent")):
+    # the lattice criterion: index blocks as tasks, the values brought back for the transform
+    for sampler, transform in (("wr", None), ("sobol-owen", "tent"), ("lattice-seq", "baker")):
         one = udm1.integrate(f, sampler, 2, abs_tol=1e-5, seed=4, transform=transform)
         many = ud.integrate_to_tolerance(f, sampler, 2, abs_tol=1e-5, seed=4, transform=transform, client=client,
                                          blocks=3)
-        assert (many.estimate, many.error_bound, many.n, many.history) == (one.estimate, one.error_bound, one.n,
-                                                                          one.history)
+        assert (many.estimate, many.error_bound, many.n, many.history, many.criterion) == (
+            one.estimate, one.error_bound, one.n, one.history, one.criterion)
+        assert one.criterion == ("lattice" if sampler == "lattice-seq" else "replications")
     with pytest.raises(udm1.ToleranceNotMet):
         ud.integrate_to_tolerance(f, "wr", 2, abs_tol=1e-14, n_max=4096, n_init=128, replications=4, client=client)
 

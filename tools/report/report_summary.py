@@ -524,7 +524,8 @@ def tolerance_section(doc, out: Path, state):
     if not_shown(doc, state, "tolerance"):
         return
     res = load(out, "tolerance/results.json")
-    doc.para(f"`udm1.integrate(..., abs_tol=...)` (16 randomized replicates, Student-t at 99 %) against QMCPy's "
+    doc.para(f"`udm1.integrate(..., abs_tol=...)` (the embedded lattice's Fourier criterion, and 16 randomized "
+             f"replicates with a Student-t interval at 99 %) against QMCPy's "
              f"criteria and scipy's qmc_quad on Genz's families (bench/bench_integrate.py): {res['trials']} trial(s) "
              f"per case with random coefficients, tolerance {res['rel']:g} x |I|, at most {res['n_max']} "
              "evaluations; the share of trials within the tolerance, the median evaluations and the median time.")

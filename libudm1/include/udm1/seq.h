@@ -127,6 +127,11 @@ extern "C" {
  *             component by component on the exact wrap-around L2 discrepancy;
  *             needs K (1..2^24); with "+tent" (below) error ~ K^-2 on smooth
  *             integrands
+ * lattice-seq embedded rank-1 lattice {phi_2(n) z}, phi_2   random shift            1..64
+ *             the base-2 radical inverse (1.9): a sequence whose first 2^m
+ *             points are the lattice {k z / 2^m} for every m; raw values
+ *             exactly reverse64(n) z_j mod 2^64; z from tools/lattice_search.py
+ *             (embedded component-by-component search over 2^6 .. 2^20)
  *
  * Transform (1.4): "NAME+tent" is any preset NAME with the tent (baker's) transform
  * x -> 1 - |2x - 1| applied to every value, exactly in the 0.64 fixed point (2x below 1/2,

@@ -15,6 +15,9 @@ UDM1_HIDDEN udm1_status udm1_init_lp(udm1_seq_t *seq);         /* hammersley.c *
 UDM1_HIDDEN udm1_status udm1_init_cmj(udm1_seq_t *seq);        /* cmj.c */
 UDM1_HIDDEN udm1_status udm1_init_grps(udm1_seq_t *seq);       /* grps.c */
 UDM1_HIDDEN udm1_status udm1_init_pmj02(udm1_seq_t *seq);      /* pmj02.c */
+UDM1_HIDDEN udm1_status udm1_init_lattice_seq(udm1_seq_t *seq); /* lattice_sequence.c */
+/* Dimensions of lattice-seq: the length of its generating vector (lattice_sequence_table.h). */
+#define UDM1_LATTICE_SEQ_DIMS 64u
 
 UDM1_HIDDEN extern const udm1_kind udm1_pcg32_kind;
 /* For udm1_stream (UDM1_STREAM_PMJ02): pmj02's table ([blocks of 4 dimensions][K][4], every pair in the order it is read)
@@ -32,6 +35,7 @@ UDM1_HIDDEN extern const udm1_kind udm1_lp_kind;
 UDM1_HIDDEN extern const udm1_kind udm1_cmj_kind;
 UDM1_HIDDEN extern const udm1_kind udm1_grps_kind;
 UDM1_HIDDEN extern const udm1_kind udm1_pmj02_kind;
+UDM1_HIDDEN extern const udm1_kind udm1_lattice_seq_kind;
 
 /* Base-b radical inverse of n as 0.64 (floor), exact; digits permuted per mode
  * (r is the dimension's random word). Used by Halton and Hammersley (radical_inverse.c). */

@@ -157,6 +157,9 @@ static const udm1_preset PRESETS[] = {
      "quality (tools/alpha_search.py)", COUNT(WOPT), 0, UDM1_MODE_SHIFT, init_wopt, &udm1_weyl_kind},
     {"lattice", "Rank-1 lattice {n z / K}, z by component-by-component search on the wrap-around L2 discrepancy",
      64, POINT_SET, UDM1_MODE_SHIFT, udm1_init_lattice, &udm1_weyl_kind},
+    {"lattice-seq", "Embedded rank-1 lattice {phi_2(n) z}: a lattice at every power of two, z searched for 2^6 .. 2^20 "
+     "(tools/lattice_search.py)", UDM1_LATTICE_SEQ_DIMS, 0, UDM1_MODE_SHIFT, udm1_init_lattice_seq,
+     &udm1_lattice_seq_kind},
 };
 
 size_t udm1_preset_count(void) { return sizeof(PRESETS) / sizeof(PRESETS[0]); }
