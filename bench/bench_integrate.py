@@ -19,6 +19,10 @@ the median seconds. Methods run in turn within each trial, so the machine's drif
   (Student-t at 99 % on its standard error) is within the tolerance.
 
     python bench/bench_integrate.py [--trials 1000] [--dims 2,8,32] [--rel 1e-3] [--out DIR]
+    python bench/bench_integrate.py --table DIR1/results.json [DIR2/results.json ...]   # runs split by case,
+                                                                                        # as one table
+
+It writes DIR/results.json and DIR/results.md (the table of BENCHMARKS.md).
 """
 
 from __future__ import annotations
@@ -134,6 +138,34 @@ METHODS = {
 }
 
 
+def markdown_table(rows: list[dict]) -> str:
+    """The results as BENCHMARKS.md's table: per case, every method's success, median evaluations and median
+    time, and the fastest udm1 method meeting the tolerance in at least 95 % of trials over the fastest such
+    QMCPy criterion."""
+    methods = list(dict.fromkeys(r["method"] for r in rows))
+    cases = list(dict.fromkeys((r["family"], r["d"]) for r in rows))
+    at = {(r["family"], r["d"], r["method"]): r for r in rows}
+    out = ["| family | d | " + " | ".join(methods) + " | udm1 / QMCPy, fastest at >= 95 % |",
+           "|---|---|" + "---|" * (len(methods) + 1)]
+    for family, d in cases:
+        cells = []
+        for m in methods:
+            r = at.get((family, d, m))
+            cells.append("-" if r is None else
+                         f"{r['success']:.1%}, {r['median_n']:.0f}, {r['median_seconds'] * 1e3:.2f} ms")
+
+        def fastest(prefix):
+            ok = [at[(family, d, m)] for m in methods if m.startswith(prefix) and (family, d, m) in at
+                  and at[(family, d, m)]["success"] >= 0.95]
+            return min(ok, key=lambda r: r["median_seconds"]) if ok else None
+
+        u, q = fastest("udm1"), fastest("QMCPy")
+        last = ("udm1 and QMCPy below 95 %" if not u and not q else "udm1 below 95 %" if not u else
+                "QMCPy below 95 %" if not q else f"{u['median_seconds'] / q['median_seconds']:.2f}")
+        out.append(f"| {family.replace('_', ' ')} | {d} | " + " | ".join(cells) + f" | {last} |")
+    return "\n".join(out) + "\n"
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--trials", type=int, default=1000)
@@ -143,7 +175,11 @@ def main(argv=None) -> int:
     ap.add_argument("--n-max", type=int, default=1 << 20, help="evaluations at most (QMCPy's lattice has 2^20 points)")
     ap.add_argument("--methods", default=",".join(METHODS))
     ap.add_argument("--out", default=str(ROOT / "build" / "bench_integrate"))
+    ap.add_argument("--table", nargs="+", metavar="RESULTS_JSON", help="print the table of these results and stop")
     args = ap.parse_args(argv)
+    if args.table:
+        print(markdown_table([r for path in args.table for r in json.loads(Path(path).read_text())["rows"]]), end="")
+        return 0
     try:
         import qmcpy  # noqa: F401
     except ImportError:
@@ -178,7 +214,8 @@ def main(argv=None) -> int:
                       f"median {r['median_seconds'] * 1e3:8.2f} ms", flush=True)
     (out / "results.json").write_text(json.dumps({"rows": rows, "rel": args.rel, "n_max": args.n_max,
                                                   "trials": args.trials}, indent=1))
-    print(f"wrote {out / 'results.json'}")
+    (out / "results.md").write_text(markdown_table(rows))
+    print(f"wrote {out / 'results.json'} and {out / 'results.md'}")
     return 0
 
 

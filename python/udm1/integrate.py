@@ -126,10 +126,10 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
     at a confidence (`confidence` is not used; the result's is None); a spiky or discontinuous f can
     break the assumption. Periodize a non-periodic f (transform="baker", as CubQMCLatticeG does).
 
-    criterion="replications": `replications` independent randomizations of the sampler (the streams 0, 1, ... of
-    one seed: independent random shifts for Kronecker sequences, independent scramblings for nets;
-    n_init points each, doubled until the tolerance is met or n_max evaluations would be passed), and
-    a Student-t interval over the replicates' estimates. Assumption: the replicates are independent
+    criterion="replications": `replications` independent randomizations of the sampler (the streams
+    0, 1, ... of one seed: independent random shifts for Kronecker sequences, independent scramblings
+    for nets; n_init points each, doubled until the tolerance is met or n_max evaluations would be
+    passed), and a Student-t interval over the replicates' estimates. Assumption: the replicates are independent
     and unbiased (true by construction) and their mean is close to normal (the t interval is then
     conservative for the sizes used here; heavy-tailed replicates, e.g. of a discontinuous integrand
     at small n, can make it optimistic). Each replicate is summed exactly, so the result does not
@@ -170,15 +170,7 @@ def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> 
         m = min(step, first + count - start)
         x = np.concatenate([seq.points(m, start, stream=s.stream) for s in specs]) if len(specs) > 1 else \
             seq.points(m, start, stream=base.stream)
-        y = np.asarray(f(x), dtype=np.float64)
-        if y.shape not in ((x.shape[0],), (x.shape[0], 1)):
-            raise ValueError(f"udm1.integrate: f returned shape {y.shape} for {x.shape[0]} points (want ({x.shape[0]},))")
-        y = y.reshape(-1)
-        bad = np.flatnonzero(~np.isfinite(y))
-        if bad.size:
-            k = int(bad[0])
-            which = f" of stream {specs[k // m].stream}" if len(specs) > 1 else ""
-            raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k % m}{which} (point {x[k].tolist()})")
+        y = _checked(f, x, start, m, [s.stream for s in specs] if len(specs) > 1 else None)
         for r, (total, total_sq) in enumerate(sums):
             yr = y[r * m:(r + 1) * m]
             total.add(yr)
@@ -367,7 +359,9 @@ def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 <
     return y, ExactSum().add(y)
 
 
-def _checked(f, x: np.ndarray, start: int) -> np.ndarray:
+def _checked(f, x: np.ndarray, start: int, rows: int | None = None, streams=None) -> np.ndarray:
+    """f(x) as m finite values, x the points of samples start, start + 1, ... (`rows` of them per stream
+    of `streams` stacked, when several), or one ValueError naming the sample, its stream and point."""
     y = np.asarray(f(x), dtype=np.float64)
     if y.shape not in ((x.shape[0],), (x.shape[0], 1)):
         raise ValueError(f"udm1.integrate: f returned shape {y.shape} for {x.shape[0]} points (want ({x.shape[0]},))")
@@ -375,7 +369,9 @@ def _checked(f, x: np.ndarray, start: int) -> np.ndarray:
     bad = np.flatnonzero(~np.isfinite(y))
     if bad.size:
         k = int(bad[0])
-        raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k} (point {x[k].tolist()})")
+        rows = rows or x.shape[0]
+        which = f" of stream {streams[k // rows]}" if streams else ""
+        raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k % rows}{which} (point {x[k].tolist()})")
     return y
 
 

@@ -38,8 +38,10 @@ static void lattice_seq_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t firs
             uint64_t prev = first + i - 1; /* its trailing ones: below 64 (prev + 1 does not wrap: checked range) */
             phi ^= ~0ull << (63 - __builtin_ctzll(~prev));
         }
-        for (uint32_t j = 0; j < nd; ++j)
-            raw[i * nd + j] = udm1_randomize_base2(seq->mode, phi * LATTICE_SEQ_Z[dim0 + j] + seq->offset[dim0 + j], words[j]);
+        for (uint32_t j = 0; j < nd; ++j) {
+            uint64_t v = phi * LATTICE_SEQ_Z[dim0 + j] + seq->offset[dim0 + j];
+            raw[i * nd + j] = udm1_randomize_base2(seq->mode, v, words[j]);
+        }
     }
 }
 
