@@ -143,7 +143,8 @@ def markdown_table(rows: list[dict]) -> str:
     time, and the fastest udm1 method meeting the tolerance in at least 95 % of trials over the fastest such
     QMCPy criterion."""
     methods = list(dict.fromkeys(r["method"] for r in rows))
-    cases = list(dict.fromkeys((r["family"], r["d"]) for r in rows))
+    cases = sorted(dict.fromkeys((r["family"], r["d"]) for r in rows),  # Genz's order, then d
+                   key=lambda c: (list(DIFFICULTY).index(c[0]) if c[0] in DIFFICULTY else len(DIFFICULTY), c[1]))
     at = {(r["family"], r["d"], r["method"]): r for r in rows}
     out = ["| family | d | " + " | ".join(methods) + " | udm1 / QMCPy, fastest at >= 95 % |",
            "|---|---|" + "---|" * (len(methods) + 1)]
