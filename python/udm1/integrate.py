@@ -280,14 +280,16 @@ def _fft(y: np.ndarray) -> np.ndarray:
     return fft(y)
 
 
-_TWIDDLE = {"n": 0, "w": np.ones(0, dtype=complex)}
+_TWIDDLE = np.ones(0, dtype=complex)  # replaced whole, never changed: a thread reads one table or the other
 
 
 def _twiddle(n: int) -> np.ndarray:
     """exp(-i pi l / n) for l < n (n a power of two), from one cached table of the largest n asked."""
-    if _TWIDDLE["n"] < n:
-        _TWIDDLE["n"], _TWIDDLE["w"] = n, np.exp(-1j * np.pi * np.arange(n) / n)
-    return _TWIDDLE["w"][::_TWIDDLE["n"] // n]
+    global _TWIDDLE
+    table = _TWIDDLE
+    if table.size < n:
+        table = _TWIDDLE = np.exp(-1j * np.pi * np.arange(n) / n)
+    return table[::table.size // n]
 
 
 class LatticeFourier:
@@ -382,7 +384,7 @@ def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=Non
                            values=None) -> ToleranceResult:
     """udm1.integrate with a tolerance (see there). `ranges(f, specs, first, count)`, if given, computes
     the replicates' Integrals of [first, first + count), and `values(f, spec, first, count)` the values
-    and Integral of one range for the lattice criterion (udm1.distributed passes a cluster's)."""
+    and their ExactSum of one range for the lattice criterion (udm1.distributed passes a cluster's)."""
     t0 = time.perf_counter()
     for name, tol in (("abs_tol", abs_tol), ("rel_tol", rel_tol)):
         if tol is not None and not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
