@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
 import time
 from dataclasses import dataclass, field
 
@@ -257,6 +258,8 @@ def _t_quantile(q: float, dof: int) -> float:
 CRITERIA = ("replications", "lattice")
 FOURIER_FUDGE = 5.0  # the bound's constant: FOURIER_FUDGE 2^-m times the measured coefficients (CubQMCLatticeG's)
 FOURIER_LAG = 4      # the coefficients measured: wavenumbers [2^(m - LAG - 1), 2^(m - LAG))
+FOURIER_BUFFER = 1 << 20  # points the lattice criterion's buffers hold before they grow, and the most
+                          # kept for the thread's next call (see _FourierBuffers)
 
 
 @functools.lru_cache(maxsize=32)
@@ -273,11 +276,17 @@ def _bit_reversal(m: int) -> np.ndarray:
     return r
 
 
-def _fft(y: np.ndarray) -> np.ndarray:
-    """The discrete Fourier transform of real values (scipy's real-input transform: 4x numpy's here)."""
-    from scipy.fft import fft
+def _rfft(y: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
+    """The transform of real values at wavenumbers 0 .. n / 2 (the rest are their conjugates), into
+    `out` where numpy takes it (2.0 and later: no fresh pages to fault in)."""
+    if out is not None and _NUMPY_FFT_OUT:
+        return np.fft.rfft(y, out=out)
+    from scipy.fft import rfft
 
-    return fft(y)
+    return rfft(y)
+
+
+_NUMPY_FFT_OUT = int(np.__version__.split(".")[0]) >= 2
 
 
 _TWIDDLE = np.ones(0, dtype=complex)  # replaced whole, never changed: a thread reads one table or the other
@@ -292,60 +301,152 @@ def _twiddle(n: int) -> np.ndarray:
     return table[::table.size // n]
 
 
+class _FourierBuffers:
+    """The arrays of a LatticeFourier for up to `capacity` points. One set per thread is kept between
+    calls (up to FOURIER_BUFFER points: 33 bytes a point), because first touching fresh pages costs as much
+    as the transform; a criterion takes it out of the cache while it runs, so two never share it."""
+
+    __slots__ = ("capacity", "s", "order", "mag", "ordered", "index", "diff", "flip", "larger", "low", "t")
+    _cache = threading.local()
+
+    def __init__(self, capacity: int):
+        index = np.int32 if capacity <= 1 << 30 else np.int64
+        self.capacity = capacity
+        self.s = np.empty(capacity // 2 + 1, dtype=complex)  # S[l], l = 0 .. n / 2
+        self.order = np.empty(capacity, dtype=index)         # position -> wavenumber class
+        self.mag = np.empty(capacity // 2 + 1)               # squared magnitudes at l = 0 .. n / 2
+        self.ordered = np.empty(capacity)                    # ... in wavenumber order
+        self.index = np.empty(capacity, dtype=index)         # the order folded to l <= n / 2
+        self.diff = np.empty(capacity // 2, dtype=index)     # the swaps of one level
+        self.flip = np.empty(capacity // 2, dtype=bool)
+        self.larger = np.empty(capacity // 2)
+        self.low = np.empty(capacity // 4, dtype=complex)
+        self.t = np.empty(capacity // 4 + 1, dtype=complex)
+
+    @classmethod
+    def take(cls, capacity: int) -> "_FourierBuffers":
+        cached = getattr(cls._cache, "buffers", None)
+        if cached is not None and cached.capacity >= capacity:
+            cls._cache.buffers = None
+            return cached
+        return cls(capacity)
+
+    def give_back(self) -> None:
+        cached = getattr(self._cache, "buffers", None)
+        if self.capacity <= FOURIER_BUFFER and (cached is None or cached.capacity < self.capacity):
+            self._cache.buffers = self
+
+
 class LatticeFourier:
     """The discrete Fourier transform of f over the embedded lattice's first n = 2^m points, kept as n
     doubles, and the wavenumber order of its coefficients (see integrate, criterion "lattice").
 
     Point i of the sequence is lattice point k = bitrev_m(i) of {k z / n}: the transform over k of the
     values, divided by n, is Y[l] = sum of f's Fourier coefficients over the wavenumbers h with
-    h.z = l (mod n), each times a phase of the shift; Y[0] is the rule's mean. Doubling adds the odd
-    lattice points: Y_2n[l] = (Y_n[l mod n] + w^l Y_odd[l mod n]) / 2, w = exp(-2 pi i / 2n), so class
-    l of n splits into l and l + n of 2n. The order puts, within each such split, the larger coefficient
-    first, level by level (the same rule as QMCPy's kappa map)."""
+    h.z = l (mod n), each times a phase of the shift; Y[0] is the rule's mean. The values are real, so
+    Y[n - l] is the conjugate of Y[l]: S = n Y is kept for l = 0 .. n / 2. Doubling adds the odd lattice
+    points, O their transform: S_2n[l] = S_n[l] + w^l O[l] and S_2n[n - l] = conj(S_n[l] - w^l O[l]),
+    w = exp(-2 pi i / 2n), so class l of n splits into l and l + n of 2n. The order puts, within each
+    such split, the larger coefficient first, level by level (the same rule as QMCPy's kappa map).
 
-    def __init__(self, y: np.ndarray):
+    The arrays live in buffers that grow by doubling, `capacity` points to begin with (see
+    _FourierBuffers), so that the doublings reuse memory rather than allocate."""
+
+    def __init__(self, y: np.ndarray, capacity: int = 0):
         n = y.size
         self.m = n.bit_length() - 1
         if n != 1 << self.m or self.m <= FOURIER_LAG:
             raise ValueError(f"udm1.integrate: the lattice criterion needs a power of two above 2^{FOURIER_LAG} "
                              f"points, not {n}")
-        self.y = _fft(y[_bit_reversal(self.m)]) / n
-        self.order = np.arange(n)
+        capacity = min(int(capacity), FOURIER_BUFFER)
+        self._allocate(max(n, 1 << (capacity.bit_length() - 1) if capacity > 0 else 0))
+        self._s[:n // 2 + 1] = _rfft(y[_bit_reversal(self.m)])
+        self._order[:n] = np.arange(n)
         self._reorder(self.m - 1, 0)
+
+    def _allocate(self, capacity: int) -> None:
+        old = getattr(self, "_buffers", None)
+        buffers = _FourierBuffers.take(capacity)
+        if old is not None:
+            n = 1 << self.m
+            buffers.s[:n // 2 + 1] = old.s[:n // 2 + 1]
+            buffers.order[:n] = old.order[:n]
+        self._buffers = buffers
+        for name in _FourierBuffers.__slots__:
+            setattr(self, "_" + name, getattr(buffers, name))
+
+    def release(self) -> None:
+        """Done: the buffers go back to this thread's cache for the next criterion (its last state is lost)."""
+        buffers, self._buffers = self._buffers, None
+        if buffers is not None:
+            buffers.give_back()
+
+    @property
+    def order(self) -> np.ndarray:
+        """Position p -> the wavenumber class at p (0 first)."""
+        return self._order[:1 << self.m]
+
+    @property
+    def y(self) -> np.ndarray:
+        """Y[l] for l < n: the sum of f's coefficients aliased to class l."""
+        n = 1 << self.m
+        s = self._s[:n // 2 + 1]
+        return np.concatenate([s, np.conj(s[1:n // 2][::-1])]) / n
 
     def double(self, y_new: np.ndarray) -> None:
         """Take the values of the next n points (sequence indices n .. 2n - 1)."""
-        n = self.y.size
+        n, h = 1 << self.m, 1 << (self.m - 1)
         if y_new.size != n:
             raise ValueError(f"udm1.integrate: doubling {n} points needs {n} new values, not {y_new.size}")
-        odd = _fft(y_new[_bit_reversal(self.m)])
-        odd *= _twiddle(n)
-        odd *= 1 / n
-        y = np.empty(2 * n, dtype=complex)
-        np.add(self.y, odd, out=y[:n])
-        np.subtract(self.y, odd, out=y[n:])
-        y *= 0.5
-        self.y = y
-        self.order = np.concatenate([self.order, self.order + n])
+        if 2 * n > self._buffers.capacity:
+            self._allocate(2 * self._buffers.capacity)
+        t = _rfft(np.take(y_new, _bit_reversal(self.m), out=self._ordered[:n], mode="clip"), self._t[:h + 1])
+        t *= _twiddle(n)[:h + 1]
+        s, low = self._s, self._low[:h]
+        np.subtract(s[:h], t[:h], out=low)  # S_n[l] - w^l O[l] for l < n / 2 ...
+        np.conjugate(low, out=s[n:h:-1])    # ... conjugated: S_2n[n - l]
+        s[:h + 1] += t
+        order = self._order
+        np.add(order[:n], n, out=order[n:2 * n])
         self.m += 1
         self._reorder(self.m - 1, self.m - FOURIER_LAG - 1)
 
     def _reorder(self, top: int, bottom: int) -> None:
-        mag = self.y.real ** 2 + self.y.imag ** 2  # squared magnitudes: the same comparisons
-        order = self.order
-        ordered = mag[order]  # the magnitudes in wavenumber order, swapped along with it
-        n = order.size
+        """Levels top .. bottom + 1: in every block of 2 half positions, position p in [1, half) and p + half
+        swap when the second holds the larger coefficient in the first block (the same swap in every block:
+        the split below each pair follows it). The comparisons at a level only read its first block, so
+        the magnitudes are swapped there only."""
+        n = 1 << self.m
+        v = self._s[:n // 2 + 1].view(np.float64).reshape(-1, 2)
+        mag = self._mag[:n // 2 + 1]
+        np.multiply(v[:, 0], v[:, 0], out=mag)
+        mag += v[:, 1] * v[:, 1]  # two correctly rounded operations: the same everywhere
+        order, index = self._order[:n], self._index[:n]
+        np.subtract(n, order, out=index)
+        np.minimum(order, index, out=index)  # |Y[l]| = |Y[n - l]|
+        ordered = np.take(mag, index, out=self._ordered[:n], mode="clip")  # (indices < n / 2 + 1: "clip" only skips the buffered check)
         for level in range(top, bottom, -1):
             half = 1 << level
-            flip = np.flatnonzero(ordered[half + 1:2 * half] > ordered[1:half]) + 1
-            if flip.size:  # the same swap in every block of 2 half: the split below each pair follows it
-                at = (np.arange(0, n, 2 * half)[:, None] + flip[None, :]).ravel()
-                order[at], order[at + half] = order[at + half], order[at].copy()
-                ordered[at], ordered[at + half] = ordered[at + half], ordered[at].copy()
+            first, second = ordered[1:half], ordered[half + 1:2 * half]
+            flip = np.greater(second, first, out=self._flip[:half - 1])
+            if not flip.any():
+                continue
+            larger = np.maximum(first, second, out=self._larger[:half - 1])
+            np.minimum(first, second, out=second)
+            first[...] = larger
+            blocks = order.reshape(n // (2 * half), 2, half)
+            lo, hi = blocks[:, 0, 1:], blocks[:, 1, 1:]
+            diff = np.bitwise_xor(lo, hi, out=self._diff[:n // 2 - n // (2 * half)].reshape(lo.shape))
+            diff *= flip  # the difference where the pair swaps, 0 elsewhere
+            lo ^= diff
+            hi ^= diff
 
     def bound(self) -> float:
-        lo = 1 << (self.m - FOURIER_LAG - 1)
-        return FOURIER_FUDGE * 2.0 ** -self.m * float(np.sum(np.abs(self.y[self.order[lo:2 * lo]])))
+        n = 1 << self.m
+        lo = n >> (FOURIER_LAG + 1)
+        classes = self._order[lo:2 * lo]
+        classes = np.minimum(classes, n - classes)
+        return FOURIER_FUDGE * 4.0 ** -self.m * float(np.sum(np.abs(self._s[classes])))
 
 
 def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16,
@@ -472,18 +573,21 @@ def _lattice_to_tolerance(g, spec: IntegralSpec, abs_tol, rel_tol, n_max: int, n
             return values_range(fn, sp, first, count, chunk, seq)
 
     y, total = values(g, spec, 0, n)
-    fourier = LatticeFourier(y)
+    fourier = LatticeFourier(y, capacity=n_max)
     history = []
-    while True:
-        estimate, bound = total.mean(n), fourier.bound()
-        history.append((n, estimate, bound))
-        met = bound <= _tolerance(abs_tol, rel_tol, estimate)
-        if met or 2 * n > n_max:
-            break
-        y, more = values(g, spec, n, n)
-        fourier.double(y)
-        total = total + more
-        n *= 2
+    try:
+        while True:
+            estimate, bound = total.mean(n), fourier.bound()
+            history.append((n, estimate, bound))
+            met = bound <= _tolerance(abs_tol, rel_tol, estimate)
+            if met or 2 * n > n_max:
+                break
+            y, more = values(g, spec, n, n)
+            fourier.double(y)
+            total = total + more
+            n *= 2
+    finally:
+        fourier.release()
     result = ToleranceResult(estimate, bound, n, n, 1, time.perf_counter() - t0, met, abs_tol, rel_tol, None,
                              criterion="lattice", history=history)
     return _refuse(result, strict, n_max, f"{n} lattice points")

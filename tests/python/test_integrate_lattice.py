@@ -57,6 +57,37 @@ def test_transform_kept_across_doublings_is_the_direct_dft():
         assert fourier.order[0] == 0
 
 
+def _reference_order(y: np.ndarray, order: list[int] | None, top: int, bottom: int) -> list[int]:
+    """The wavenumber order by its definition, one pair at a time: at each level, in every block of
+    2 half positions, p (1 <= p mod 2 half < half) and p + half swap when the magnitude of the class at
+    p + half in the first block exceeds that at p."""
+    n = y.size
+    order = list(range(n)) if order is None else order + [k + n // 2 for k in order]
+    mag = np.abs(y)
+    for level in range(top, bottom, -1):
+        half = 1 << level
+        for q in range(1, half):
+            if mag[order[q + half]] > mag[order[q]]:
+                for b in range(0, n, 2 * half):
+                    order[b + q], order[b + q + half] = order[b + q + half], order[b + q]
+    return order
+
+
+@pytest.mark.parametrize("capacity", [0, 1 << 9, 1 << 12])
+def test_order_is_the_definition(capacity):
+    # the buffered, vectorised order against the definition, through doublings that grow the buffers
+    # (capacity 0 and 2^9) or not (2^12); values with ties (rounded) and without
+    rng = np.random.default_rng(5)
+    for y in (rng.standard_normal(1 << 11), np.round(rng.standard_normal(1 << 11), 1)):
+        fourier = LatticeFourier(y[:1 << 6], capacity=capacity)
+        expect = _reference_order(fourier.y, None, 5, 0)
+        assert fourier.order.tolist() == expect
+        for m in range(6, 11):
+            fourier.double(y[1 << m:2 << m])
+            expect = _reference_order(fourier.y, expect, m, m - 4)
+            assert fourier.order.tolist() == expect, m
+
+
 def test_transform_is_the_aliased_fourier_coefficients():
     # f = cos(2 pi h.x) = (e(h.x) + e(-h.x)) / 2: on the n-point lattice {k z / n} its transform is 1/2 at
     # l = h.z and l = -h.z (mod n), times the shift's phase, and 0 everywhere else

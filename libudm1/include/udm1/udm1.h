@@ -28,6 +28,7 @@
 #include "udm1/stream.h"
 #include "udm1/domain.h"
 #include "udm1/metrics.h"
+#include "udm1/exact_sum.h"
 #include "udm1/noise.h"
 #include "udm1/cellular.h"
 
