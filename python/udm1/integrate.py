@@ -148,9 +148,9 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
     if n is None:
         raise ValueError("udm1.integrate: give n (the sample count) or a tolerance (abs_tol, rel_tol)")
     n = integer(n, "n", 1)
-    spec = IntegralSpec(str(sampler), u32(d, "d"), n, u64(seed, "seed"), randomize, u64(stream, "stream"))
+    sampler, g = _transformed(f, str(sampler), transform)
+    spec = IntegralSpec(sampler, u32(d, "d"), n, u64(seed, "seed"), randomize, u64(stream, "stream"))
     _preset(spec.sampler)
-    g = periodized(f, transform) if transform else f
     return integrate_range(g, spec, 0, spec.n, chunk)
 
 
@@ -196,6 +196,15 @@ TRANSFORMS = {
     "c1": (_C1, _C1.deriv()),
     "c2": (_C2, _C2.deriv()),
 }
+
+
+def _transformed(f, sampler: str, transform: str | None) -> tuple[str, object]:
+    """(sampler, integrand) with the transform applied: the tent (baker's) by the library, exactly in
+    fixed point on the points (the sampler NAME+tent, no float rounding and no pass over the points in
+    Python), the others by periodized."""
+    if transform in ("tent", "baker") and "+" not in sampler:
+        return sampler + "+tent", f
+    return sampler, (periodized(f, transform) if transform else f)
 
 
 def periodized(f, transform: str):
@@ -504,12 +513,13 @@ def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=Non
     if criterion not in CRITERIA:
         raise ValueError(f"udm1.integrate: criterion {criterion!r} is not one of {', '.join(CRITERIA)}")
     d = u32(d, "d")
-    g = periodized(f, transform) if transform else f
+    spec_name = str(sampler)
+    sampler, g = _transformed(f, spec_name, transform)
     seed = u64(seed, "seed")
     if criterion == "lattice":
         if not lattice_seq:
             raise ValueError(f"udm1.integrate: criterion 'lattice' needs the sampler 'lattice-seq' (a lattice at "
-                             f"every power of two), not {sampler!r}")
+                             f"every power of two), not {spec_name!r}")
         if n_init & (n_init - 1) or n_init <= 1 << FOURIER_LAG:
             raise ValueError(f"udm1.integrate: criterion 'lattice' needs n_init a power of two above "
                              f"{1 << FOURIER_LAG}, not {n_init}")

@@ -26,21 +26,29 @@ static uint64_t lattice_seq_value(const udm1_seq_t *seq, uint64_t skey, uint64_t
 
 /* rows [first, first + count) x dims [dim0, dim0 + nd): the words once, the bit reversal once and then
  * stepped: n -> n + 1 flips the trailing ones of n and the zero above them, so its reversal flips the top
- * t + 1 bits, t = the trailing ones of n. */
+ * t + 1 bits, t = the trailing ones of n. The random shift (the default) adds offset + word in one. */
 static void lattice_seq_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, size_t count, uint32_t dim0,
                              uint32_t nd, uint64_t *raw)
 {
     uint64_t words[UDM1_LATTICE_SEQ_DIMS];
-    for (uint32_t j = 0; j < nd; ++j) words[j] = udm1_word(seq, skey, dim0 + j);
+    const uint32_t *z = LATTICE_SEQ_Z + dim0;
+    const uint64_t *offset = seq->offset + dim0;
+    const int shift = seq->mode == UDM1_MODE_SHIFT;
+    for (uint32_t j = 0; j < nd; ++j) {
+        words[j] = udm1_word(seq, skey, dim0 + j);
+        if (shift) words[j] += offset[j]; /* (phi z + o) + r = phi z + (o + r) mod 2^64 */
+    }
     uint64_t phi = udm1_reverse64(first);
     for (size_t i = 0; i < count; ++i) {
         if (i) {
             uint64_t prev = first + i - 1; /* its trailing ones: below 64 (prev + 1 does not wrap: checked range) */
             phi ^= ~0ull << (63 - __builtin_ctzll(~prev));
         }
-        for (uint32_t j = 0; j < nd; ++j) {
-            uint64_t v = phi * LATTICE_SEQ_Z[dim0 + j] + seq->offset[dim0 + j];
-            raw[i * nd + j] = udm1_randomize_base2(seq->mode, v, words[j]);
+        uint64_t *row = raw + i * nd;
+        if (shift) {
+            for (uint32_t j = 0; j < nd; ++j) row[j] = phi * z[j] + words[j];
+        } else {
+            for (uint32_t j = 0; j < nd; ++j) row[j] = udm1_randomize_base2(seq->mode, phi * z[j] + offset[j], words[j]);
         }
     }
 }

@@ -103,11 +103,13 @@ static uint64_t sobol_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index
     return udm1_randomize_base2(seq->mode, sobol_base2(seq, skey, index, dim), udm1_word(seq, skey, dim));
 }
 
-/* Sequential fill: the Gray code changes one bit per step. */
+/* Sequential fill: the Gray code changes one bit per step. Owen scrambling comes after, over many values
+ * at once (udm1_owen64_many: the same values as one udm1_owen64 each, four lanes at a time). */
 static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, size_t count, uint32_t dim0,
                        uint32_t nd, uint64_t *raw)
 {
     const sobol *t = seq->data;
+    const int owen = seq->mode == UDM1_MODE_OWEN;
     uint64_t x0[64]; /* the first point's raw values, 64 dimensions at a time */
     for (uint32_t j = 0; j < nd; ++j) {
         uint32_t dim = dim0 + j;
@@ -115,10 +117,28 @@ static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, siz
         uint64_t x = x0[j % 64], r = udm1_word(seq, skey, dim), o = seq->offset[dim];
         const uint64_t *v = t->v[dim];
         for (size_t i = 0; i < count; ++i) {
-            raw[i * nd + j] = udm1_randomize_base2(seq->mode, x + o, r);
+            raw[i * nd + j] = owen ? x + o : udm1_randomize_base2(seq->mode, x + o, r);
             uint64_t next = first + i + 1; /* Gray(next) = Gray(next - 1) ^ 2^ctz(next) */
             if (next) x ^= v[__builtin_ctzll(next)];
         }
+    }
+    if (!owen) return;
+    enum { BLOCK = 512 };
+    uint64_t words[BLOCK]; /* the dimensions' words, repeated row after row */
+    if (nd > BLOCK) {
+        for (size_t i = 0; i < count; ++i)
+            for (uint32_t j0 = 0; j0 < nd; j0 += BLOCK) {
+                uint32_t m = nd - j0 < BLOCK ? nd - j0 : BLOCK;
+                for (uint32_t j = 0; j < m; ++j) words[j] = udm1_word(seq, skey, dim0 + j0 + j);
+                udm1_owen64_many(raw + i * nd + j0, words, raw + i * nd + j0, m, 1);
+            }
+        return;
+    }
+    size_t rows = BLOCK / nd;
+    for (size_t k = 0; k < rows * nd; ++k) words[k] = k < nd ? udm1_word(seq, skey, dim0 + (uint32_t)k) : words[k - nd];
+    for (size_t i = 0; i < count; i += rows) {
+        size_t m = count - i < rows ? count - i : rows;
+        udm1_owen64_many(raw + i * nd, words, raw + i * nd, (uint32_t)(m * nd), 1);
     }
 }
 

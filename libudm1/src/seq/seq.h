@@ -113,7 +113,11 @@ UDM1_HIDDEN udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, 
 
 /* ---- transforms of a kind (tent.c) ---- */
 /* The tent (baker's) transform 1 - |2x - 1| on a raw 0.64 value, exact: 2x below 1/2, 2 - 2x above. */
-static inline uint64_t udm1_tent(uint64_t x) { return (x >> 63) ? (0 - x) << 1 : x << 1; }
+static inline uint64_t udm1_tent(uint64_t x)
+{
+    uint64_t top = 0 - (x >> 63); /* all ones above 1/2: then -x, else x (no branch: the bit is random) */
+    return ((x ^ top) - top) << 1;
+}
 /* The kind of "NAME+tent": the tent of seq->inner's every value. */
 UDM1_HIDDEN extern const udm1_kind udm1_tent_kind;
 
