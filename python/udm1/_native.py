@@ -238,7 +238,7 @@ _proto("udm1_integrand_name", ctypes.c_char_p, ctypes.c_uint32)
 _proto("udm1_integrand_eval", _S, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_size_t,
        ctypes.c_void_p)
 _proto("udm1_integrand_exact", _S, ctypes.c_uint32, ctypes.c_uint32, f64p)
-_proto("udm1_exact_sum_add", _S, f64p, ctypes.c_size_t, u64p)
+_proto("udm1_exact_sum_add", _S, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p)  # addresses: no cast per call
 EXACT_SUM_WORDS = 36  # UDM1_EXACT_SUM_WORDS
 _proto("udm1_integration_error", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint64, ctypes.c_uint32, f64p, f64p)
 _proto("udm1_spectrum_2d", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint64, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_void_p)

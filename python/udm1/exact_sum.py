@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._native import EXACT_SUM_WORDS, f64p, lib, u64p
+from ._native import EXACT_SUM_WORDS, lib
 
 _BASE = 1126  # ExactSum.scaled is the exact sum times 2^_BASE (any scale of at least 2^1074 is exact)
 
@@ -32,7 +32,7 @@ class ExactSum:
         """Add finite float64 values (any shape); returns self. Raises ValueError on NaN or infinity."""
         x = np.ascontiguousarray(values, dtype=np.float64).ravel()
         words = np.zeros(EXACT_SUM_WORDS, dtype=np.uint64)
-        if lib.udm1_exact_sum_add(x.ctypes.data_as(f64p), x.size, words.ctypes.data_as(u64p)):
+        if lib.udm1_exact_sum_add(x.ctypes.data, x.size, words.ctypes.data):
             bad = int(np.flatnonzero(~np.isfinite(x))[0])
             raise ValueError(f"ExactSum.add: value {bad} is {x[bad]!r}, not finite")
         self.scaled += int.from_bytes(words.tobytes(), "little", signed=True) << (_BASE - 1074)

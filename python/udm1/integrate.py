@@ -442,7 +442,7 @@ class LatticeFourier:
                 continue
             larger = np.maximum(first, second, out=self._larger[:half - 1])
             np.minimum(first, second, out=second)
-            first[...] = larger
+            np.copyto(first, larger)
             blocks = order.reshape(n // (2 * half), 2, half)
             lo, hi = blocks[:, 0, 1:], blocks[:, 1, 1:]
             diff = np.bitwise_xor(lo, hi, out=self._diff[:n // 2 - n // (2 * half)].reshape(lo.shape))
