@@ -135,7 +135,8 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
     conservative for the sizes used here; heavy-tailed replicates, e.g. of a discontinuous integrand
     at small n, can make it optimistic). Each replicate is summed exactly, so the result does not
     depend on how the work was split. `transform` periodizes f first (TRANSFORMS: "tent" = "baker",
-    "c0", "c1", "c2"), which helps Kronecker and lattice rules on non-periodic integrands. If the
+    applied by the library to the points, exactly, as the sampler NAME+tent; "c0", "c1", "c2"), which
+    helps Kronecker and lattice rules on non-periodic integrands. If the
     tolerance is not met within n_max, raises ToleranceNotMet whose `.result` holds the partial
     estimate (met False); strict=False returns that result instead."""
     if abs_tol is not None or rel_tol is not None:
