@@ -34,7 +34,7 @@ class ExactSum:
         words = np.zeros(EXACT_SUM_WORDS, dtype=np.uint64)
         if lib.udm1_exact_sum_add(x.ctypes.data, x.size, words.ctypes.data):
             bad = int(np.flatnonzero(~np.isfinite(x))[0])
-            raise ValueError(f"ExactSum.add: value {bad} is {x[bad]!r}, not finite")
+            raise ValueError(f"ExactSum.add: value {bad} is {float(x[bad])!r}, not finite")
         self.scaled += int.from_bytes(words.tobytes(), "little", signed=True) << (_BASE - 1074)
         self.count += x.size
         return self

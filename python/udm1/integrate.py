@@ -170,8 +170,12 @@ def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> 
     step = max(1, chunk // len(specs))
     for start in range(first, first + count, step):
         m = min(step, first + count - start)
-        x = np.concatenate([seq.points(m, start, stream=s.stream) for s in specs]) if len(specs) > 1 else \
-            seq.points(m, start, stream=base.stream)
+        if len(specs) > 1:  # the replicates' points stacked, each written in place
+            x = np.empty((len(specs) * m, base.d))
+            for r, s in enumerate(specs):
+                seq.points(m, start, stream=s.stream, out=x[r * m:(r + 1) * m])
+        else:
+            x = seq.points(m, start, stream=base.stream)
         y = _checked(f, x, start, m, [s.stream for s in specs] if len(specs) > 1 else None)
         for r, (total, total_sq) in enumerate(sums):
             yr = y[r * m:(r + 1) * m]
@@ -464,11 +468,13 @@ def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 <
     """f at sample indices [first, first + count) of spec's sequence (or `seq`, that sequence already
     made), and their exact sum."""
     seq = seq or spec.sequence()
-    ys = []
-    for start in range(first, first + count, chunk):
-        m = min(chunk, first + count - start)
-        ys.append(_checked(f, seq.points(m, start, stream=spec.stream), start))
-    y = np.concatenate(ys) if ys else np.empty(0)
+    if count <= chunk:
+        y = _checked(f, seq.points(count, first, stream=spec.stream), first) if count else np.empty(0)
+    else:  # chunk by chunk into one array (each copied at once: f may hand back one buffer every time)
+        y = np.empty(count)
+        for start in range(first, first + count, chunk):
+            m = min(chunk, first + count - start)
+            y[start - first:start - first + m] = _checked(f, seq.points(m, start, stream=spec.stream), start)
     return y, ExactSum().add(y)
 
 
@@ -479,12 +485,15 @@ def _checked(f, x: np.ndarray, start: int, rows: int | None = None, streams=None
     if y.shape not in ((x.shape[0],), (x.shape[0], 1)):
         raise ValueError(f"udm1.integrate: f returned shape {y.shape} for {x.shape[0]} points (want ({x.shape[0]},))")
     y = y.reshape(-1)
-    bad = np.flatnonzero(~np.isfinite(y))
+    with np.errstate(over="ignore", invalid="ignore"):
+        if math.isfinite(float(np.add.reduce(y))):  # a NaN or an infinity makes the sum so (one pass)
+            return y
+    bad = np.flatnonzero(~np.isfinite(y))  # or the sum overflowed: then none is found
     if bad.size:
         k = int(bad[0])
         rows = rows or x.shape[0]
         which = f" of stream {streams[k // rows]}" if streams else ""
-        raise ValueError(f"udm1.integrate: f is {y[k]!r} at sample {start + k % rows}{which} (point {x[k].tolist()})")
+        raise ValueError(f"udm1.integrate: f is {float(y[k])!r} at sample {start + k % rows}{which} (point {x[k].tolist()})")
     return y
 
 

@@ -18,6 +18,7 @@ bound read from its Fourier coefficients is within the tolerance.
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -131,6 +132,35 @@ def test_result_does_not_depend_on_the_chunks():
     a = udm1.integrate(product_peak, "lattice-seq", 2, abs_tol=1e-5, seed=5, transform="baker")
     b = udm1.integrate(product_peak, "lattice-seq", 2, abs_tol=1e-5, seed=5, transform="baker", chunk=1000)
     assert (a.estimate, a.error_bound, a.n) == (b.estimate, b.error_bound, b.n)
+
+
+def test_an_integrand_that_reuses_its_output_buffer():
+    # f hands back the same array every call: each chunk's values are taken before the next call
+    buffer = np.empty(1 << 16)
+
+    def reusing(x):
+        out = buffer[:x.shape[0]]
+        out[:] = product_peak(x)
+        return out
+
+    a = udm1.integrate(product_peak, "lattice-seq", 2, abs_tol=1e-5, seed=5, transform="baker", chunk=1000)
+    b = udm1.integrate(reusing, "lattice-seq", 2, abs_tol=1e-5, seed=5, transform="baker", chunk=1000)
+    assert (a.estimate, a.error_bound, a.n) == (b.estimate, b.error_bound, b.n)
+
+
+def test_values_near_the_double_range_and_non_finite_ones():
+    # finite values whose float sum overflows pass the check (without a warning); an infinity or a NaN
+    # is refused by name
+    from udm1.integrate import _checked
+
+    x = np.zeros((64, 2))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert np.all(_checked(lambda p: np.full(p.shape[0], 1.5e308), x, 0) == 1.5e308)
+    for bad, words in ((np.inf, "f is inf at sample 37 "), (np.nan, "f is nan at sample 37 ")):
+        with pytest.raises(ValueError, match=words):
+            udm1.integrate(lambda p: np.where(np.arange(p.shape[0]) == 37, bad, 1e300), "lattice-seq", 2,
+                           abs_tol=1e-3, transform="baker")
 
 
 def test_tolerance_not_met_is_refused_with_the_partial_estimate():
