@@ -7,7 +7,8 @@
  *  - a bulk fill equals per-sample access and the cursor, value for value;
  *  - many points at once equal the cursor, with a first dimension anywhere below 2^32; a dimension range
  *    reaching the index limit is refused, and a cursor that passes it draws NaN;
- *  - a discrepancy is never NaN, at any dimension. */
+ *  - a discrepancy is never NaN, at any dimension;
+ *  - an exact sum does not depend on split or order, cancels with the negated values, refuses non-finite ones. */
 #include "fuzz_bytes.h"
 
 #include <udm1/udm1.h>
@@ -156,6 +157,32 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         check_status(s6);
         if (s6 == UDM1_OK) REQUIRE(!isnan(disc) && disc >= 0);
         free(x);
+    }
+    /* the exact sum of any doubles: refused (nothing written) iff one is not finite; else the same words
+     * for any split and order, and the negated values cancel it to zero */
+    {
+        double x[64], neg[64];
+        size_t nx = (size_t)take(&b, 1) % 65, cut = nx ? (size_t)take(&b, 1) % (nx + 1) : 0;
+        int finite = 1;
+        for (size_t i = 0; i < nx; ++i) {
+            uint64_t bits = take(&b, 8);
+            memcpy(&x[i], &bits, sizeof bits);
+            finite &= isfinite(x[i]) != 0;
+            neg[nx - 1 - i] = -x[i];
+        }
+        uint64_t whole[UDM1_EXACT_SUM_WORDS] = {0}, parts[UDM1_EXACT_SUM_WORDS] = {0}, zero[UDM1_EXACT_SUM_WORDS] = {0};
+        udm1_status s7 = udm1_exact_sum_add(x, nx, whole);
+        check_status(s7);
+        REQUIRE((s7 == UDM1_OK) == finite);
+        if (s7 == UDM1_OK) {
+            REQUIRE(udm1_exact_sum_add(x + cut, nx - cut, parts) == UDM1_OK);
+            REQUIRE(udm1_exact_sum_add(x, cut, parts) == UDM1_OK);
+            REQUIRE(memcmp(whole, parts, sizeof whole) == 0);
+            REQUIRE(udm1_exact_sum_add(neg, nx, whole) == UDM1_OK);
+            REQUIRE(memcmp(whole, zero, sizeof whole) == 0);
+        } else {
+            REQUIRE(memcmp(whole, zero, sizeof whole) == 0);
+        }
     }
     udm1_alpha_report rep;
     uint64_t n = take(&b, 2) % 300;
