@@ -19,6 +19,7 @@ import os
 from pathlib import Path
 
 ABI_MAJOR = 1
+ABI_MINOR = 10  # the oldest libudm1 1.x with every function this package binds (udm1_exact_sum_add)
 
 u8p = ctypes.POINTER(ctypes.c_uint8)
 u64p = ctypes.POINTER(ctypes.c_uint64)
@@ -172,9 +173,10 @@ def _load():
             tried.append(f"{path} ({exc})")
             continue
         lib.udm1_version.restype = ctypes.c_uint32
-        major = lib.udm1_version() // 10000
-        if major != ABI_MAJOR:
-            tried.append(f"{path} (ABI major {major}, need {ABI_MAJOR})")
+        version = lib.udm1_version()
+        major, minor = version // 10000, version // 100 % 100
+        if major != ABI_MAJOR or minor < ABI_MINOR:
+            tried.append(f"{path} (libudm1 {major}.{minor}, need {ABI_MAJOR}.{ABI_MINOR} or a later {ABI_MAJOR}.x)")
             continue
         return lib, path
     raise ImportError(

@@ -15,6 +15,9 @@ from __future__ import annotations
 import numpy as np
 
 from ._native import EXACT_SUM_WORDS, lib
+from .errors import check
+
+STATUS_INVALID_ARGUMENT = 2  # UDM1_ERROR_INVALID_ARGUMENT: a value not finite
 
 _BASE = 1126  # ExactSum.scaled is the exact sum times 2^_BASE (any scale of at least 2^1074 is exact)
 
@@ -32,9 +35,11 @@ class ExactSum:
         """Add finite float64 values (any shape); returns self. Raises ValueError on NaN or infinity."""
         x = np.ascontiguousarray(values, dtype=np.float64).ravel()
         words = np.zeros(EXACT_SUM_WORDS, dtype=np.uint64)
-        if lib.udm1_exact_sum_add(x.ctypes.data, x.size, words.ctypes.data):
+        status = lib.udm1_exact_sum_add(x.ctypes.data, x.size, words.ctypes.data)
+        if status == STATUS_INVALID_ARGUMENT:
             bad = int(np.flatnonzero(~np.isfinite(x))[0])
             raise ValueError(f"ExactSum.add: value {bad} is {float(x[bad])!r}, not finite")
+        check(status)
         self.scaled += int.from_bytes(words.tobytes(), "little", signed=True) << (_BASE - 1074)
         self.count += x.size
         return self

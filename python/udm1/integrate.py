@@ -135,8 +135,8 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
     conservative for the sizes used here; heavy-tailed replicates, e.g. of a discontinuous integrand
     at small n, can make it optimistic). Each replicate is summed exactly, so the result does not
     depend on how the work was split. `transform` periodizes f first (TRANSFORMS: "tent" = "baker",
-    applied by the library to the points, exactly, as the sampler NAME+tent; "c0", "c1", "c2"), which
-    helps Kronecker and lattice rules on non-periodic integrands. If the
+    applied by the library to a randomized sampler's points as the sampler NAME+tent; "c0", "c1",
+    "c2"), which helps Kronecker and lattice rules on non-periodic integrands. If the
     tolerance is not met within n_max, raises ToleranceNotMet whose `.result` holds the partial
     estimate (met False); strict=False returns that result instead."""
     if abs_tol is not None or rel_tol is not None:
@@ -149,7 +149,7 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
     if n is None:
         raise ValueError("udm1.integrate: give n (the sample count) or a tolerance (abs_tol, rel_tol)")
     n = integer(n, "n", 1)
-    sampler, g = _transformed(f, str(sampler), transform)
+    sampler, g = _transformed(f, str(sampler), transform, randomize)
     spec = IntegralSpec(sampler, u32(d, "d"), n, u64(seed, "seed"), randomize, u64(stream, "stream"))
     _preset(spec.sampler)
     return integrate_range(g, spec, 0, spec.n, chunk)
@@ -203,11 +203,13 @@ TRANSFORMS = {
 }
 
 
-def _transformed(f, sampler: str, transform: str | None) -> tuple[str, object]:
-    """(sampler, integrand) with the transform applied: the tent (baker's) by the library, exactly in
-    fixed point on the points (the sampler NAME+tent, no float rounding and no pass over the points in
-    Python), the others by periodized."""
-    if transform in ("tent", "baker") and "+" not in sampler:
+def _transformed(f, sampler: str, transform: str | None, randomize=True) -> tuple[str, object]:
+    """(sampler, integrand) with the transform applied: the tent (baker's) of a randomized sampler by
+    the library, on the points' 0.64 fixed point values (the sampler NAME+tent: one bit more than the
+    double's and no pass over the points in Python), the others, and the tent of an unrandomized
+    sampler, by periodized (the fixed point tent takes x = 1/2 to 0, not 1: a randomized value is never
+    exactly 1/2)."""
+    if transform in ("tent", "baker") and "+" not in sampler and randomize not in (False, None, "none"):
         return sampler + "+tent", f
     return sampler, (periodized(f, transform) if transform else f)
 
@@ -317,10 +319,10 @@ def _twiddle(n: int) -> np.ndarray:
 
 class _FourierBuffers:
     """The arrays of a LatticeFourier for up to `capacity` points. One set per thread is kept between
-    calls (up to FOURIER_BUFFER points: 33 bytes a point), because first touching fresh pages costs as much
+    calls (up to FOURIER_BUFFER points: 34.5 bytes a point), because first touching fresh pages costs as much
     as the transform; a criterion takes it out of the cache while it runs, so two never share it."""
 
-    __slots__ = ("capacity", "s", "order", "mag", "ordered", "index", "diff", "flip", "larger", "low", "t")
+    __slots__ = ("capacity", "s", "order", "mag", "ordered", "index", "flip", "low", "t")
     _cache = threading.local()
 
     def __init__(self, capacity: int):
@@ -328,12 +330,12 @@ class _FourierBuffers:
         self.capacity = capacity
         self.s = np.empty(capacity // 2 + 1, dtype=complex)  # S[l], l = 0 .. n / 2
         self.order = np.empty(capacity, dtype=index)         # position -> wavenumber class
-        self.mag = np.empty(capacity // 2 + 1)               # squared magnitudes at l = 0 .. n / 2
-        self.ordered = np.empty(capacity)                    # ... in wavenumber order
-        self.index = np.empty(capacity, dtype=index)         # the order folded to l <= n / 2
-        self.diff = np.empty(capacity // 2, dtype=index)     # the swaps of one level
+        self.mag = np.empty(capacity // 2 + 1)               # squared magnitudes at l = 0 .. n / 2; then
+                                                             # the larger of each pair of a level
+        self.ordered = np.empty(capacity)                    # the magnitudes in wavenumber order
+        self.index = np.empty(capacity, dtype=index)         # the order folded to l <= n / 2; then a
+                                                             # level's swaps
         self.flip = np.empty(capacity // 2, dtype=bool)
-        self.larger = np.empty(capacity // 2)
         self.low = np.empty(capacity // 4, dtype=complex)
         self.t = np.empty(capacity // 4 + 1, dtype=complex)
 
@@ -388,10 +390,15 @@ class LatticeFourier:
         self._buffers = buffers
         for name in _FourierBuffers.__slots__:
             setattr(self, "_" + name, getattr(buffers, name))
+        if old is not None:
+            old.give_back()
 
     def release(self) -> None:
-        """Done: the buffers go back to this thread's cache for the next criterion (its last state is lost)."""
+        """Done: the buffers go back to this thread's cache for the next criterion (this object's state
+        goes with them: it is unusable after)."""
         buffers, self._buffers = self._buffers, None
+        for name in _FourierBuffers.__slots__:
+            setattr(self, "_" + name, None)
         if buffers is not None:
             buffers.give_back()
 
@@ -445,12 +452,12 @@ class LatticeFourier:
             flip = np.greater(second, first, out=self._flip[:half - 1])
             if not flip.any():
                 continue
-            larger = np.maximum(first, second, out=self._larger[:half - 1])
+            larger = np.maximum(first, second, out=self._mag[:half - 1])  # (the magnitudes are read)
             np.minimum(first, second, out=second)
             np.copyto(first, larger)
             blocks = order.reshape(n // (2 * half), 2, half)
             lo, hi = blocks[:, 0, 1:], blocks[:, 1, 1:]
-            diff = np.bitwise_xor(lo, hi, out=self._diff[:n // 2 - n // (2 * half)].reshape(lo.shape))
+            diff = np.bitwise_xor(lo, hi, out=self._index[:n // 2 - n // (2 * half)].reshape(lo.shape))
             diff *= flip  # the difference where the pair swaps, 0 elsewhere
             lo ^= diff
             hi ^= diff
@@ -464,12 +471,15 @@ class LatticeFourier:
 
 
 def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16,
-                 seq: Sequence | None = None) -> tuple[np.ndarray, ExactSum]:
+                 seq: Sequence | None = None, copy: bool = True) -> tuple[np.ndarray, ExactSum]:
     """f at sample indices [first, first + count) of spec's sequence (or `seq`, that sequence already
-    made), and their exact sum."""
+    made), and their exact sum. The values are an array of their own (copy=False: maybe f's own array,
+    for a caller that uses them before it calls f again)."""
     seq = seq or spec.sequence()
     if count <= chunk:
         y = _checked(f, seq.points(count, first, stream=spec.stream), first) if count else np.empty(0)
+        if copy:
+            y = y.copy()
     else:  # chunk by chunk into one array (each copied at once: f may hand back one buffer every time)
         y = np.empty(count)
         for start in range(first, first + count, chunk):
@@ -524,7 +534,7 @@ def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=Non
         raise ValueError(f"udm1.integrate: criterion {criterion!r} is not one of {', '.join(CRITERIA)}")
     d = u32(d, "d")
     spec_name = str(sampler)
-    sampler, g = _transformed(f, spec_name, transform)
+    sampler, g = _transformed(f, spec_name, transform, randomize)
     seed = u64(seed, "seed")
     if criterion == "lattice":
         if not lattice_seq:
@@ -589,8 +599,8 @@ def _lattice_to_tolerance(g, spec: IntegralSpec, abs_tol, rel_tol, n_max: int, n
     if values is None:
         seq = spec.sequence()
 
-        def values(fn, sp, first, count):
-            return values_range(fn, sp, first, count, chunk, seq)
+        def values(fn, sp, first, count):  # each range's values used before the next call of f
+            return values_range(fn, sp, first, count, chunk, seq, copy=False)
 
     y, total = values(g, spec, 0, n)
     fourier = LatticeFourier(y, capacity=n_max)

@@ -148,6 +148,38 @@ def test_an_integrand_that_reuses_its_output_buffer():
     assert (a.estimate, a.error_bound, a.n) == (b.estimate, b.error_bound, b.n)
 
 
+def test_a_range_of_values_is_its_own_array():
+    # values_range hands back its own array (udm1.distributed keeps it), even when f reuses one buffer
+    from udm1.integrate import IntegralSpec, values_range
+
+    buffer = np.empty(4096)
+
+    def reusing(x):
+        out = buffer[:x.shape[0]]
+        out[:] = product_peak(x)
+        return out
+
+    spec = IntegralSpec("lattice-seq", 2, 1 << 20, 3, True, 0)
+    first, _ = values_range(reusing, spec, 0, 1024)
+    kept = first.copy()
+    values_range(reusing, spec, 1024, 1024)
+    assert np.array_equal(first, kept)
+
+
+def test_the_tent_by_the_library_or_by_numpy():
+    # randomized: the library's fixed point tent (sampler NAME+tent); unrandomized: numpy's, which takes
+    # x = 1/2 (point 1 of the unshifted lattice) to 1, as Baker's transform does
+    from udm1.integrate import periodized
+
+    a = udm1.integrate(product_peak, "lattice-seq", 2, n=1024, seed=3, transform="baker")
+    b = udm1.integrate(product_peak, "lattice-seq+tent", 2, n=1024, seed=3)
+    assert a.value == b.value
+    c = udm1.integrate(product_peak, "lattice-seq", 2, n=1024, randomize=False, transform="baker")
+    d = udm1.integrate(periodized(product_peak, "baker"), "lattice-seq", 2, n=1024, randomize=False)
+    e = udm1.integrate(product_peak, "lattice-seq+tent", 2, n=1024, randomize=False)
+    assert c.value == d.value and c.value != e.value
+
+
 def test_values_near_the_double_range_and_non_finite_ones():
     # finite values whose float sum overflows pass the check (without a warning); an infinity or a NaN
     # is refused by name

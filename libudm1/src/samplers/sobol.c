@@ -122,7 +122,7 @@ static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, siz
             if (next) x ^= v[__builtin_ctzll(next)];
         }
     }
-    if (!owen) return;
+    if (!owen || !nd || !count) return;
     enum { BLOCK = 512 };
     uint64_t words[BLOCK]; /* the dimensions' words, repeated row after row */
     if (nd > BLOCK) {
