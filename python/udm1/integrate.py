@@ -353,6 +353,12 @@ class _FourierBuffers:
             self._cache.buffers = self
 
 
+def _folded(classes: np.ndarray, n: int, out: np.ndarray | None = None) -> np.ndarray:
+    """min(l, n - l) of each class l: where its magnitude is kept (|Y[l]| = |Y[n - l]| for real values)."""
+    out = np.subtract(n, classes, out=out)
+    return np.minimum(classes, out, out=out)
+
+
 class LatticeFourier:
     """The discrete Fourier transform of f over the embedded lattice's first n = 2^m points, kept as n
     doubles, and the wavenumber order of its coefficients (see integrate, criterion "lattice").
@@ -376,42 +382,36 @@ class LatticeFourier:
                              f"points, not {n}")
         capacity = min(int(capacity), FOURIER_BUFFER)
         self._allocate(max(n, 1 << (capacity.bit_length() - 1) if capacity > 0 else 0))
-        self._s[:n // 2 + 1] = _rfft(y[_bit_reversal(self.m)])
-        self._order[:n] = np.arange(n)
+        self._b.s[:n // 2 + 1] = _rfft(y[_bit_reversal(self.m)])
+        self._b.order[:n] = np.arange(n)
         self._reorder(self.m - 1, 0)
 
     def _allocate(self, capacity: int) -> None:
-        old = getattr(self, "_buffers", None)
-        buffers = _FourierBuffers.take(capacity)
+        old = getattr(self, "_b", None)
+        b = self._b = _FourierBuffers.take(capacity)
         if old is not None:
             n = 1 << self.m
-            buffers.s[:n // 2 + 1] = old.s[:n // 2 + 1]
-            buffers.order[:n] = old.order[:n]
-        self._buffers = buffers
-        for name in _FourierBuffers.__slots__:
-            setattr(self, "_" + name, getattr(buffers, name))
-        if old is not None:
+            b.s[:n // 2 + 1] = old.s[:n // 2 + 1]
+            b.order[:n] = old.order[:n]
             old.give_back()
 
     def release(self) -> None:
         """Done: the buffers go back to this thread's cache for the next criterion (this object's state
         goes with them: it is unusable after)."""
-        buffers, self._buffers = self._buffers, None
-        for name in _FourierBuffers.__slots__:
-            setattr(self, "_" + name, None)
-        if buffers is not None:
-            buffers.give_back()
+        b, self._b = self._b, None
+        if b is not None:
+            b.give_back()
 
     @property
     def order(self) -> np.ndarray:
         """Position p -> the wavenumber class at p (0 first)."""
-        return self._order[:1 << self.m]
+        return self._b.order[:1 << self.m]
 
     @property
     def y(self) -> np.ndarray:
         """Y[l] for l < n: the sum of f's coefficients aliased to class l."""
         n = 1 << self.m
-        s = self._s[:n // 2 + 1]
+        s = self._b.s[:n // 2 + 1]
         return np.concatenate([s, np.conj(s[1:n // 2][::-1])]) / n
 
     def double(self, y_new: np.ndarray) -> None:
@@ -419,15 +419,15 @@ class LatticeFourier:
         n, h = 1 << self.m, 1 << (self.m - 1)
         if y_new.size != n:
             raise ValueError(f"udm1.integrate: doubling {n} points needs {n} new values, not {y_new.size}")
-        if 2 * n > self._buffers.capacity:
-            self._allocate(2 * self._buffers.capacity)
-        t = _rfft(np.take(y_new, _bit_reversal(self.m), out=self._ordered[:n], mode="clip"), self._t[:h + 1])
+        if 2 * n > self._b.capacity:
+            self._allocate(2 * self._b.capacity)
+        t = _rfft(np.take(y_new, _bit_reversal(self.m), out=self._b.ordered[:n], mode="clip"), self._b.t[:h + 1])
         t *= _twiddle(n)[:h + 1]
-        s, low = self._s, self._low[:h]
+        s, low = self._b.s, self._b.low[:h]
         np.subtract(s[:h], t[:h], out=low)  # S_n[l] - w^l O[l] for l < n / 2 ...
         np.conjugate(low, out=s[n:h:-1])    # ... conjugated: S_2n[n - l]
         s[:h + 1] += t
-        order = self._order
+        order = self._b.order
         np.add(order[:n], n, out=order[n:2 * n])
         self.m += 1
         self._reorder(self.m - 1, self.m - FOURIER_LAG - 1)
@@ -438,26 +438,24 @@ class LatticeFourier:
         the split below each pair follows it). The comparisons at a level only read its first block, so
         the magnitudes are swapped there only."""
         n = 1 << self.m
-        v = self._s[:n // 2 + 1].view(np.float64).reshape(-1, 2)
-        mag = self._mag[:n // 2 + 1]
+        v = self._b.s[:n // 2 + 1].view(np.float64).reshape(-1, 2)
+        mag = self._b.mag[:n // 2 + 1]
         np.multiply(v[:, 0], v[:, 0], out=mag)
         mag += v[:, 1] * v[:, 1]  # two correctly rounded operations: the same everywhere
-        order, index = self._order[:n], self._index[:n]
-        np.subtract(n, order, out=index)
-        np.minimum(order, index, out=index)  # |Y[l]| = |Y[n - l]|
-        ordered = np.take(mag, index, out=self._ordered[:n], mode="clip")  # (indices < n / 2 + 1: "clip" only skips the buffered check)
+        order, index = self._b.order[:n], _folded(self._b.order[:n], n, self._b.index[:n])
+        ordered = np.take(mag, index, out=self._b.ordered[:n], mode="clip")  # (indices < n / 2 + 1: "clip" only skips the buffered check)
         for level in range(top, bottom, -1):
             half = 1 << level
             first, second = ordered[1:half], ordered[half + 1:2 * half]
-            flip = np.greater(second, first, out=self._flip[:half - 1])
+            flip = np.greater(second, first, out=self._b.flip[:half - 1])
             if not flip.any():
                 continue
-            larger = np.maximum(first, second, out=self._mag[:half - 1])  # (the magnitudes are read)
+            larger = np.maximum(first, second, out=self._b.mag[:half - 1])  # (the magnitudes are read)
             np.minimum(first, second, out=second)
             np.copyto(first, larger)
             blocks = order.reshape(n // (2 * half), 2, half)
             lo, hi = blocks[:, 0, 1:], blocks[:, 1, 1:]
-            diff = np.bitwise_xor(lo, hi, out=self._index[:n // 2 - n // (2 * half)].reshape(lo.shape))
+            diff = np.bitwise_xor(lo, hi, out=self._b.index[:n // 2 - n // (2 * half)].reshape(lo.shape))
             diff *= flip  # the difference where the pair swaps, 0 elsewhere
             lo ^= diff
             hi ^= diff
@@ -465,9 +463,8 @@ class LatticeFourier:
     def bound(self) -> float:
         n = 1 << self.m
         lo = n >> (FOURIER_LAG + 1)
-        classes = self._order[lo:2 * lo]
-        classes = np.minimum(classes, n - classes)
-        return FOURIER_FUDGE * 4.0 ** -self.m * float(np.sum(np.abs(self._s[classes])))
+        classes = _folded(self._b.order[lo:2 * lo], n)
+        return FOURIER_FUDGE * 4.0 ** -self.m * float(np.sum(np.abs(self._b.s[classes])))
 
 
 def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16,
