@@ -19,7 +19,7 @@ import os
 from pathlib import Path
 
 ABI_MAJOR = 1
-ABI_MINOR = 10  # the oldest libudm1 1.x with every function this package binds (udm1_exact_sum_add)
+ABI_MINOR = 11  # the oldest libudm1 1.x with every function this package binds (udm1_lattice_bound_*)
 
 u8p = ctypes.POINTER(ctypes.c_uint8)
 u64p = ctypes.POINTER(ctypes.c_uint64)
@@ -242,6 +242,14 @@ _proto("udm1_integrand_eval", _S, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_voi
 _proto("udm1_integrand_exact", _S, ctypes.c_uint32, ctypes.c_uint32, f64p)
 _proto("udm1_exact_sum_add", _S, ctypes.c_void_p, ctypes.c_size_t, ctypes.c_void_p)  # addresses: no cast per call
 EXACT_SUM_WORDS = 36  # UDM1_EXACT_SUM_WORDS
+_proto("udm1_lattice_bound_create", _S, ctypes.c_uint32, ctypes.c_double, ctypes.c_uint64, ctypes.POINTER(ctypes.c_void_p))
+_proto("udm1_lattice_bound_destroy", None, ctypes.c_void_p)
+_proto("udm1_lattice_bound_reset", None, ctypes.c_void_p)
+_proto("udm1_lattice_bound_add", _S, ctypes.c_void_p, ctypes.c_void_p, ctypes.c_uint64)
+_proto("udm1_lattice_bound_points", ctypes.c_uint64, ctypes.c_void_p)
+_proto("udm1_lattice_bound_error", _S, ctypes.c_void_p, f64p)
+_proto("udm1_lattice_bound_coefficients", _S, ctypes.c_void_p, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_void_p)
+_proto("udm1_lattice_bound_order", _S, ctypes.c_void_p, ctypes.c_uint64, ctypes.c_uint64, ctypes.c_void_p)
 _proto("udm1_integration_error", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint64, ctypes.c_uint32, f64p, f64p)
 _proto("udm1_spectrum_2d", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint64, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_void_p)
 _proto("udm1_zoneplate", _S, _SEQ, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_uint32, ctypes.c_void_p)

@@ -14,6 +14,7 @@ To a tolerance instead of a sample count (see `integrate` and `ToleranceResult`)
 
 from __future__ import annotations
 
+import ctypes
 import functools
 import math
 import threading
@@ -23,6 +24,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._convert import integer, u32, u64
+from ._native import lib
+from .errors import check
 from .exact_sum import ExactSum
 from .sequence import Preset, Sequence, presets
 
@@ -274,8 +277,8 @@ def _t_quantile(q: float, dof: int) -> float:
 CRITERIA = ("replications", "lattice")
 FOURIER_FUDGE = 5.0  # the bound's constant: FOURIER_FUDGE 2^-m times the measured coefficients (CubQMCLatticeG's)
 FOURIER_LAG = 4      # the coefficients measured: wavenumbers [2^(m - LAG - 1), 2^(m - LAG))
-FOURIER_BUFFER = 1 << 20  # points the lattice criterion's buffers hold before they grow, and the most
-                          # kept for the thread's next call (see _FourierBuffers)
+FOURIER_BUFFER = 1 << 20  # the most points of a lattice criterion's buffers kept for the thread's next
+                          # call (see _Workspace)
 
 
 @functools.lru_cache(maxsize=32)
@@ -305,74 +308,65 @@ def _rfft(y: np.ndarray, out: np.ndarray | None = None) -> np.ndarray:
 _NUMPY_FFT_OUT = int(np.__version__.split(".")[0]) >= 2
 
 
-_TWIDDLE = np.ones(0, dtype=complex)  # replaced whole, never changed: a thread reads one table or the other
+class _Workspace:
+    """A lattice criterion's C object (udm1/lattice_bound.h) and the arrays that feed it: the new values
+    in lattice order and their transform. One per thread is kept between calls (up to FOURIER_BUFFER
+    points), because first touching fresh pages costs as much as the arithmetic; a criterion takes it
+    out of the cache while it runs, so two never share it."""
 
-
-def _twiddle(n: int) -> np.ndarray:
-    """exp(-i pi l / n) for l < n (n a power of two), from one cached table of the largest n asked."""
-    global _TWIDDLE
-    table = _TWIDDLE
-    if table.size < n:
-        table = _TWIDDLE = np.exp(-1j * np.pi * np.arange(n) / n)
-    return table[::table.size // n]
-
-
-class _FourierBuffers:
-    """The arrays of a LatticeFourier for up to `capacity` points. One set per thread is kept between
-    calls (up to FOURIER_BUFFER points: 34.5 bytes a point), because first touching fresh pages costs as much
-    as the transform; a criterion takes it out of the cache while it runs, so two never share it."""
-
-    __slots__ = ("capacity", "s", "order", "mag", "ordered", "index", "flip", "low", "t")
+    __slots__ = ("handle", "capacity", "ordered", "t")
     _cache = threading.local()
 
     def __init__(self, capacity: int):
-        index = np.int32 if capacity <= 1 << 30 else np.int64
+        handle = ctypes.c_void_p()
+        check(lib.udm1_lattice_bound_create(FOURIER_LAG, FOURIER_FUDGE, capacity, ctypes.byref(handle)))
+        self.handle = handle
+        self._arrays(capacity)
+
+    def _arrays(self, capacity: int) -> None:
         self.capacity = capacity
-        self.s = np.empty(capacity // 2 + 1, dtype=complex)  # S[l], l = 0 .. n / 2
-        self.order = np.empty(capacity, dtype=index)         # position -> wavenumber class
-        self.mag = np.empty(capacity // 2 + 1)               # squared magnitudes at l = 0 .. n / 2; then
-                                                             # the larger of each pair of a level
-        self.ordered = np.empty(capacity)                    # the magnitudes in wavenumber order
-        self.index = np.empty(capacity, dtype=index)         # the order folded to l <= n / 2; then a
-                                                             # level's swaps
-        self.flip = np.empty(capacity // 2, dtype=bool)
-        self.low = np.empty(capacity // 4, dtype=complex)
-        self.t = np.empty(capacity // 4 + 1, dtype=complex)
+        self.ordered = np.empty(capacity // 2)        # the new values in lattice order
+        self.t = np.empty(capacity // 4 + 1, dtype=complex)  # their transform
+
+    def grow(self, capacity: int) -> None:
+        """Room for `capacity` points: the C object grows itself, the arrays here are scratch."""
+        if capacity > self.capacity:
+            self._arrays(capacity)
+
+    def __del__(self):
+        handle, self.handle = getattr(self, "handle", None), None
+        if handle is not None and lib is not None:
+            lib.udm1_lattice_bound_destroy(handle)
 
     @classmethod
-    def take(cls, capacity: int) -> "_FourierBuffers":
-        cached = getattr(cls._cache, "buffers", None)
-        if cached is not None and cached.capacity >= capacity:
-            cls._cache.buffers = None
+    def take(cls, capacity: int) -> "_Workspace":
+        cached = getattr(cls._cache, "workspace", None)
+        if cached is not None:
+            cls._cache.workspace = None
+            lib.udm1_lattice_bound_reset(cached.handle)
+            cached.grow(capacity)
             return cached
         return cls(capacity)
 
     def give_back(self) -> None:
-        cached = getattr(self._cache, "buffers", None)
-        if self.capacity <= FOURIER_BUFFER and (cached is None or cached.capacity < self.capacity):
-            self._cache.buffers = self
-
-
-def _folded(classes: np.ndarray, n: int, out: np.ndarray | None = None) -> np.ndarray:
-    """min(l, n - l) of each class l: where its magnitude is kept (|Y[l]| = |Y[n - l]| for real values)."""
-    out = np.subtract(n, classes, out=out)
-    return np.minimum(classes, out, out=out)
+        if self.capacity <= FOURIER_BUFFER and lib.udm1_lattice_bound_points(self.handle) <= FOURIER_BUFFER:
+            self._cache.workspace = self
 
 
 class LatticeFourier:
     """The discrete Fourier transform of f over the embedded lattice's first n = 2^m points, kept as n
-    doubles, and the wavenumber order of its coefficients (see integrate, criterion "lattice").
+    doubles, the wavenumber order of its coefficients and the bound read from them (see integrate,
+    criterion "lattice"): the library's udm1_lattice_bound (udm1/lattice_bound.h), fed the transform of
+    each doubling's new values in lattice order (numpy's real FFT).
 
     Point i of the sequence is lattice point k = bitrev_m(i) of {k z / n}: the transform over k of the
     values, divided by n, is Y[l] = sum of f's Fourier coefficients over the wavenumbers h with
-    h.z = l (mod n), each times a phase of the shift; Y[0] is the rule's mean. The values are real, so
-    Y[n - l] is the conjugate of Y[l]: S = n Y is kept for l = 0 .. n / 2. Doubling adds the odd lattice
-    points, O their transform: S_2n[l] = S_n[l] + w^l O[l] and S_2n[n - l] = conj(S_n[l] - w^l O[l]),
-    w = exp(-2 pi i / 2n), so class l of n splits into l and l + n of 2n. The order puts, within each
-    such split, the larger coefficient first, level by level (the same rule as QMCPy's kappa map).
+    h.z = l (mod n), each times a phase of the shift; Y[0] is the rule's mean. Doubling adds the odd
+    lattice points, so class l of n splits into l and l + n of 2n; the order puts, within each such
+    split, the larger coefficient first, level by level (the same rule as QMCPy's kappa map).
 
-    The arrays live in buffers that grow by doubling, `capacity` points to begin with (see
-    _FourierBuffers), so that the doublings reuse memory rather than allocate."""
+    `capacity` points are made room for to begin with, so that the doublings reuse memory rather than
+    allocate (see _Workspace)."""
 
     def __init__(self, y: np.ndarray, capacity: int = 0):
         n = y.size
@@ -381,90 +375,49 @@ class LatticeFourier:
             raise ValueError(f"udm1.integrate: the lattice criterion needs a power of two above 2^{FOURIER_LAG} "
                              f"points, not {n}")
         capacity = min(int(capacity), FOURIER_BUFFER)
-        self._allocate(max(n, 1 << (capacity.bit_length() - 1) if capacity > 0 else 0))
-        self._b.s[:n // 2 + 1] = _rfft(y[_bit_reversal(self.m)])
-        self._b.order[:n] = np.arange(n)
-        self._reorder(self.m - 1, 0)
+        self._w = _Workspace.take(max(n, 1 << (capacity.bit_length() - 1) if capacity > 0 else 0))
+        self._add(y)
 
-    def _allocate(self, capacity: int) -> None:
-        old = getattr(self, "_b", None)
-        b = self._b = _FourierBuffers.take(capacity)
-        if old is not None:
-            n = 1 << self.m
-            b.s[:n // 2 + 1] = old.s[:n // 2 + 1]
-            b.order[:n] = old.order[:n]
-            old.give_back()
+    def _add(self, y: np.ndarray) -> None:
+        n, w = y.size, self._w
+        w.grow(2 * n)
+        ordered = np.take(y, _bit_reversal(n.bit_length() - 1), out=w.ordered[:n], mode="clip")
+        t = _rfft(ordered, w.t[:n // 2 + 1])
+        check(lib.udm1_lattice_bound_add(w.handle, t.ctypes.data, n))
 
     def release(self) -> None:
-        """Done: the buffers go back to this thread's cache for the next criterion (this object's state
-        goes with them: it is unusable after)."""
-        b, self._b = self._b, None
-        if b is not None:
-            b.give_back()
+        """Done: the C object goes back to this thread's cache for the next criterion (this object's
+        state goes with it: it is unusable after)."""
+        w, self._w = self._w, None
+        if w is not None:
+            w.give_back()
 
     @property
     def order(self) -> np.ndarray:
         """Position p -> the wavenumber class at p (0 first)."""
-        return self._b.order[:1 << self.m]
+        out = np.empty(1 << self.m, dtype=np.uint64)
+        check(lib.udm1_lattice_bound_order(self._w.handle, 0, out.size, out.ctypes.data))
+        return out
 
     @property
     def y(self) -> np.ndarray:
         """Y[l] for l < n: the sum of f's coefficients aliased to class l."""
-        n = 1 << self.m
-        s = self._b.s[:n // 2 + 1]
-        return np.concatenate([s, np.conj(s[1:n // 2][::-1])]) / n
+        out = np.empty(1 << self.m, dtype=complex)
+        check(lib.udm1_lattice_bound_coefficients(self._w.handle, 0, out.size, out.ctypes.data))
+        return out
 
     def double(self, y_new: np.ndarray) -> None:
         """Take the values of the next n points (sequence indices n .. 2n - 1)."""
-        n, h = 1 << self.m, 1 << (self.m - 1)
+        n = 1 << self.m
         if y_new.size != n:
             raise ValueError(f"udm1.integrate: doubling {n} points needs {n} new values, not {y_new.size}")
-        if 2 * n > self._b.capacity:
-            self._allocate(2 * self._b.capacity)
-        t = _rfft(np.take(y_new, _bit_reversal(self.m), out=self._b.ordered[:n], mode="clip"), self._b.t[:h + 1])
-        t *= _twiddle(n)[:h + 1]
-        s, low = self._b.s, self._b.low[:h]
-        np.subtract(s[:h], t[:h], out=low)  # S_n[l] - w^l O[l] for l < n / 2 ...
-        np.conjugate(low, out=s[n:h:-1])    # ... conjugated: S_2n[n - l]
-        s[:h + 1] += t
-        order = self._b.order
-        np.add(order[:n], n, out=order[n:2 * n])
+        self._add(y_new)
         self.m += 1
-        self._reorder(self.m - 1, self.m - FOURIER_LAG - 1)
-
-    def _reorder(self, top: int, bottom: int) -> None:
-        """Levels top .. bottom + 1: in every block of 2 half positions, position p in [1, half) and p + half
-        swap when the second holds the larger coefficient in the first block (the same swap in every block:
-        the split below each pair follows it). The comparisons at a level only read its first block, so
-        the magnitudes are swapped there only."""
-        n = 1 << self.m
-        v = self._b.s[:n // 2 + 1].view(np.float64).reshape(-1, 2)
-        mag = self._b.mag[:n // 2 + 1]
-        np.multiply(v[:, 0], v[:, 0], out=mag)
-        mag += v[:, 1] * v[:, 1]  # two correctly rounded operations: the same everywhere
-        order, index = self._b.order[:n], _folded(self._b.order[:n], n, self._b.index[:n])
-        ordered = np.take(mag, index, out=self._b.ordered[:n], mode="clip")  # (indices < n / 2 + 1: "clip" only skips the buffered check)
-        for level in range(top, bottom, -1):
-            half = 1 << level
-            first, second = ordered[1:half], ordered[half + 1:2 * half]
-            flip = np.greater(second, first, out=self._b.flip[:half - 1])
-            if not flip.any():
-                continue
-            larger = np.maximum(first, second, out=self._b.mag[:half - 1])  # (the magnitudes are read)
-            np.minimum(first, second, out=second)
-            np.copyto(first, larger)
-            blocks = order.reshape(n // (2 * half), 2, half)
-            lo, hi = blocks[:, 0, 1:], blocks[:, 1, 1:]
-            diff = np.bitwise_xor(lo, hi, out=self._b.index[:n // 2 - n // (2 * half)].reshape(lo.shape))
-            diff *= flip  # the difference where the pair swaps, 0 elsewhere
-            lo ^= diff
-            hi ^= diff
 
     def bound(self) -> float:
-        n = 1 << self.m
-        lo = n >> (FOURIER_LAG + 1)
-        classes = _folded(self._b.order[lo:2 * lo], n)
-        return FOURIER_FUDGE * 4.0 ** -self.m * float(np.sum(np.abs(self._b.s[classes])))
+        out = ctypes.c_double()
+        check(lib.udm1_lattice_bound_error(self._w.handle, ctypes.byref(out)))
+        return out.value
 
 
 def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16,

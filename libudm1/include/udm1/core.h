@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 #define UDM1_VERSION_MAJOR 1
-#define UDM1_VERSION_MINOR 10
+#define UDM1_VERSION_MINOR 11
 #define UDM1_VERSION_PATCH 0
 /* MAJOR * 10000 + MINOR * 100 + PATCH, as returned by udm1_version(). */
 #define UDM1_VERSION (UDM1_VERSION_MAJOR * 10000 + UDM1_VERSION_MINOR * 100 + UDM1_VERSION_PATCH)

@@ -29,6 +29,7 @@
 #include "udm1/domain.h"
 #include "udm1/metrics.h"
 #include "udm1/exact_sum.h"
+#include "udm1/lattice_bound.h"
 #include "udm1/noise.h"
 #include "udm1/cellular.h"
 
