@@ -58,12 +58,11 @@ udm1_status udm1_exact_sum_add(const double *x, size_t n, uint64_t words[UDM1_EX
             e = 1;
         uint32_t shift = e - 1, at = shift >> 5, o = shift & 31;
         uint64_t lo = m << o, hi = o ? m >> (64 - o) : 0;
+        int64_t sign = -(int64_t)(bits >> 63); /* 0 or -1: (d ^ sign) - sign is d or -d, without a branch */
         int64_t d0 = (int64_t)(lo & 0xffffffffu), d1 = (int64_t)(lo >> 32), d2 = (int64_t)hi;
-        if (bits >> 63) {
-            digit[at] -= d0, digit[at + 1] -= d1, digit[at + 2] -= d2;
-        } else {
-            digit[at] += d0, digit[at + 1] += d1, digit[at + 2] += d2;
-        }
+        digit[at] += (d0 ^ sign) - sign;
+        digit[at + 1] += (d1 ^ sign) - sign;
+        digit[at + 2] += (d2 ^ sign) - sign;
         if (UDM1_UNLIKELY((i + 1) % BATCH == 0))
             digits_to_words(digit, words);
     }
