@@ -15,6 +15,7 @@
 #include "seq/scramble.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #if defined(UDM1_HAVE_SOBOL_TABLE)
 extern const uint32_t udm1_sobol_table_dims;
@@ -134,8 +135,10 @@ static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, siz
             }
         return;
     }
-    size_t rows = BLOCK / nd;
-    for (size_t k = 0; k < rows * nd; ++k) words[k] = k < nd ? udm1_word(seq, skey, dim0 + (uint32_t)k) : words[k - nd];
+    size_t rows = BLOCK / nd < count ? BLOCK / nd : count; /* the words of the rows a call has, no more */
+    for (uint32_t j = 0; j < nd; ++j) words[j] = udm1_word(seq, skey, dim0 + j);
+    for (size_t have = nd; have < rows * nd; have *= 2) /* the first row repeated, by doubling the copy */
+        memcpy(words + have, words, (have < rows * nd - have ? have : rows * nd - have) * sizeof *words);
     for (size_t i = 0; i < count; i += rows) {
         size_t m = count - i < rows ? count - i : rows;
         udm1_owen64_many(raw + i * nd, words, raw + i * nd, (uint32_t)(m * nd), 1);

@@ -28,6 +28,11 @@ static udm1_status fill_generic(const char *fn, int kind, const udm1_seq *seq, u
                 for (uint32_t j = 0; j < ndims; ++j)
                     raw[i * ndims + j] = seq->kind->value(seq, skey, first + i0 + i, dim0 + j);
         }
+        if (stride == ndims && kind == UDM1_OUT_F64) { /* rows back to back: one loop, no switch per row */
+            double *dst = (double *)out + i0 * stride;
+            for (size_t k = 0; k < n * ndims; ++k) dst[k] = CONV_F64(raw[k]);
+            continue;
+        }
         for (size_t i = 0; i < n; ++i) {
             const uint64_t *src = raw + i * ndims;
             size_t at = (i0 + i) * stride;
