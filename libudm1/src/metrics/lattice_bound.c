@@ -265,31 +265,35 @@ udm1_status udm1_lattice_bound_error(const udm1_lattice_bound *b, double *error)
     if (!b->n) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: no points added yet", fn);
     const uint64_t n = b->n, lo = n >> (b->lag + 1);
     double sum = 0;
-    for (uint64_t p = lo; p < 2 * lo; ++p) {
-        uint64_t l = fold(b->order[p], n);
-        sum += sqrt(b->s[2 * l] * b->s[2 * l] + b->s[2 * l + 1] * b->s[2 * l + 1]);
-    }
-    if (isinf(sum)) { /* a square overflowed, or the sum: again without squares */
-        sum = 0;
+    for (int careful = 0; careful < 2 && (careful == 0 || isinf(sum)); ++careful) {
+        sum = 0; /* the second pass, when a square or the sum overflowed: hypot, without squares */
         for (uint64_t p = lo; p < 2 * lo; ++p) {
-            uint64_t l = fold(b->order[p], n);
-            sum += hypot(b->s[2 * l], b->s[2 * l + 1]);
+            const double *c = b->s + 2 * fold(b->order[p], n);
+            sum += careful ? hypot(c[0], c[1]) : sqrt(c[0] * c[0] + c[1] * c[1]);
         }
     }
     *error = b->fudge * ldexp(sum, -2 * (int)b->m); /* fudge 2^-m sum |S| / n */
     return UDM1_OK;
 }
 
-udm1_status udm1_lattice_bound_coefficients(const udm1_lattice_bound *b, uint64_t first, uint64_t count, double *out)
+/* The arguments of a read of [first, first + count) of the n held: a status naming the first bad one. */
+static udm1_status check_range(const udm1_lattice_bound *b, uint64_t first, uint64_t count, const void *out,
+                               const char *fn, const char *what)
 {
-    static const char fn[] = "udm1_lattice_bound_coefficients";
     if (!b || (!out && count)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, b ? "out" : "bound");
     if (first > b->n || count > b->n - first)
-        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: coefficients [%llu, %llu + %llu) of %llu", fn,
+        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: %s [%llu, %llu + %llu) of %llu", fn, what,
                          (unsigned long long)first, (unsigned long long)first, (unsigned long long)count,
                          (unsigned long long)b->n);
+    return UDM1_OK;
+}
+
+udm1_status udm1_lattice_bound_coefficients(const udm1_lattice_bound *b, uint64_t first, uint64_t count, double *out)
+{
+    udm1_status st = check_range(b, first, count, out, "udm1_lattice_bound_coefficients", "coefficients");
+    if (st != UDM1_OK) return st;
     const uint64_t n = b->n;
-    const double scale = n ? 1.0 / (double)n : 0;
+    const double scale = count ? 1.0 / (double)n : 0; /* exact: n is a power of two */
     for (uint64_t j = 0; j < count; ++j) {
         uint64_t l = first + j, k = fold(l, n);
         out[2 * j] = b->s[2 * k] * scale;
@@ -300,12 +304,8 @@ udm1_status udm1_lattice_bound_coefficients(const udm1_lattice_bound *b, uint64_
 
 udm1_status udm1_lattice_bound_order(const udm1_lattice_bound *b, uint64_t first, uint64_t count, uint64_t *out)
 {
-    static const char fn[] = "udm1_lattice_bound_order";
-    if (!b || (!out && count)) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, b ? "out" : "bound");
-    if (first > b->n || count > b->n - first)
-        return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: positions [%llu, %llu + %llu) of %llu", fn,
-                         (unsigned long long)first, (unsigned long long)first, (unsigned long long)count,
-                         (unsigned long long)b->n);
+    udm1_status st = check_range(b, first, count, out, "udm1_lattice_bound_order", "positions");
+    if (st != UDM1_OK) return st;
     for (uint64_t j = 0; j < count; ++j) out[j] = b->order[first + j];
     return UDM1_OK;
 }
