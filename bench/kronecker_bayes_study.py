@@ -10,12 +10,12 @@ matrix K(x_i - x_j) = K({(i - j) alpha}) depends on i - j only (Toeplitz). eta b
 half-width 2.576 s sqrt(1 - 1' K^-1 1) (written with the Gram of K - 1 so that no difference of nearly
 equal numbers is formed). The sampler is R_d with Baker's transform ("rd+tent", a random shift per trial).
 
-Part 1: the interval's coverage at n points on Genz's six families (bench_integrate.py's coefficients),
+Part 1: the interval's coverage at n points on Genz's six families (coefficients drawn as in bench_integrate.py),
 d = 2 and 8: the share of trials whose error is within the half-width, against the 99 % it states.
 Part 2: the cost at the n a tolerance needs: conjugate gradients on the Toeplitz Gram (products by FFT),
 plain and with T. Chan's circulant preconditioner, iterations to a relative residual of 1e-10 (at most
---cg-max); the direct alternative, Levinson's recursion, costs n^2 per solve (2.7e11 at 2^19 points,
-where the lattice criterion stops on the 2D corner peak at rel. tolerance 1e-2).
+--cg-max); the direct alternative, Levinson's recursion, costs about n^2 per solve (2.7e11 at 2^19
+points: the lattice criterion needs 2^19-2^20 on the 2D peaks, BENCHMARKS.md).
 
     python bench/kronecker_bayes_study.py [--trials 100] [--n 1024] [--dims 2,8]
 
