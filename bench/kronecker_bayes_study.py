@@ -35,7 +35,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent
 sys.path.insert(0, str(ROOT))
 
-from bench_integrate import DIFFICULTY, genz, udm1  # noqa: E402
+from bench_integrate import DIFFICULTY, coefficients, genz, udm1  # noqa: E402
 
 Z99 = 2.5758293035489004  # the normal's 0.995 quantile
 
@@ -54,6 +54,14 @@ def kernel_column(t: np.ndarray, eta: float) -> np.ndarray:
     return np.prod(1.0 + eta * 2.0 * np.pi ** 2 * b2, axis=1) - 1.0
 
 
+def gram_column(t: np.ndarray, eta: float, constant: float) -> np.ndarray:
+    """The first column of the Gram of K - 1 + constant, with a nugget: positive definite in exact
+    arithmetic, barely so in doubles."""
+    col = kernel_column(t, eta) + constant
+    col[0] *= 1 + 1e-12
+    return col
+
+
 class Bayes:
     """The Bayesian rule at one eta: Gram K = 1 1' + M, M Toeplitz positive definite (Sherman-Morrison
     for everything involving the 1 1' term)."""
@@ -62,9 +70,7 @@ class Bayes:
         from scipy.linalg import cho_factor, cho_solve, toeplitz
 
         n = y.size
-        col = kernel_column(t, eta)
-        col[0] *= 1 + 1e-12  # a nugget: M is positive definite in exact arithmetic, barely so in doubles
-        c = cho_factor(toeplitz(col), lower=True, check_finite=False)
+        c = cho_factor(toeplitz(gram_column(t, eta, 0.0)), lower=True, check_finite=False)
         m1, my = cho_solve(c, np.ones(n), check_finite=False), cho_solve(c, y, check_finite=False)
         a = float(m1.sum())  # 1' M^-1 1
         b = float(m1 @ y)    # 1' M^-1 y
@@ -91,14 +97,10 @@ def fit(y: np.ndarray, t: np.ndarray) -> Bayes:
 
 def coverage(family: str, d: int, n: int, trials: int, t: np.ndarray) -> tuple[int, float, float]:
     """(trials covered, median error / half-width, median eta)."""
-    big, e = DIFFICULTY[family]
     rng = np.random.default_rng(20261126 + d)
     covered, ratios, etas = 0, [], []
     for trial in range(trials):
-        a = rng.uniform(size=d)
-        a *= big / d ** e / a.sum()
-        w = rng.uniform(size=d)
-        f, exact = genz(family, a, w)
+        f, exact = genz(family, *coefficients(family, d, rng))
         x = udm1.Sequence("rd+tent", d, seed=trial + 1).points(n)
         rule, eta = fit(np.asarray(f(x), dtype=np.float64), t[:n])
         err, width = abs(rule.estimate - exact), rule.half_width()
@@ -111,8 +113,7 @@ def coverage(family: str, d: int, n: int, trials: int, t: np.ndarray) -> tuple[i
 def cg_iterations(t: np.ndarray, eta: float, preconditioned: bool, cap: int) -> int:
     """Conjugate-gradient iterations for K x = 1 at the n = len(t) points, to relative residual 1e-10."""
     n = t.shape[0]
-    col = kernel_column(t, eta) + 1.0
-    col[0] *= 1 + 1e-12
+    col = gram_column(t, eta, 1.0)
     spectrum = np.fft.rfft(np.concatenate([col, [0.0], col[:0:-1]]))  # circulant embedding, size 2n
 
     def times(v):
@@ -129,14 +130,12 @@ def cg_iterations(t: np.ndarray, eta: float, preconditioned: bool, cap: int) -> 
         def solve(v):
             return v
     b = np.ones(n)
-    x, r = np.zeros(n), b.copy()
+    r = b.copy()  # the residual of x = 0 (x itself is not needed to count the iterations)
     z = solve(r)
     p, rz = z.copy(), r @ z
     for it in range(1, cap + 1):
         q = times(p)
-        step = rz / (p @ q)
-        x += step * p
-        r -= step * q
+        r -= rz / (p @ q) * q
         if np.linalg.norm(r) <= 1e-10 * np.linalg.norm(b):
             return it
         z = solve(r)
