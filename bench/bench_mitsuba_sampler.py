@@ -43,12 +43,14 @@ MITSUBA = [("independent", {"type": "independent"}), ("stratified", {"type": "st
 
 
 def udm1_samplers(size: int, vector: bool):
-    """udm1's rows: wr (D = 64), the table presets at D = 32, and (vector variants only) screen."""
-    rows = [("udm1 wr", {"type": "udm1", "preset": "wr"}),
-            ("udm1 sobol-owen", {"type": "udm1", "preset": "sobol-owen", "dimensions": 32}),
-            ("udm1 pmj02", {"type": "udm1", "preset": "pmj02", "dimensions": 32})]
+    """udm1's rows: wr (D = 64), the table presets at D = 32, and (vector variants only) screen; each with
+    the film's size (the vector variants need it)."""
+    film = {"film_width": size, "film_height": size}
+    rows = [("udm1 wr", {"type": "udm1", "preset": "wr", **film}),
+            ("udm1 sobol-owen", {"type": "udm1", "preset": "sobol-owen", "dimensions": 32, **film}),
+            ("udm1 pmj02", {"type": "udm1", "preset": "pmj02", "dimensions": 32, **film})]
     if vector:
-        rows.append(("udm1 wr screen", {"type": "udm1", "preset": "wr", "randomize": "screen", "film_width": size}))
+        rows.append(("udm1 wr screen", {"type": "udm1", "preset": "wr", "randomize": "screen", **film}))
     return rows
 
 

@@ -1,13 +1,13 @@
-"""udm1.mitsuba: the udm1 sampler inside Mitsuba 3 (PyPI mitsuba), in scalar_rgb and llvm_ad_rgb.
+"""udm1.mitsuba: the udm1 sampler inside Mitsuba 3 (PyPI mitsuba), in scalar_rgb and llvm_ad_rgb, through
+mi.render (test_mitsuba_differential.py compares the sampler with the library combination by combination).
 
-- Values: what the plugin draws for (pixel, sample, dimension) equals the library's value of
-  (stream, index, dimension) bit for bit as float32 (the top 24 bits), for Weyl presets computed in
-  Dr.Jit (shift, none and screen randomization, a render seed, two passes) and for the table presets
-  (sobol-owen, pmj02), dimensions past D included (the padding rule); in scalar_rgb through the cursor.
+- Values in a render: an integrator that returns its sample's draws as the pixel's colour renders, in
+  llvm_ad_rgb, the library's values bit for bit (as float32; with two samples their float32 mean), in one
+  pass and in two (the integrator's samples_per_pass), for Weyl presets (and a tent) with every
+  randomization of their Dr.Jit path, and a table preset.
 - Renders: the Cornell box rendered with the plugin has the mean radiance of Mitsuba's independent
   sampler within 5 standard deviations of the mean, the deviation measured over 16 independent renders
   (so the test fails by chance with probability below 1e-4 for an unbiased sampler).
-- Bad properties: one error naming the property.
 
 llvm_ad_rgb needs a libLLVM that Dr.Jit can drive: Debian's libllvm19 (installed by ./run.sh), found
 through DRJIT_LIBLLVM_PATH, which this test sets when it is unset and the library is there."""
@@ -41,93 +41,59 @@ def f32(values):
     return (np.floor(np.asarray(values) * 2.0**24) * 2.0**-24).astype(np.float32)
 
 
-def library(preset, randomize, d, seed, spp, streams, indices, dims):
-    o = udm1.mitsuba._options(mi.Properties()) | {"preset": preset, "randomize": randomize, "dimensions": d,
-                                                 "seed": seed}
-    seq = udm1.mitsuba._sequence(o, spp)
-    return f32(seq.points_at(np.asarray(streams, np.uint64), np.asarray(indices, np.uint64), dims=dims))
+def register_draws_integrator():
+    """Integrator "udm1_test_draws" of the current variant: a pixel's colour is its sample's draws after
+    the film position (dimensions 2, 3, 4)."""
+
+    class DrawsIntegrator(mi.SamplingIntegrator):
+        def sample(self, scene, sampler, ray, medium=None, active=True):
+            a, b = sampler.next_1d(), sampler.next_2d()
+            return mi.Spectrum(mi.Color3f(a, b.x, b.y)), mi.Bool(True), []
+
+    mi.register_integrator("udm1_test_draws", lambda props: DrawsIntegrator(props))
 
 
-CASES = [("wr", "shift"), ("wr", "none"), ("wr", "screen"), ("rd", "default"), ("wopt", "default"),
-         ("sobol-owen", "default"), ("pmj02", "default")]
-
-
-@pytest.mark.parametrize("preset,randomize", CASES)
-def test_llvm_values_equal_the_library(preset, randomize):
+@pytest.mark.parametrize("preset,randomize", [("wr", "owen"), ("wopt+tent", "permute"), ("rd", "shift"),
+                                              ("wr", "none"), ("wr", "screen"), ("sobol-owen", "default")])
+def test_llvm_render_draws_the_library_s_values(preset, randomize):
     variant("llvm_ad_rgb")
-    W, H, spp, D, seed = 5, 3, 4, 6, 3
-    s = mi.load_dict({"type": "udm1", "preset": preset, "sample_count": spp, "randomize": randomize, "dimensions": D,
-                      "film_width": W, "seed": seed})
-    for render_seed in (0, 9):
-        s.seed(render_seed, W * H * spp)
-        got = []
-        for k in range(D + 4):  # 1D and 2D draws, past D
-            if k % 3 == 1:
-                p = s.next_2d()
-                dr.eval(p)
-                got += [np.array(p.x), np.array(p.y)]
-            else:
-                v = s.next_1d()
-                dr.eval(v)
-                got.append(np.array(v))
-        got = np.stack(got, 1)
-        lane = np.arange(W * H * spp)
-        pixel = lane // spp
+    register_draws_integrator()
+    W, H, seed, render_seed = 5, 3, 12345, 7
+    pixel = np.arange(W * H)
+    for spp, per_pass in ((1, None), (2, 1)):  # (two values: their float32 sum does not depend on the order)
+        integrator = {"type": "udm1_test_draws"} | ({"samples_per_pass": per_pass} if per_pass else {})
+        scene = mi.load_dict({"type": "scene", "integrator": integrator, "sensor": {
+            "type": "perspective",
+            "film": {"type": "hdrfilm", "width": W, "height": H, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+            "sampler": {"type": "udm1", "preset": preset, "randomize": randomize, "sample_count": spp,
+                        "dimensions": 4, "seed": seed, "film_width": W, "film_height": H}}})
+        image = np.array(mi.render(scene, seed=render_seed)).reshape(-1, 3)
+        seq = udm1.Sequence(preset, 4, seed=seed + (render_seed if randomize == "screen" else 0),
+                            randomize=True if randomize == "default" else randomize,
+                            screen_spp=spp if randomize == "screen" else 0)
         if randomize == "screen":
             streams = ((pixel // W).astype(np.uint64) << np.uint64(32)) | (pixel % W).astype(np.uint64)
         else:
             streams = (np.uint64(render_seed) << np.uint64(32)) + pixel.astype(np.uint64)
-        want = library(preset, randomize, D, seed + (render_seed if randomize == "screen" else 0), spp, streams,
-                       lane % spp, range(0, got.shape[1]))
-        bad = np.argwhere(got != want)
-        assert bad.size == 0, f"{preset} {randomize} seed {render_seed}: lane, dim {bad[:5].tolist()} differ"
-
-
-def test_llvm_two_passes():
-    variant("llvm_ad_rgb")
-    W, H, spp = 4, 2, 6  # three passes of two samples
-    s = mi.load_dict({"type": "udm1", "preset": "wr", "sample_count": spp, "film_width": W, "film_height": H})
-    s.seed(0, W * H * 2)
-    lane = np.arange(W * H * 2)
-    for p in range(3):
-        v = s.next_1d()
-        dr.eval(v)
-        want = library("wr", "default", 64, 0, spp, lane // 2, p * 2 + lane % 2, range(0, 1))[:, 0]
-        assert np.array_equal(np.array(v), want), f"pass {p}"
-        s.advance()
-    s2 = mi.load_dict({"type": "udm1", "preset": "wr", "sample_count": spp})  # no film size: refused
-    s2.seed(0, W * H * 2)
-    s2.next_1d()
-    s2.advance()
-    with pytest.raises(Exception, match="film_width and film_height"):
-        s2.next_1d()
-
-
-@pytest.mark.parametrize("preset", ["wr", "sobol-owen", "pmj02"])
-def test_scalar_values_equal_the_library(preset):
-    variant("scalar_rgb")
-    spp, D = 4, 4
-    s = mi.load_dict({"type": "udm1", "preset": preset, "sample_count": spp, "dimensions": D, "seed": 3})
-    for stream in (7, 123456789):
-        s.seed(stream)
-        for n in range(spp):
-            got = [s.next_1d(), *s.next_2d(), s.next_1d(), *s.next_2d()]  # 6 draws: past D = 4
-            want = library(preset, "default", D, 3, spp, [stream], [n], range(0, 6))[0]
-            assert np.array_equal(np.float32(got), want), f"{preset} stream {stream} sample {n}"
-            s.advance()
+        total = np.zeros((W * H, 3), np.float32)
+        for n in range(spp):  # the film's sum, then its division by the weight
+            total += f32(seq.points_at(streams, np.full(W * H, n, np.uint64), dims=range(2, 5)))
+        want = total / np.float32(spp)
+        bad = np.argwhere(image != want)
+        assert bad.size == 0, f"{preset}/{randomize} at {spp} spp: (pixel, channel) {bad[:4].tolist()} differ"
 
 
 def render_means(sampler: dict, res: int, spp: int, seeds) -> np.ndarray:
     d = mi.cornell_box()
     d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = res
-    d["sensor"]["sampler"] = sampler
+    d["sensor"]["sampler"] = sampler | ({"film_width": res, "film_height": res} if sampler["type"] == "udm1" else {})
     scene = mi.load_dict(d)
     return np.array([np.mean(np.array(mi.render(scene, spp=spp, seed=s))) for s in seeds])
 
 
 @pytest.mark.parametrize("name,res,spp,samplers", [
     ("llvm_ad_rgb", 32, 64, [{"preset": "wr"}, {"preset": "sobol-owen", "dimensions": 24},
-                             {"preset": "wr", "randomize": "screen", "film_width": 32}]),
+                             {"preset": "wr", "randomize": "screen"}]),
     ("scalar_rgb", 16, 16, [{"preset": "wr"}]),
 ])
 def test_cornell_box_mean_equals_independent(name, res, spp, samplers):
@@ -138,14 +104,3 @@ def test_cornell_box_mean_equals_independent(name, res, spp, samplers):
     for extra in samplers:
         ours = render_means({"type": "udm1", "sample_count": spp, **extra}, res, spp, [1])[0]
         assert abs(ours - mean) < 5 * sd * (1 + 1 / 16) ** 0.5, f"{name} {extra}: mean {ours} against {mean} +- {sd}"
-
-
-def test_bad_properties():
-    variant("llvm_ad_rgb")
-    for props, words in [({"preset": "nope"}, "preset 'nope'"), ({"randomize": "blue"}, "randomize 'blue'"),
-                         ({"randomize": "screen"}, "film_width"), ({"dimensions": 0}, "dimensions 0")]:
-        with pytest.raises(Exception, match=words):
-            mi.load_dict({"type": "udm1", **props})
-    variant("scalar_rgb")
-    with pytest.raises(Exception, match="vector variant"):
-        mi.load_dict({"type": "udm1", "randomize": "screen", "film_width": 8})
