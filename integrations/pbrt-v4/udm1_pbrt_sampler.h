@@ -14,6 +14,14 @@
 // A pixel's stream (its shifts or randomization words, udm1_stream_init) is found once when the pixel
 // changes: pbrt-v4 renders a pixel's samples of a wave one after the other. The sequence is shared by all
 // clones (const udm1_seq handles are thread-safe); each clone keeps its own stream and counters.
+//
+// What a scene may ask (create_for_scene): every udm1 preset, also with the tent ("NAME+tent"), except
+// those of fewer than the 2 dimensions a pixel sample needs (golden, epis); every randomization the
+// library gives that preset (screen: the Weyl sequences only); seeds 0 .. 2^31 - 1 (pbrt's integers;
+// a negative seed is refused, not wrapped); at least 1 sample per pixel, and for a point set at most the
+// library's K for that preset. Anything else is refused when the scene is read, with one line naming it.
+// A draw the library cannot make (a sample index at or past a point set's K) is NaN, never another
+// point's value.
 #pragma once
 
 #include <udm1/udm1.h>
@@ -74,6 +82,35 @@ inline SharedSeq create_sequence(const std::string &preset, uint32_t randomize, 
         return nullptr;
     }
     return SharedSeq(seq, SeqDeleter());
+}
+
+// The sequence of a scene's Sampler "udm1", from its parameters as pbrt-v4's scene parser gives them:
+// "string preset", "string randomization", "integer seed", "integer pixelsamples" (the last two 32-bit
+// in pbrt, taken here as long long so that nothing is narrowed before it is checked). On failure
+// returns null and sets *error to one line naming the parameter (and the library's reason).
+inline SharedSeq create_for_scene(const std::string &preset, const std::string &randomization, long long seed,
+                                  long long pixelsamples, std::string *error)
+{
+    uint32_t randomize = 0;
+    if (!randomization_from_name(randomization, &randomize)) {
+        *error = "udm1 sampler: randomization '" + randomization +
+                 "' is not one of default, none, shift, permute, owen, screen";
+        return nullptr;
+    }
+    if (seed < 0 || seed > 0x7FFFFFFFLL) {
+        *error = "udm1 sampler: seed " + std::to_string(seed) + " is not in [0, 2147483647]";
+        return nullptr;
+    }
+    if (pixelsamples < 1 || pixelsamples > 0x7FFFFFFFLL) {
+        *error = "udm1 sampler: pixelsamples " + std::to_string(pixelsamples) + " is not in [1, 2147483647]";
+        return nullptr;
+    }
+    std::string why;
+    SharedSeq seq = create_sequence(preset, randomize, (uint64_t)seed, (uint32_t)pixelsamples, &why);
+    if (!seq)
+        *error = "udm1 sampler: preset '" + preset + "' with randomization '" + randomization + "' and pixelsamples " +
+                 std::to_string(pixelsamples) + " is refused: " + why;
+    return seq;
 }
 
 // One thread's sampler over a shared sequence.
