@@ -25,7 +25,8 @@ prints that line last, after its own "failed to instantiate" and the Python trac
 - ``seed``: an integer in [0, 2^63), the udm1 sequence's seed (default 0). (The library takes seeds up to
   2^64 - 1; Mitsuba's integer properties stop at 2^63 - 1, and a larger value reaches the sampler as a
   float, which is refused.)
-- ``randomize``: "default" (the preset's own), "none", "shift", "owen", "permute" or "screen". Every
+- ``randomize``: "default" (the preset's own), "none", "shift", "owen", "permute" or "screen" (the
+  library's fixed scheme, N = sample_count: udm1/seq.h, desc.screen_spp). Every
   combination the library accepts is drawn as the library draws it; the library refuses "screen" for
   every kind but the Weyl sequences, and the sampler refuses it in the scalar variants (they do not
   tell a sampler its pixel's position).

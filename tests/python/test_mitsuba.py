@@ -3,8 +3,8 @@ mi.render (test_mitsuba_differential.py compares the sampler with the library co
 
 - Values in a render: an integrator that returns its sample's draws as the pixel's colour renders, in
   llvm_ad_rgb, the library's values bit for bit (as float32; with two samples their float32 mean), in one
-  pass and in two (the integrator's samples_per_pass), for Weyl presets (and a tent) with every
-  randomization of their Dr.Jit path, and a table preset.
+  pass and in two (the integrator's samples_per_pass), at the render's spp (not the sampler's), for Weyl
+  presets (and a tent) with every randomization of their Dr.Jit path, a table preset and a point set.
 - Renders: the Cornell box rendered with the plugin has the mean radiance of Mitsuba's independent
   sampler within 5 standard deviations of the mean, the deviation measured over 16 independent renders
   (so the test fails by chance with probability below 1e-4 for an unbiased sampler).
@@ -54,7 +54,8 @@ def register_draws_integrator():
 
 
 @pytest.mark.parametrize("preset,randomize", [("wr", "owen"), ("wopt+tent", "permute"), ("rd", "shift"),
-                                              ("wr", "none"), ("wr", "screen"), ("sobol-owen", "default")])
+                                              ("wr", "none"), ("wr", "screen"), ("sobol-owen", "default"),
+                                              ("pmj02", "owen")])
 def test_llvm_render_draws_the_library_s_values(preset, randomize):
     variant("llvm_ad_rgb")
     register_draws_integrator()
@@ -65,10 +66,13 @@ def test_llvm_render_draws_the_library_s_values(preset, randomize):
         scene = mi.load_dict({"type": "scene", "integrator": integrator, "sensor": {
             "type": "perspective",
             "film": {"type": "hdrfilm", "width": W, "height": H, "rfilter": {"type": "box"}, "pixel_format": "rgb"},
-            "sampler": {"type": "udm1", "preset": preset, "randomize": randomize, "sample_count": spp,
+            "sampler": {"type": "udm1", "preset": preset, "randomize": randomize, "sample_count": 1,
                         "dimensions": 4, "seed": seed, "film_width": W, "film_height": H}}})
-        image = np.array(mi.render(scene, seed=render_seed)).reshape(-1, 3)
-        seq = udm1.Sequence(preset, 4, seed=seed + (render_seed if randomize == "screen" else 0),
+        # (render's spp: the sampler's count set again, a point set's K and screen's N with it)
+        image = np.array(mi.render(scene, seed=render_seed, spp=spp)).reshape(-1, 3)
+        point_set = {p.name: p for p in udm1.presets()}[preset.removesuffix("+tent")].point_set
+        seq = udm1.Sequence(preset, 4, point_count=spp if point_set else 0,
+                            seed=seed + (render_seed if randomize == "screen" else 0),
                             randomize=True if randomize == "default" else randomize,
                             screen_spp=spp if randomize == "screen" else 0)
         if randomize == "screen":
