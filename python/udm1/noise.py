@@ -70,9 +70,9 @@ def _coordinates(points, dtype, lo: int, hi: int, where: str):
     float32, else float64; dtype= forces one) and the arrays to keep alive during the call."""
     forced = _precision(dtype, where)
     if isinstance(points, (tuple, list)) and len(points) and np.ndim(points[0]) == 1:
+        cols = [real_array(a, f"points[{k}]", where=where, float32=True) for k, a in enumerate(points)]
         if not lo <= len(points) <= hi:
             raise ValueError(f"{where}: give {lo} to {hi} coordinate arrays, not {len(points)}")
-        cols = [real_array(a, f"points[{k}]", where=where, float32=True) for k, a in enumerate(points)]
         real_type = forced or (np.float32 if all(c.dtype == np.float32 for c in cols) else np.float64)
         cols = [np.ascontiguousarray(c, dtype=real_type) for c in cols]
         n = cols[0].shape[0]

@@ -55,10 +55,21 @@ class Weyl(qmc.QMCEngine):
                              f"would not be udm1's; only None is supported")
         if seed is not None and rng is not None:
             raise ValueError("udm1.qmc: give rng or seed, not both")
-        if isinstance(seed, np.random.RandomState):  # scipy's legacy keyword, as its own engines take it
-            super().__init__(d=d, optimization=optimization, seed=seed)
-        else:  # an int or Generator given as seed= is taken as rng= (the same points for both)
-            super().__init__(d=d, optimization=optimization, rng=seed if seed is not None else rng)
+        for name, value in (("rng", rng), ("seed", seed)):
+            if isinstance(value, (bool, np.bool_)):
+                raise TypeError(f"{WHERE}: {name} must be an int, Generator or bit generator, not bool")
+        if isinstance(rng, np.random.RandomState):
+            raise TypeError("udm1.qmc: a legacy RandomState goes in seed= (as scipy's own engines take it), not rng=")
+        try:
+            if isinstance(seed, np.random.RandomState):  # scipy's legacy keyword, as its own engines take it
+                super().__init__(d=d, optimization=optimization, seed=seed)
+            else:  # an int or Generator given as seed= is taken as rng= (the same points for both)
+                super().__init__(d=d, optimization=optimization, rng=seed if seed is not None else rng)
+        except (TypeError, ValueError) as e:
+            given = "seed" if seed is not None else "rng"
+            detail = str(e).splitlines()[0] if str(e) else type(e).__name__
+            raise type(e)(f"{WHERE}: {given} = {seed if seed is not None else rng!r} is not an int, Generator or "
+                          f"bit generator ({detail})") from None
         self.preset = self._preset or text(preset, "preset", where=WHERE)
         self.scramble = scramble
         key = _random_key(self.rng) if scramble else 0
