@@ -83,6 +83,10 @@ def connect(address: str | None = None, *, n_workers: int | None = None, threads
     """A dask.distributed Client: to the scheduler at `address`, or to a new LocalCluster of
     `n_workers` worker processes (default: one per core) with `threads_per_worker` threads."""
     distributed = _distributed()
+    if address is not None:
+        text(address, "address", where=WHERE)
+    n_workers = _count(n_workers, "n_workers")
+    threads_per_worker = integer(threads_per_worker, "threads_per_worker", 1, U32, where=WHERE)
     if address:
         client = distributed.Client(address)
         try:
@@ -130,7 +134,7 @@ def split_tiles(width: int, height: int, tile: tuple[int, int]) -> list[tuple[in
 def tool_path(tool: str) -> str:
     """The udm1-ao or udm1-pt executable: a path as given, else $UDM1_AO_TOOL / $UDM1_PT_TOOL,
     else the project's build folder, else PATH."""
-    if os.sep in tool:
+    if os.sep in text(tool, "tool", where=WHERE):
         return str(pathlib.Path(tool).resolve())
     name = {"ao": "udm1-ao", "pt": "udm1-pt"}.get(tool, tool)
     if name not in ("udm1-ao", "udm1-pt"):
@@ -237,9 +241,9 @@ def _worker_address() -> str:
 
 # ------------------------------------------------------------------------------------ integrals
 
-def _integral_task(first: int, count: int, f, spec: IntegralSpec, chunk: int) -> dict:
+def _integral_task(first: int, count: int, f, spec: IntegralSpec, chunk: int, squares: bool = True) -> dict:
     t0 = time.perf_counter()
-    part = integrate_range(f, spec, first, count, chunk)
+    part = integrate_range(f, spec, first, count, chunk, squares)
     return {"integral": part, "worker": _worker_address(), "seconds": time.perf_counter() - t0}
 
 
@@ -314,7 +318,7 @@ def _values_task(first: int, count: int, spec: IntegralSpec, f, chunk: int) -> d
 
 
 def _tolerance_task(first: int, count: int, spec: IntegralSpec, f, chunk: int) -> dict:
-    return _integral_task(first, count, f, spec, chunk)
+    return _integral_task(first, count, f, spec, chunk, squares=False)  # the rule uses the means only
 
 
 # --------------------------------------------------------------------------------------- renders

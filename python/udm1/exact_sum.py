@@ -44,16 +44,32 @@ def _ratio(num: int, den: int) -> float:
         return math.inf if num > 0 else -math.inf
 
 
-def _square_parts(f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(hi, lo) with f^2 = hi + lo exactly, for f whose squares neither overflow nor lose bits below the
-    smallest double (Dekker 1971: the Veltkamp split into 26-bit halves, products exact in round to
-    nearest, the error terms added in his order)."""
-    hi = f * f
-    c = f * 134217729.0  # 2^27 + 1
-    fh = c - (c - f)
-    fl = f - fh
-    lo = (((fh * fh - hi) + fh * fl) + fl * fh) + fl * fl
-    return hi, lo
+_SPLIT = 134217729.0  # 2^27 + 1: Veltkamp's split of a double into two 26-bit halves
+_BLOCK = 8192  # add_squares works in blocks this long, in scratch arrays made once per call (64 KiB each:
+               # no fresh pages per temporary, and the block stays in the cache across the passes)
+
+
+def _square_parts(f: np.ndarray, scratch: np.ndarray | None = None) -> np.ndarray:
+    """[hi, lo] (the first 2 len(f) values of the scratch, 4 len(f) long) with f^2 = hi + lo exactly, for f
+    whose squares neither overflow nor lose bits below the smallest double (Dekker 1971: the Veltkamp
+    split, products exact in round to nearest, the error terms added in his order: fh fh - hi, then fh fl
+    twice, then fl fl)."""
+    m = f.size
+    scratch = np.empty(4 * m) if scratch is None else scratch
+    hi, lo, fh, fl = scratch[:m], scratch[m:2 * m], scratch[2 * m:3 * m], scratch[3 * m:4 * m]
+    np.multiply(f, f, out=hi)
+    np.multiply(f, _SPLIT, out=fh)  # c
+    np.subtract(fh, f, out=fl)      # c - f
+    np.subtract(fh, fl, out=fh)     # fh = c - (c - f)
+    np.subtract(f, fh, out=fl)      # fl = f - fh
+    np.multiply(fh, fh, out=lo)
+    lo -= hi
+    np.multiply(fh, fl, out=fh)     # fh fl (fh is not needed after it)
+    lo += fh
+    lo += fh
+    np.multiply(fl, fl, out=fl)
+    lo += fl
+    return scratch[:2 * m]
 
 
 class ExactSum:
@@ -70,6 +86,10 @@ class ExactSum:
         2^-_BASE) to the integer."""
         words = np.zeros(EXACT_SUM_WORDS, dtype=np.uint64)
         check(lib.udm1_exact_sum_add(x.ctypes.data, x.size, words.ctypes.data))
+        self._take_words(words, shift)
+
+    def _take_words(self, words: np.ndarray, shift: int = 0) -> None:
+        """Add the library's sum (its words) times 2^shift to the integer."""
         total = int.from_bytes(words.tobytes(), "little", signed=True)
         s = _BASE - _LIBRARY_BASE + shift
         self.scaled += total << s if s >= 0 else total >> -s  # exact: see add_squares
@@ -95,12 +115,19 @@ class ExactSum:
         x = self._values(values, "add_squares")
         a = np.abs(x)
         if a.size == 0 or (a.max() <= _DIRECT and np.min(a, where=a > 0, initial=1.0) >= 1 / _DIRECT):
-            # x^2 <= 2^800 and its low part a multiple of 2^-906 at least: Dekker's product as it is
-            hi, lo = _square_parts(x)
-            self._add_words(np.concatenate([hi, lo]))
+            # x^2 <= 2^800 and its low part a multiple of 2^-906 at least: Dekker's product as it is, block
+            # by block into the library's words
+            words = np.zeros(EXACT_SUM_WORDS, dtype=np.uint64)
+            scratch = np.empty(4 * min(_BLOCK, x.size))
+            for start in range(0, x.size, _BLOCK):
+                block = x[start:start + _BLOCK]
+                parts = _square_parts(block, scratch[:4 * block.size])
+                check(lib.udm1_exact_sum_add(parts.ctypes.data, parts.size, words.ctypes.data))
+            self._take_words(words)
         else:  # x = f 2^e; x^2 = (hi + lo) 2^t, t = 2e, added in bands of the exponent t
             f, e = np.frexp(x)
-            hi, lo = _square_parts(f)
+            parts = _square_parts(f)
+            hi, lo = parts[:f.size], parts[f.size:]
             t = 2 * e.astype(np.int64)
             band = np.floor_divide(t + _BAND // 2, _BAND)  # t - _BAND band in [-512, 512): parts in range
             for k in np.unique(band):

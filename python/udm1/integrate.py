@@ -61,13 +61,14 @@ class IntegralSpec:
 
 @dataclass(frozen=True)
 class Integral:
-    """An estimate: the exact sums of f and f^2 over sample indices [first, first + count)."""
+    """An estimate: the exact sums of f and f^2 over sample indices [first, first + count) (sum_sq None
+    where it was not kept: the tolerance rules' replicates, whose rule does not use it)."""
 
     spec: IntegralSpec
     first: int
     count: int
     sum: ExactSum
-    sum_sq: ExactSum
+    sum_sq: ExactSum | None
 
     @property
     def value(self) -> float:
@@ -80,6 +81,8 @@ class Integral:
         low-discrepancy points an upper estimate only; use randomized replicates). From the exact sums
         of f and of f^2, in exact rational arithmetic, rounded once: finite and exact to the last bit at
         any finite magnitude of f (it is at most max |f|). NaN for fewer than 2 samples."""
+        if self.sum_sq is None:
+            raise ValueError("udm1.Integral: the sum of squares was not kept for this estimate (squares=False)")
         if self.count < 2:
             return float("nan")
         s, q, c = self.sum.fraction(), self.sum_sq.fraction(), self.count
@@ -88,13 +91,16 @@ class Integral:
 
     def __add__(self, other: "Integral") -> "Integral":
         """Join two adjacent ranges of the same integral (exact)."""
+        if not isinstance(other, Integral):
+            return NotImplemented
         if other.spec != self.spec:
             raise ValueError("Integral: the two estimates are of different integrals")
         a, b = (self, other) if self.first <= other.first else (other, self)
         if a.first + a.count != b.first:
             raise ValueError(f"Integral: ranges [{a.first}, {a.first + a.count}) and "
                              f"[{b.first}, {b.first + b.count}) are not adjacent")
-        return Integral(self.spec, a.first, a.count + b.count, a.sum + b.sum, a.sum_sq + b.sum_sq)
+        sum_sq = None if a.sum_sq is None or b.sum_sq is None else a.sum_sq + b.sum_sq
+        return Integral(self.spec, a.first, a.count + b.count, a.sum + b.sum, sum_sq)
 
 
 def _preset(name: str) -> Preset:
@@ -130,10 +136,12 @@ def _presets() -> tuple[Preset, ...]:
     return tuple(presets())  # the library's table does not change while it is loaded
 
 
-def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16) -> Integral:
+def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16,
+                    squares: bool = True) -> Integral:
     """f over sample indices [first, first + count) of spec's sequence, in chunks of `chunk` points.
-    f takes an (m, d) float64 array and returns m finite real values."""
-    return replicate_ranges(f, [_spec(spec)], first, count, chunk)[0]
+    f takes an (m, d) float64 array and returns m finite real values. squares=False: no sum of squares
+    (sum_sq None, no stderr; what the tolerance rules need, at less cost)."""
+    return replicate_ranges(f, [_spec(spec)], first, count, chunk, squares)[0]
 
 
 def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, randomize=True, stream: int = 0,
@@ -203,7 +211,7 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
     return integrate_range(rule.g, spec, 0, spec.n, rule.chunk)
 
 
-def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> list[Integral]:
+def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16, squares: bool = True) -> list[Integral]:
     """integrate_range of [first, first + count) for each spec. Specs that differ only in their stream
     (replicates) share one sequence and one call of f per chunk (f sees their points stacked): the same
     Integrals, bit for bit, at a fraction of the calls."""
@@ -212,15 +220,15 @@ def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> 
     if not specs:
         raise ValueError("udm1.integrate: no specs")
     first, count = _range(first, count)
-    chunk = _chunk(chunk)
+    chunk, squares = _chunk(chunk), flag(squares, "squares", where=WHERE)
     base = specs[0]
     if any((s.sampler, s.d, s.n, s.seed, s.randomize) != (base.sampler, base.d, base.n, base.seed, base.randomize)
            for s in specs):
-        return [replicate_ranges(f, [s], first, count, chunk)[0] for s in specs]
+        return [replicate_ranges(f, [s], first, count, chunk, squares)[0] for s in specs]
     if first + count > base.n:
         raise ValueError(f"udm1.integrate: range [{first}, {first + count}) is not inside [0, {base.n})")
     seq = base.sequence()
-    sums = [(ExactSum(), ExactSum()) for _ in specs]
+    sums = [(ExactSum(), ExactSum() if squares else None) for _ in specs]
     step = max(1, chunk // len(specs))
     for start in range(first, first + count, step):
         m = min(step, first + count - start)
@@ -234,7 +242,8 @@ def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> 
         for r, (total, total_sq) in enumerate(sums):
             yr = y[r * m:(r + 1) * m]
             total.add(yr)
-            total_sq.add_squares(yr)
+            if squares:
+                total_sq.add_squares(yr)
     return [Integral(s, first, count, a, b) for s, (a, b) in zip(specs, sums)]
 
 
@@ -419,12 +428,13 @@ class LatticeFourier:
     allocate (see _Workspace)."""
 
     def __init__(self, y: np.ndarray, capacity: int = 0):
+        y = real_array(y, "y", where=WHERE).ravel()
         n = y.size
         self.m = n.bit_length() - 1
         if n != 1 << self.m or self.m <= FOURIER_LAG:
             raise ValueError(f"udm1.integrate: the lattice criterion needs a power of two above 2^{FOURIER_LAG} "
                              f"points, not {n}")
-        capacity = min(int(capacity), FOURIER_BUFFER)
+        capacity = min(integer(capacity, "capacity", 0, U64, where=WHERE), FOURIER_BUFFER)
         self._w = _Workspace.take(max(n, 1 << (capacity.bit_length() - 1) if capacity > 0 else 0))
         self._add(y)
 
@@ -459,6 +469,7 @@ class LatticeFourier:
     def double(self, y_new: np.ndarray) -> None:
         """Take the values of the next n points (sequence indices n .. 2n - 1)."""
         n = 1 << self.m
+        y_new = real_array(y_new, "y_new", where=WHERE).ravel()
         if y_new.size != n:
             raise ValueError(f"udm1.integrate: doubling {n} points needs {n} new values, not {y_new.size}")
         self._add(y_new)
@@ -643,7 +654,7 @@ def _integrate_to_tolerance(rule: _Rule, ranges, values) -> ToleranceResult:
 
     if ranges is None:
         def ranges(fn, sp, first, count):
-            return replicate_ranges(fn, sp, first, count, rule.chunk)
+            return replicate_ranges(fn, sp, first, count, rule.chunk, squares=False)  # the rule uses the means
 
     n, parts, history = rule.n_init, None, []
     while True:

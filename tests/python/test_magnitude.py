@@ -156,3 +156,18 @@ def test_a_bound_past_the_double_range_is_inf_and_not_met():
                        n_max=8, seed=1, confidence=0.999, strict=False)
     assert r.history[0][2] == math.inf and r.error_bound == math.inf and not r.met
     assert math.isfinite(r.estimate)
+
+
+def test_squares_can_be_left_out():
+    """The tolerance rules use the replicates' means only: their Integrals keep no sum of squares (and so
+    say, rather than give a standard error of nothing); the sums are the same."""
+    from udm1.integrate import IntegralSpec, integrate_range
+
+    spec = IntegralSpec("wr", 2, 1000, 1)
+    with_sq, without = integrate_range(oscillatory, spec, 0, 1000), integrate_range(oscillatory, spec, 0, 1000,
+                                                                                   squares=False)
+    assert with_sq.sum == without.sum and without.sum_sq is None and with_sq.sum_sq.count == 1000
+    with pytest.raises(ValueError, match="sum of squares was not kept"):
+        without.stderr
+    halves = integrate_range(oscillatory, spec, 0, 500, squares=False) + integrate_range(oscillatory, spec, 500, 500)
+    assert halves.sum == with_sq.sum and halves.sum_sq is None  # a sum of squares of half the range is none
