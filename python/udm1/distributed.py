@@ -186,6 +186,7 @@ def _completed(client, futures, *, what: str, timeout: float | None, with_result
     hang). TimeoutError (_stuck) when none finishes for `timeout` seconds (None: no limit)."""
     distributed = _distributed()
     done = distributed.as_completed(futures, loop=client.loop, with_results=with_results)
+    finished = getattr(done, "thread_condition", None)  # notified as each future finishes
     last = time.monotonic()
     while not done.is_empty():
         if done.has_ready():
@@ -195,8 +196,12 @@ def _completed(client, futures, *, what: str, timeout: float | None, with_result
         left = None if timeout is None else timeout - (time.monotonic() - last)
         if left is not None and left <= 0:
             raise _stuck(futures, what, timeout)
-        with done.thread_condition:  # notified as each future finishes
-            done.thread_condition.wait(timeout=0.1 if left is None else min(0.1, left))
+        pause = 0.1 if left is None else min(0.1, left)
+        if finished is None:
+            time.sleep(min(pause, 0.01))
+        else:
+            with finished:
+                finished.wait(timeout=pause)
 
 
 def _result(future, what: str, timeout: float | None):

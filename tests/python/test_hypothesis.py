@@ -7,7 +7,15 @@ index ranges, splits, dimension windows and dtypes, asserting the sequence contr
 - float64 and float32 are the documented conversions of the raw value, in [0, 1);
 - bulk, per-sample and many-points calls, any split of a range and any window of dimensions agree bit
   for bit;
-- every refusal is a udm1.UDM1Error or ValueError (TypeError for a non-number) with a one-line message.
+- every refusal is a udm1.UDM1Error or ValueError (TypeError for a non-number) with a one-line message;
+- streams and domains (through ctypes, stream_abi.py): stream fills equal Sequence.points_at, nothing is
+  written on any refused fill or init, a child domain's aligned blocks of samples (a split's sub-samples,
+  merged over aligned parents) are shifted copies of the sequence's first points;
+- Noise: batches equal per-point calls, gradients equal central differences within a derived bound,
+  finite coordinates of any size give finite values (or a one-line refusal of a pattern whose octaves
+  overflow), and what is not real numbers is refused by the converter;
+- udm1.integrate: the exact sums do not depend on the chunk or the split, every bad argument is refused
+  before f runs, and any magnitude up to 1e300 gives a finite estimate, stderr and bound.
 
 Failing examples Hypothesis found stay below as @example regression cases.
 """
@@ -181,6 +189,7 @@ WEYL_SEQUENCES = tuple(sorted(n for n in WEYL if not PRESETS[n].point_set))
 
 
 def stream_of(seq, stream, first, count):
+    """A udm1_stream of seq (which the caller keeps alive: the stream refers to it)."""
     st_ = Stream()
     status = lib.udm1_stream_init(ctypes.byref(st_), seq.handle, stream, first, count)
     assert status == 0, lib.udm1_last_error()
@@ -277,7 +286,8 @@ def test_nothing_is_written_on_error(kw, data):
                           "before refusing dimensions past the limit (the header says the output is unchanged)",
                    strict=False)
 def test_stream_fill_f32_writes_nothing_on_error():
-    st_ = stream_of(udm1.Sequence("wr", 4, seed=1), 0, 0, 4)
+    seq = udm1.Sequence("wr", 4, seed=1)  # kept alive: a stream refers to its sequence
+    st_ = stream_of(seq, 0, 0, 4)
     first = DIMENSION_INDEX_LIMIT - 100  # the first 64 values are inside the limit, the rest pass it
     _unchanged(ctypes.c_float, 200, lambda b: lib.udm1_stream_fill_f32(ctypes.byref(st_), 0, first, 200, b))
 
