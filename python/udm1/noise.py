@@ -103,7 +103,8 @@ class Noise:
         if table is not None:
             text(table, "table", where=where)
         if isinstance(period, (list, tuple, np.ndarray)):
-            periods = [u32(p, f"period[{k}]", where=where) for k, p in enumerate(np.asarray(period, dtype=object).ravel())]
+            given = np.asarray(period, dtype=object).ravel()
+            periods = [u32(p, f"period[{k}]", where=where) for k, p in enumerate(given)]
         else:
             periods = [u32(period, "period", where=where)] * 4
         if len(periods) == 3:

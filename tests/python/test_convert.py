@@ -168,7 +168,8 @@ ACCEPTED = [
      lambda: udm1.Sequence("wr", 3, seed=5).points(4, first=2)),
     ("points 0-d arrays", lambda: seq().points(np.array(4), stream=np.array(7)), lambda: seq().points(4, stream=7)),
     ("points integral float32", lambda: seq().points(np.float32(4.0)), lambda: seq().points(4)),
-    ("points_at int8 and float arrays", lambda: seq().points_at(np.array([1, 2], dtype=np.int8), np.array([3.0, 2.0**60])),
+    ("points_at int8 and float arrays",
+     lambda: seq().points_at(np.array([1, 2], dtype=np.int8), np.array([3.0, 2.0**60])),
      lambda: seq().points_at(np.array([1, 2], dtype=np.uint64), np.array([3, 2**60], dtype=np.uint64))),
     ("points_at lists up to 2^64 - 1", lambda: seq().points_at([0, 2**64 - 1], [2**64 - 2, 0]),
      lambda: seq().points_at(np.array([0, 2**64 - 1], dtype=np.uint64), np.array([2**64 - 2, 0], dtype=np.uint64))),
@@ -270,7 +271,8 @@ def test_no_array_is_read_before_it_is_written(monkeypatch):
         n = udm1.Noise("rd", seed=2)
         q = udm1.qmc.WR(2, seed=1)
         return [
-            s.points(33, 5, stream=2), s.points(9, dtype=np.uint64), s.points_at([1, 2, 3], [4, 5, 6], dims=range(2, 7)),
+            s.points(33, 5, stream=2), s.points(9, dtype=np.uint64),
+            s.points_at([1, 2, 3], [4, 5, 6], dims=range(2, 7)),
             s.spectrum(64, size=8, randomizations=2), s.zoneplate(6, 5, 2),
             n.noise(P3), n.noise(P3, gradient=True), n.cellular(P3, output="f2"), n.pattern("fbm", P3, gradient=True),
             n.pattern_grid("marble", 7, 3), n.tables(), n.cellular_offsets(),
