@@ -23,11 +23,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._convert import integer, u32, u64
+from ._convert import U32, U64, choice, flag, function, integer, real, real_array, text, u64
 from ._native import lib
-from .errors import check
-from .exact_sum import ExactSum
-from .sequence import Preset, Sequence, presets
+from .errors import UDM1Error, check
+from .exact_sum import ExactSum, sqrt_fraction
+from .sequence import Preset, Sequence, _randomize_code, presets
+
+WHERE = "udm1.integrate"
+_INVALID_ARGUMENT = 2
 
 
 @dataclass(frozen=True)
@@ -42,6 +45,14 @@ class IntegralSpec:
     randomize: object = True
     stream: int = 0
 
+    def __post_init__(self):  # every field through the converter: a spec that exists is a valid one
+        _preset(text(self.sampler, "sampler", where=WHERE))
+        object.__setattr__(self, "d", integer(self.d, "d", 1, U32, where=WHERE))
+        object.__setattr__(self, "n", integer(self.n, "n", 1, U64, where=WHERE))
+        object.__setattr__(self, "seed", u64(self.seed, "seed", where=WHERE))
+        object.__setattr__(self, "randomize", _randomize(self.randomize))
+        object.__setattr__(self, "stream", u64(self.stream, "stream", where=WHERE))
+
     def sequence(self) -> Sequence:
         info = _preset(self.sampler)
         k = self.n if info.point_set else 0
@@ -50,13 +61,14 @@ class IntegralSpec:
 
 @dataclass(frozen=True)
 class Integral:
-    """An estimate: the exact sums of f and f^2 over sample indices [first, first + count)."""
+    """An estimate: the exact sums of f and f^2 over sample indices [first, first + count) (sum_sq None
+    where it was not kept: the tolerance rules' replicates, whose rule does not use it)."""
 
     spec: IntegralSpec
     first: int
     count: int
     sum: ExactSum
-    sum_sq: ExactSum
+    sum_sq: ExactSum | None
 
     @property
     def value(self) -> float:
@@ -66,31 +78,57 @@ class Integral:
     @property
     def stderr(self) -> float:
         """sqrt(sample variance / count): the standard error for independent samples (for
-        low-discrepancy points an upper estimate only; use randomized replicates)."""
+        low-discrepancy points an upper estimate only; use randomized replicates). From the exact sums
+        of f and of f^2, in exact rational arithmetic, rounded once: finite and exact to the last bit at
+        any finite magnitude of f (it is at most max |f|). NaN for fewer than 2 samples."""
+        if self.sum_sq is None:
+            raise ValueError("udm1.Integral: the sum of squares was not kept for this estimate (squares=False)")
         if self.count < 2:
             return float("nan")
-        from fractions import Fraction
-
         s, q, c = self.sum.fraction(), self.sum_sq.fraction(), self.count
-        var = (q - s * s / c) / (c - 1)
-        return float(max(var, Fraction(0)) / c) ** 0.5
+        var = (q - s * s / c) / (c - 1)  # >= 0: exact
+        return sqrt_fraction(var / c)
 
     def __add__(self, other: "Integral") -> "Integral":
         """Join two adjacent ranges of the same integral (exact)."""
+        if not isinstance(other, Integral):
+            return NotImplemented
         if other.spec != self.spec:
             raise ValueError("Integral: the two estimates are of different integrals")
         a, b = (self, other) if self.first <= other.first else (other, self)
         if a.first + a.count != b.first:
             raise ValueError(f"Integral: ranges [{a.first}, {a.first + a.count}) and "
                              f"[{b.first}, {b.first + b.count}) are not adjacent")
-        return Integral(self.spec, a.first, a.count + b.count, a.sum + b.sum, a.sum_sq + b.sum_sq)
+        sum_sq = None if a.sum_sq is None or b.sum_sq is None else a.sum_sq + b.sum_sq
+        return Integral(self.spec, a.first, a.count + b.count, a.sum + b.sum, sum_sq)
 
 
 def _preset(name: str) -> Preset:
+    name = text(name, "sampler", where=WHERE)
     for p in _presets():
         if p.name == name.split("+")[0] or p.name == name:
             return p
     raise ValueError(f"udm1.integrate: unknown sampler '{name}' (udm1.presets() lists them)")
+
+
+def _randomize(randomize):
+    """randomize as Sequence takes it (True, False, None or a name), checked; numpy bools as bools."""
+    _randomize_code(randomize)
+    return bool(randomize) if isinstance(randomize, np.bool_) else randomize
+
+
+def _chunk(chunk) -> int:
+    return integer(chunk, "chunk", 1, U64, where=WHERE)
+
+
+def _range(first, count) -> tuple[int, int]:
+    return u64(first, "first", where=WHERE), u64(count, "count", where=WHERE)
+
+
+def _spec(spec) -> "IntegralSpec":
+    if not isinstance(spec, IntegralSpec):
+        raise TypeError(f"udm1.integrate: spec must be an IntegralSpec, not {type(spec).__name__}")
+    return spec
 
 
 @functools.lru_cache(maxsize=1)
@@ -98,10 +136,12 @@ def _presets() -> tuple[Preset, ...]:
     return tuple(presets())  # the library's table does not change while it is loaded
 
 
-def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16) -> Integral:
+def integrate_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 << 16,
+                    squares: bool = True) -> Integral:
     """f over sample indices [first, first + count) of spec's sequence, in chunks of `chunk` points.
-    f takes an (m, d) float64 array and returns m finite values."""
-    return replicate_ranges(f, [spec], first, count, chunk)[0]
+    f takes an (m, d) float64 array and returns m finite real values. squares=False: no sum of squares
+    (sum_sq None, no stderr; what the tolerance rules need, at less cost)."""
+    return replicate_ranges(f, [_spec(spec)], first, count, chunk, squares)[0]
 
 
 def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, randomize=True, stream: int = 0,
@@ -110,8 +150,8 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
               transform: str | None = None, criterion: str | None = None, strict: bool = True):
     """The integral of f over [0, 1)^d with `sampler`, in one process.
 
-    With n: the estimate from samples [0, n), an `Integral` (udm1.distributed.integrate gives the same
-    bit for bit from a cluster).
+    With n: the estimate from samples [0, n) of stream `stream`, an `Integral` (udm1.distributed.integrate
+    gives the same bit for bit from a cluster).
 
     With abs_tol and/or rel_tol: samples until the estimate is within max(abs_tol, rel_tol |I|) of
     the integral I, and returns a `ToleranceResult`. Two stopping rules (`criterion`; by default
@@ -141,39 +181,58 @@ def integrate(f, sampler: str, d: int, n: int | None = None, *, seed: int = 0, r
     applied by the library to a randomized sampler's points as the sampler NAME+tent; "c0", "c1",
     "c2"), which helps Kronecker and lattice rules on non-periodic integrands. If the
     tolerance is not met within n_max, raises ToleranceNotMet whose `.result` holds the partial
-    estimate (met False); strict=False returns that result instead."""
-    if abs_tol is not None or rel_tol is not None:
-        if n is not None:
-            raise ValueError("udm1.integrate: give n, or a tolerance (abs_tol, rel_tol), not both")
-        return integrate_to_tolerance(f, sampler, d, abs_tol=abs_tol, rel_tol=rel_tol, n_max=n_max, n_init=n_init,
-                                      replications=replications, confidence=confidence, transform=transform,
-                                      criterion=criterion, seed=seed, randomize=randomize, chunk=chunk,
-                                      strict=strict)
+    estimate (met False); strict=False returns that result instead. The tolerance rules draw the
+    streams they name, so `stream` must be 0 with a tolerance (vary `seed` instead).
+
+    Every argument is checked before f is first called (udm1.UDM1Error, a ValueError, or TypeError,
+    naming it), the tolerance rule's ones also with n: chunk, n, n_init, n_max and replications are
+    integers (integral floats taken), chunk >= 1; abs_tol and rel_tol positive finite reals, confidence
+    in [0.5, 1); transform and criterion names; seed and stream in [0, 2^64). f's values must be finite
+    real numbers (not complex, bool or strings). Any finite magnitude works: the sums of f and f^2 are
+    exact (Integral.stderr is finite and exact to its last bit), the replicates' statistics and the
+    lattice's transform are taken at a power-of-two scale of the values when they are beyond 2^+-400 (an
+    error bound past the double range is inf, and the tolerance is then not met)."""
+    f = function(f, "f", where=WHERE)
+    tolerance = abs_tol is not None or rel_tol is not None
+    if tolerance and n is not None:
+        raise ValueError("udm1.integrate: give n, or a tolerance (abs_tol, rel_tol), not both")
+    stream = u64(stream, "stream", where=WHERE)
+    rule = _tolerance_arguments(f, sampler, d, abs_tol, rel_tol, n_max, n_init, replications, confidence, transform,
+                                criterion, seed, randomize, chunk, strict, tolerance)
+    if tolerance:
+        if stream != 0:
+            raise ValueError(f"udm1.integrate: stream = {stream} with a tolerance: its rules draw streams 0 .. "
+                             f"replications - 1 of the seed (vary seed instead)")
+        return _integrate_to_tolerance(rule, None, None)
     if n is None:
         raise ValueError("udm1.integrate: give n (the sample count) or a tolerance (abs_tol, rel_tol)")
-    n = integer(n, "n", 1)
-    sampler, g = _transformed(f, str(sampler), transform, randomize)
-    spec = IntegralSpec(sampler, u32(d, "d"), n, u64(seed, "seed"), randomize, u64(stream, "stream"))
-    _preset(spec.sampler)
-    return integrate_range(g, spec, 0, spec.n, chunk)
+    spec = IntegralSpec(rule.sampler, rule.d, integer(n, "n", 1, U64, where=WHERE), rule.seed, rule.randomize, stream)
+    spec.sequence()  # the library's checks (dimensions, randomization, point count) before f is called
+    return integrate_range(rule.g, spec, 0, spec.n, rule.chunk)
 
 
-def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> list[Integral]:
+def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16, squares: bool = True) -> list[Integral]:
     """integrate_range of [first, first + count) for each spec. Specs that differ only in their stream
     (replicates) share one sequence and one call of f per chunk (f sees their points stacked): the same
     Integrals, bit for bit, at a fraction of the calls."""
+    f = function(f, "f", where=WHERE)
+    specs = [_spec(s) for s in specs]
+    if not specs:
+        raise ValueError("udm1.integrate: no specs")
+    first, count = _range(first, count)
+    chunk, squares = _chunk(chunk), flag(squares, "squares", where=WHERE)
     base = specs[0]
     if any((s.sampler, s.d, s.n, s.seed, s.randomize) != (base.sampler, base.d, base.n, base.seed, base.randomize)
            for s in specs):
-        return [replicate_ranges(f, [s], first, count, chunk)[0] for s in specs]
-    if not (0 <= first and 0 <= count and first + count <= base.n):
+        return [replicate_ranges(f, [s], first, count, chunk, squares)[0] for s in specs]
+    if first + count > base.n:
         raise ValueError(f"udm1.integrate: range [{first}, {first + count}) is not inside [0, {base.n})")
     seq = base.sequence()
-    sums = [(ExactSum(), ExactSum()) for _ in specs]
+    sums = [(ExactSum(), ExactSum() if squares else None) for _ in specs]
     step = max(1, chunk // len(specs))
     for start in range(first, first + count, step):
         m = min(step, first + count - start)
-        if len(specs) > 1:  # the replicates' points stacked, each written in place
+        if len(specs) > 1:  # the replicates' points stacked, each written in place (every row: one fill each)
             x = np.empty((len(specs) * m, base.d))
             for r, s in enumerate(specs):
                 seq.points(m, start, stream=s.stream, out=x[r * m:(r + 1) * m])
@@ -183,7 +242,8 @@ def replicate_ranges(f, specs, first: int, count: int, chunk: int = 1 << 16) -> 
         for r, (total, total_sq) in enumerate(sums):
             yr = y[r * m:(r + 1) * m]
             total.add(yr)
-            total_sq.add(yr * yr)
+            if squares:
+                total_sq.add_squares(yr)
     return [Integral(s, first, count, a, b) for s, (a, b) in zip(specs, sums)]
 
 
@@ -206,13 +266,18 @@ TRANSFORMS = {
 }
 
 
+def _transform(transform) -> str | None:
+    return None if transform is None else choice(transform, "transform", TRANSFORMS, where=WHERE)
+
+
 def _transformed(f, sampler: str, transform: str | None, randomize=True) -> tuple[str, object]:
     """(sampler, integrand) with the transform applied: the tent (baker's) of a randomized sampler by
     the library, on the points' 0.64 fixed point values (the sampler NAME+tent: one bit more than the
     double's and no pass over the points in Python), the others, and the tent of an unrandomized
     sampler, by periodized (the fixed point tent takes x = 1/2 to 0, not 1: a randomized value is never
     exactly 1/2)."""
-    if transform in ("tent", "baker") and "+" not in sampler and randomize not in (False, None, "none"):
+    transform = _transform(transform)
+    if transform in ("tent", "baker") and "+" not in sampler and _randomize_code(randomize) != 0:
         return sampler + "+tent", f
     return sampler, (periodized(f, transform) if transform else f)
 
@@ -221,12 +286,10 @@ def periodized(f, transform: str):
     """f composed with a periodizing transform of every coordinate, times its Jacobian: the same
     integral over [0, 1)^d, and a periodic integrand (tent: continuous; c0, c1, c2: with 0, 1 or 2
     derivatives vanishing at the ends too)."""
-    if transform not in TRANSFORMS:
-        raise ValueError(f"udm1.integrate: transform {transform!r} is not one of {', '.join(TRANSFORMS)}")
-    phi, dphi = TRANSFORMS[transform]
+    phi, dphi = TRANSFORMS[choice(transform, "transform", TRANSFORMS, where=WHERE)]
 
     def g(x):
-        y = np.asarray(f(phi(x)), dtype=np.float64)
+        y = _values(f(phi(x)))
         return y if dphi is None else y.reshape(-1) * np.prod(dphi(x), axis=1)
 
     return g
@@ -263,10 +326,6 @@ class ToleranceResult:
 
     def tolerance(self) -> float:
         return _tolerance(self.abs_tol, self.rel_tol, self.estimate)
-
-
-def _tolerance(abs_tol, rel_tol, estimate: float) -> float:
-    return max(abs_tol or 0.0, (rel_tol or 0.0) * abs(estimate))
 
 
 def _t_quantile(q: float, dof: int) -> float:
@@ -369,12 +428,13 @@ class LatticeFourier:
     allocate (see _Workspace)."""
 
     def __init__(self, y: np.ndarray, capacity: int = 0):
+        y = real_array(y, "y", where=WHERE).ravel()
         n = y.size
         self.m = n.bit_length() - 1
         if n != 1 << self.m or self.m <= FOURIER_LAG:
             raise ValueError(f"udm1.integrate: the lattice criterion needs a power of two above 2^{FOURIER_LAG} "
                              f"points, not {n}")
-        capacity = min(int(capacity), FOURIER_BUFFER)
+        capacity = min(integer(capacity, "capacity", 0, U64, where=WHERE), FOURIER_BUFFER)
         self._w = _Workspace.take(max(n, 1 << (capacity.bit_length() - 1) if capacity > 0 else 0))
         self._add(y)
 
@@ -409,6 +469,7 @@ class LatticeFourier:
     def double(self, y_new: np.ndarray) -> None:
         """Take the values of the next n points (sequence indices n .. 2n - 1)."""
         n = 1 << self.m
+        y_new = real_array(y_new, "y_new", where=WHERE).ravel()
         if y_new.size != n:
             raise ValueError(f"udm1.integrate: doubling {n} points needs {n} new values, not {y_new.size}")
         self._add(y_new)
@@ -425,23 +486,36 @@ def values_range(f, spec: IntegralSpec, first: int, count: int, chunk: int = 1 <
     """f at sample indices [first, first + count) of spec's sequence (or `seq`, that sequence already
     made), and their exact sum. The values are an array of their own (copy=False: maybe f's own array,
     for a caller that uses them before it calls f again)."""
+    f, spec = function(f, "f", where=WHERE), _spec(spec)
+    first, count = _range(first, count)
+    chunk = _chunk(chunk)
+    if first + count > spec.n:
+        raise ValueError(f"udm1.integrate: range [{first}, {first + count}) is not inside [0, {spec.n})")
     seq = seq or spec.sequence()
     if count <= chunk:
-        y = _checked(f, seq.points(count, first, stream=spec.stream), first) if count else np.empty(0)
+        y = _checked(f, seq.points(count, first, stream=spec.stream), first) if count else np.zeros(0)
         if copy:
             y = y.copy()
     else:  # chunk by chunk into one array (each copied at once: f may hand back one buffer every time)
         y = np.empty(count)
-        for start in range(first, first + count, chunk):
-            m = min(chunk, first + count - start)
-            y[start - first:start - first + m] = _checked(f, seq.points(m, start, stream=spec.stream), start)
+        done = 0
+        while done < count:  # every element written: chunk >= 1, the last chunk up to count
+            m = min(chunk, count - done)
+            y[done:done + m] = _checked(f, seq.points(m, first + done, stream=spec.stream), first + done)
+            done += m
     return y, ExactSum().add(y)
+
+
+def _values(y) -> np.ndarray:
+    """An integrand's values through the package's converter: real numbers only (no complex values, bools,
+    strings), as float64."""
+    return real_array(y, "f(x)", where=WHERE)
 
 
 def _checked(f, x: np.ndarray, start: int, rows: int | None = None, streams=None) -> np.ndarray:
     """f(x) as m finite values, x the points of samples start, start + 1, ... (`rows` of them per stream
     of `streams` stacked, when several), or one ValueError naming the sample, its stream and point."""
-    y = np.asarray(f(x), dtype=np.float64)
+    y = _values(f(x))
     if y.shape not in ((x.shape[0],), (x.shape[0], 1)):
         raise ValueError(f"udm1.integrate: f returned shape {y.shape} for {x.shape[0]} points (want ({x.shape[0]},))")
     y = y.reshape(-1)
@@ -457,6 +531,82 @@ def _checked(f, x: np.ndarray, start: int, rows: int | None = None, streams=None
     return y
 
 
+@dataclass(frozen=True)
+class _Rule:
+    """A tolerance rule's arguments, every one checked: the integrand (transformed), the sampler's name
+    (with +tent where the library applies the tent), and the rest as integrate_to_tolerance takes them."""
+
+    g: object
+    sampler: str
+    d: int
+    abs_tol: float | None
+    rel_tol: float | None
+    n_max: int
+    n_init: int
+    replications: int
+    confidence: float
+    criterion: str
+    seed: int
+    randomize: object
+    chunk: int
+    strict: bool
+    point_set: bool
+
+
+def _tolerance(abs_tol, rel_tol, estimate: float) -> float:
+    return max(abs_tol or 0.0, (rel_tol or 0.0) * abs(estimate))
+
+
+def _positive(tol, name: str) -> float | None:
+    if tol is None:
+        return None
+    v = real(tol, name, finite=False, where=WHERE)  # the kind first: bools, strings, complex refused
+    if not (math.isfinite(v) and v > 0):
+        raise UDM1Error(_INVALID_ARGUMENT, f"udm1.integrate: {name} must be a positive finite number, not {tol!r}")
+    return v
+
+
+def _tolerance_arguments(f, sampler, d, abs_tol, rel_tol, n_max, n_init, replications, confidence, transform,
+                         criterion, seed, randomize, chunk, strict, tolerance: bool = True) -> _Rule:
+    """Every argument of a tolerance rule checked, before anything runs (with tolerance=False: each one's
+    kind and range only, for integrate with n, which does not use them)."""
+    f = function(f, "f", where=WHERE)
+    abs_tol, rel_tol = _positive(abs_tol, "abs_tol"), _positive(rel_tol, "rel_tol")
+    if tolerance and abs_tol is None and rel_tol is None:
+        raise ValueError("udm1.integrate: give abs_tol or rel_tol")
+    confidence = real(confidence, "confidence", lo=0.5, hi=1.0, hi_open=True, where=WHERE)
+    replications = integer(replications, "replications", 2, U32, where=WHERE)
+    n_init = integer(n_init, "n_init", 2, U64, where=WHERE)
+    n_max = integer(n_max, "n_max", 1, U64, where=WHERE)
+    chunk, strict = _chunk(chunk), flag(strict, "strict", where=WHERE)
+    info = _preset(sampler)
+    d, seed, randomize = integer(d, "d", 1, U32, where=WHERE), u64(seed, "seed", where=WHERE), _randomize(randomize)
+    lattice_seq = sampler.split("+")[0] == "lattice-seq"
+    if criterion is None:
+        criterion = "lattice" if lattice_seq else "replications"
+    criterion = choice(criterion, "criterion", CRITERIA, where=WHERE)
+    name, g = _transformed(f, sampler, transform, randomize)
+    rule = _Rule(g, name, d, abs_tol, rel_tol, n_max, n_init, replications, confidence, criterion, seed, randomize,
+                 chunk, strict, info.point_set)
+    if not tolerance:
+        return rule
+    if criterion == "lattice":
+        if not lattice_seq:
+            raise ValueError(f"udm1.integrate: criterion 'lattice' needs the sampler 'lattice-seq' (a lattice at "
+                             f"every power of two), not {sampler!r}")
+        if n_init & (n_init - 1) or n_init <= 1 << FOURIER_LAG:
+            raise ValueError(f"udm1.integrate: criterion 'lattice' needs n_init a power of two above "
+                             f"{1 << FOURIER_LAG}, not {n_init}")
+        if n_init > n_max:
+            raise ValueError(f"udm1.integrate: n_max {n_max} is below n_init = {n_init}")
+    elif n_init * replications > n_max:
+        raise ValueError(f"udm1.integrate: n_max {n_max} is below the first round's n_init x replications = "
+                         f"{n_init * replications}")
+    # the library's checks (dimensions, randomization, point count) before f is first called
+    IntegralSpec(name, d, n_init if info.point_set else n_max, seed, randomize, 0).sequence()
+    return rule
+
+
 def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=None, n_max: int = 1 << 24,
                            n_init: int = 1 << 8, replications: int = 16, confidence: float = 0.99,
                            transform: str | None = None, criterion: str | None = None, seed: int = 0,
@@ -465,72 +615,71 @@ def integrate_to_tolerance(f, sampler: str, d: int, *, abs_tol=None, rel_tol=Non
     """udm1.integrate with a tolerance (see there). `ranges(f, specs, first, count)`, if given, computes
     the replicates' Integrals of [first, first + count), and `values(f, spec, first, count)` the values
     and their ExactSum of one range for the lattice criterion (udm1.distributed passes a cluster's)."""
+    rule = _tolerance_arguments(f, sampler, d, abs_tol, rel_tol, n_max, n_init, replications, confidence, transform,
+                                criterion, seed, randomize, chunk, strict)
+    for name, fn in (("ranges", ranges), ("values", values)):
+        if fn is not None:
+            function(fn, name, where=WHERE)
+    return _integrate_to_tolerance(rule, ranges, values)
+
+
+def _scale_exponent(amax: float) -> int:
+    """e such that values of magnitude up to amax, times 2^-e, stay well inside the double range in sums,
+    squares and transforms: 0 (no scaling, the values as they are) for amax in [2^-400, 2^400], where
+    their squares stay normal doubles; else amax's binary exponent (values below 1 then)."""
+    if amax == 0 or 2.0 ** -400 <= amax <= 2.0 ** 400:
+        return 0
+    return math.frexp(amax)[1]
+
+
+def _ldexp(x: float, e: int) -> float:
+    """x 2^e: +-inf past the double range."""
+    try:
+        return math.ldexp(x, e)
+    except OverflowError:
+        return math.copysign(math.inf, x)
+
+
+def _integrate_to_tolerance(rule: _Rule, ranges, values) -> ToleranceResult:
     t0 = time.perf_counter()
-    for name, tol in (("abs_tol", abs_tol), ("rel_tol", rel_tol)):
-        if tol is not None and not (isinstance(tol, (int, float)) and math.isfinite(tol) and tol > 0):
-            raise ValueError(f"udm1.integrate: {name} must be a positive finite number, not {tol!r}")
-    if abs_tol is None and rel_tol is None:
-        raise ValueError("udm1.integrate: give abs_tol or rel_tol")
-    if not (isinstance(confidence, float) and 0.5 <= confidence < 1):
-        raise ValueError(f"udm1.integrate: confidence must be in [0.5, 1), not {confidence!r}")
-    replications = integer(replications, "replications", 2)
-    n_init = integer(n_init, "n_init", 2)
-    n_max = integer(n_max, "n_max", 1)
-    info = _preset(str(sampler))
-    lattice_seq = str(sampler).split("+")[0] == "lattice-seq"
-    if criterion is None:
-        criterion = "lattice" if lattice_seq else "replications"
-    if criterion not in CRITERIA:
-        raise ValueError(f"udm1.integrate: criterion {criterion!r} is not one of {', '.join(CRITERIA)}")
-    d = u32(d, "d")
-    spec_name = str(sampler)
-    sampler, g = _transformed(f, spec_name, transform, randomize)
-    seed = u64(seed, "seed")
-    if criterion == "lattice":
-        if not lattice_seq:
-            raise ValueError(f"udm1.integrate: criterion 'lattice' needs the sampler 'lattice-seq' (a lattice at "
-                             f"every power of two), not {spec_name!r}")
-        if n_init & (n_init - 1) or n_init <= 1 << FOURIER_LAG:
-            raise ValueError(f"udm1.integrate: criterion 'lattice' needs n_init a power of two above "
-                             f"{1 << FOURIER_LAG}, not {n_init}")
-        if n_init > n_max:
-            raise ValueError(f"udm1.integrate: n_max {n_max} is below n_init = {n_init}")
-        return _lattice_to_tolerance(g, IntegralSpec(str(sampler), d, n_max, seed, randomize, 0), abs_tol, rel_tol,
-                                     n_max, n_init, chunk, strict, values, t0)
-    if n_init * replications > n_max:
-        raise ValueError(f"udm1.integrate: n_max {n_max} is below the first round's n_init x replications = "
-                         f"{n_init * replications}")
-    quantile = _t_quantile(0.5 + confidence / 2, replications - 1)
+    if rule.criterion == "lattice":
+        spec = IntegralSpec(rule.sampler, rule.d, rule.n_max, rule.seed, rule.randomize, 0)
+        return _lattice_to_tolerance(rule.g, spec, rule.abs_tol, rule.rel_tol, rule.n_max, rule.n_init, rule.chunk,
+                                     rule.strict, values, t0)
+    replications, n_max = rule.replications, rule.n_max
+    quantile = _t_quantile(0.5 + rule.confidence / 2, replications - 1)
 
     def specs(n_set):
-        return [IntegralSpec(str(sampler), d, n_set, seed, randomize, r) for r in range(replications)]
+        return [IntegralSpec(rule.sampler, rule.d, n_set, rule.seed, rule.randomize, r) for r in range(replications)]
 
     if ranges is None:
         def ranges(fn, sp, first, count):
-            return replicate_ranges(fn, sp, first, count, chunk)
+            return replicate_ranges(fn, sp, first, count, rule.chunk, squares=False)  # the rule uses the means
 
-    n, parts, history = n_init, None, []
+    n, parts, history = rule.n_init, None, []
     while True:
-        if info.point_set:  # a point set of n points: a new set at each n
-            parts = ranges(g, specs(n), 0, n)
+        if rule.point_set:  # a point set of n points: a new set at each n
+            parts = ranges(rule.g, specs(n), 0, n)
         else:  # an extensible sequence: the next [n / 2, n) joins the sums of [0, n / 2)
             sp = specs(n_max)
             if parts is None:
-                parts = ranges(g, sp, 0, n)
+                parts = ranges(rule.g, sp, 0, n)
             else:
-                more = ranges(g, sp, n // 2, n - n // 2)
+                more = ranges(rule.g, sp, n // 2, n - n // 2)
                 parts = [a + b for a, b in zip(parts, more)]
         means = np.array([p.value for p in parts])
-        estimate = float(np.mean(means))
-        bound = quantile * float(np.std(means, ddof=1)) / math.sqrt(replications)
+        e = _scale_exponent(float(np.max(np.abs(means))))  # a power of two: exact, and 0 at ordinary magnitudes
+        scaled = np.ldexp(means, -e) if e else means
+        estimate = _ldexp(float(np.mean(scaled)), e)
+        bound = _ldexp(quantile * float(np.std(scaled, ddof=1)) / math.sqrt(replications), e)
         history.append((n, estimate, bound))
-        met = bound <= _tolerance(abs_tol, rel_tol, estimate)
+        met = bound <= _tolerance(rule.abs_tol, rule.rel_tol, estimate)
         if met or 2 * n * replications > n_max:
             break
         n *= 2
     result = ToleranceResult(estimate, bound, n, n * replications, replications, time.perf_counter() - t0, met,
-                             abs_tol, rel_tol, confidence, history=history)
-    return _refuse(result, strict, n_max, f"{n} points x {replications} replications")
+                             rule.abs_tol, rule.rel_tol, rule.confidence, history=history)
+    return _refuse(result, rule.strict, n_max, f"{n} points x {replications} replications")
 
 
 def _refuse(result: ToleranceResult, strict: bool, n_max: int, where: str) -> ToleranceResult:
@@ -545,7 +694,9 @@ def _refuse(result: ToleranceResult, strict: bool, n_max: int, where: str) -> To
 def _lattice_to_tolerance(g, spec: IntegralSpec, abs_tol, rel_tol, n_max: int, n: int, chunk: int, strict: bool,
                           values, t0: float) -> ToleranceResult:
     """The lattice criterion (see integrate): one shifted embedded lattice, doubled until its Fourier bound
-    is within the tolerance. The estimate is the exact mean of every value (split-independent)."""
+    is within the tolerance. The estimate is the exact mean of every value (split-independent). The
+    transform is taken of the values times 2^-e, e fixed by the first n values (0 at ordinary magnitudes,
+    see _scale_exponent), and the bound scaled back: exact, as the bound is linear in the values."""
     if values is None:
         seq = spec.sequence()
 
@@ -553,17 +704,18 @@ def _lattice_to_tolerance(g, spec: IntegralSpec, abs_tol, rel_tol, n_max: int, n
             return values_range(fn, sp, first, count, chunk, seq, copy=False)
 
     y, total = values(g, spec, 0, n)
-    fourier = LatticeFourier(y, capacity=n_max)
+    e = _scale_exponent(float(np.max(np.abs(y)))) if y.size else 0
+    fourier = LatticeFourier(np.ldexp(y, -e) if e else y, capacity=n_max)
     history = []
     try:
         while True:
-            estimate, bound = total.mean(n), fourier.bound()
+            estimate, bound = total.mean(n), _ldexp(fourier.bound(), e)
             history.append((n, estimate, bound))
             met = bound <= _tolerance(abs_tol, rel_tol, estimate)
             if met or 2 * n > n_max:
                 break
             y, more = values(g, spec, n, n)
-            fourier.double(y)
+            fourier.double(np.ldexp(y, -e) if e else y)
             total = total + more
             n *= 2
     finally:

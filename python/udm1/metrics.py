@@ -6,7 +6,7 @@ import ctypes
 
 import numpy as np
 
-from ._convert import u32, u64
+from ._convert import choice, flag, real_array, text, u32, u64
 from ._native import lib
 from .errors import check
 
@@ -16,11 +16,8 @@ METHODS = {"L2-star": 1, "CD": 2, "WD": 3, "MD": 4}
 def discrepancy(sample, method: str = "CD") -> float:
     """Discrepancy of an (n, d) sample in [0, 1]^d, as scipy.stats.qmc.discrepancy
     (CD, WD, MD squared; L2-star square-rooted), computed by libudm1."""
-    if method not in METHODS:
-        raise ValueError(f"udm1.discrepancy: method {method!r} is not one of {sorted(METHODS)}")
-    x = np.ascontiguousarray(np.asarray(sample, dtype=np.float64))
-    if x.ndim != 2:
-        raise ValueError("udm1.discrepancy: sample must be a 2D array (n, d)")
+    method = choice(method, "method", METHODS, where="udm1.discrepancy")
+    x = _points2d(sample, "discrepancy")
     out = ctypes.c_double()
     check(lib.udm1_discrepancy(x.ctypes.data, x.shape[0], x.shape[1], x.shape[1], METHODS[method], ctypes.byref(out)))
     return out.value
@@ -28,17 +25,20 @@ def discrepancy(sample, method: str = "CD") -> float:
 
 def discrepancy_random(n: int, d: int, method: str = "CD") -> float:
     """The discrepancy of n independent uniform points (E[D^2]; sqrt of it for L2-star)."""
-    if method not in METHODS:
-        raise ValueError(f"udm1.discrepancy_random: method {method!r} is not one of {sorted(METHODS)}")
+    where = "udm1.discrepancy_random"
+    method = choice(method, "method", METHODS, where=where)
     out = ctypes.c_double()
-    check(lib.udm1_discrepancy_random(u64(n, "n"), u32(d, "d"), METHODS[method], ctypes.byref(out)))
+    check(lib.udm1_discrepancy_random(u64(n, "n", where=where), u32(d, "d", where=where), METHODS[method],
+                                      ctypes.byref(out)))
     return out.value
 
 
 def _points2d(sample, name: str, min_d: int = 1) -> np.ndarray:
-    x = np.ascontiguousarray(np.asarray(sample, dtype=np.float64))
+    """sample as a C-contiguous (n, d) float64 array, through the package's converter (real numbers
+    only: no bools, complex values or strings)."""
+    x = real_array(sample, "sample", where=f"udm1.{name}")
     if x.ndim != 2 or x.shape[1] < min_d:
-        raise ValueError(f"udm1.{name}: sample must be an (n, d) array with d >= {min_d}")
+        raise ValueError(f"udm1.{name}: sample must be an (n, d) array with d >= {min_d}, not shape {x.shape}")
     return x
 
 
@@ -54,7 +54,8 @@ def min_distance(sample, toroidal: bool = False) -> float:
     """Smallest pairwise distance of an (n, d) sample (multiply by sqrt(n) to normalise)."""
     x = _points2d(sample, "min_distance")
     out = ctypes.c_double()
-    check(lib.udm1_min_distance(x.ctypes.data, x.shape[0], x.shape[1], x.shape[1], int(bool(toroidal)), ctypes.byref(out)))
+    toroidal = flag(toroidal, "toroidal", where="udm1.min_distance")
+    check(lib.udm1_min_distance(x.ctypes.data, x.shape[0], x.shape[1], x.shape[1], int(toroidal), ctypes.byref(out)))
     return out.value
 
 
@@ -74,6 +75,8 @@ def _integrand_code(integrand) -> int:
         if integrand not in table:
             raise ValueError(f"udm1: unknown integrand {integrand!r}; known: {sorted(table)}")
         return table[integrand]
+    if isinstance(integrand, bytes):
+        text(integrand, "integrand")  # refused: a name is a str
     return u32(integrand, "integrand")
 
 
@@ -89,5 +92,5 @@ def integrand(name, sample) -> np.ndarray:
 def integrand_exact(name, d: int) -> float:
     """The exact integral of a test integrand over [0,1]^d."""
     out = ctypes.c_double()
-    check(lib.udm1_integrand_exact(_integrand_code(name), u32(d, "d"), ctypes.byref(out)))
+    check(lib.udm1_integrand_exact(_integrand_code(name), u32(d, "d", where="udm1.integrand_exact"), ctypes.byref(out)))
     return out.value

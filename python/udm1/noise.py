@@ -14,7 +14,7 @@ import ctypes
 import numpy as np
 
 from . import _native
-from ._convert import u32, u64
+from ._convert import choice, flag, real, real_array, text, u32, u64
 from ._native import lib
 from .errors import check
 
@@ -35,38 +35,59 @@ CELL_OUTPUTS = {"f1": 0, "f2": 1, "f3": 2, "f2-f1": 3, "cell": 4}
 CELL_METRICS = {"euclidean": 0, "manhattan": 1, "chebyshev": 2, "minkowski": 3}
 
 
-def _real(v, name: str) -> float:
-    if isinstance(v, (bool, np.bool_)) or not np.isscalar(v) or not np.isreal(v):
-        raise ValueError(f"udm1.Noise: {name} must be a real number, not {v!r}")
-    return float(v)
+def _real(v, name: str, where: str = "udm1.Noise") -> float:
+    """A finite real parameter (the converter's rule: numpy scalars taken; bools, strings, complex refused)."""
+    return real(v, name, where=where)
+
+
+def _reals(v, name: str, count: int, where: str = "udm1.Noise") -> list[float]:
+    """`count` finite real numbers given as a list, tuple or array."""
+    values = real_array(v, name, where=where)
+    if values.shape != (count,):
+        raise ValueError(f"{where}: {name} must be {count} numbers, not an array of shape {values.shape}")
+    return [_real(x, f"{name}[{k}]", where) for k, x in enumerate(values.tolist())]
+
+
+_PRECISIONS = {"float32": np.float32, "float64": np.float64}
+
+
+def _precision(dtype, where: str):
+    """dtype= of the evaluations: None (from the points), float32 or float64."""
+    if dtype is None:
+        return None
+    try:
+        dt = np.dtype(dtype)
+    except TypeError:
+        dt = None
+    if dt is None or dt.name not in _PRECISIONS:
+        raise ValueError(f"{where}: dtype {dtype!r} is not float32 or float64")
+    return _PRECISIONS[dt.name]
 
 
 def _coordinates(points, dtype, lo: int, hi: int, where: str):
-    """Points as rows of an (n, d) array or as d coordinate arrays (lo <= d <= hi): the axes' addresses,
-    the stride, n, the precision (float32 points: float32, else float64; dtype= forces one) and the arrays
-    to keep alive during the call."""
+    """Points as rows of an (n, d) array or as d coordinate arrays (lo <= d <= hi), through the package's
+    converter (real numbers only): the axes' addresses, the stride, n, the precision (float32 points:
+    float32, else float64; dtype= forces one) and the arrays to keep alive during the call."""
+    forced = _precision(dtype, where)
     if isinstance(points, (tuple, list)) and len(points) and np.ndim(points[0]) == 1:
+        cols = [real_array(a, f"points[{k}]", where=where, float32=True) for k, a in enumerate(points)]
         if not lo <= len(points) <= hi:
             raise ValueError(f"{where}: give {lo} to {hi} coordinate arrays, not {len(points)}")
-        kind = np.result_type(*points) if dtype is None else np.dtype(dtype)
-        real = np.float32 if kind == np.float32 else np.float64
-        cols = [np.ascontiguousarray(a, dtype=real) for a in points]
+        real_type = forced or (np.float32 if all(c.dtype == np.float32 for c in cols) else np.float64)
+        cols = [np.ascontiguousarray(c, dtype=real_type) for c in cols]
         n = cols[0].shape[0]
         if any(c.shape != (n,) for c in cols):
             raise ValueError(f"{where}: the coordinate arrays must have one shape, (n,)")
-        return [c.ctypes.data for c in cols], 1, n, real, cols
-    arr = np.asarray(points)
+        return [c.ctypes.data for c in cols], 1, n, real_type, cols
+    arr = real_array(points, "points", where=where, float32=True)
     if arr.ndim == 1:
         arr = arr[:, None]
     if arr.ndim != 2 or not lo <= arr.shape[1] <= hi:
         raise ValueError(f"{where}: points must be an (n, {lo}..{hi}) array or {lo} to {hi} coordinate arrays")
-    kind = arr.dtype if dtype is None else np.dtype(dtype)
-    if kind not in (np.float32, np.float64) and not np.issubdtype(kind, np.number):
-        raise ValueError(f"{where}: points of dtype {kind} are not numbers (float32 or float64)")
-    real = np.float32 if kind == np.float32 else np.float64
-    x = np.ascontiguousarray(arr, dtype=real)
+    real_type = forced or (np.float32 if arr.dtype == np.float32 else np.float64)
+    x = np.ascontiguousarray(arr, dtype=real_type)
     n, d = x.shape
-    return [x.ctypes.data + k * x.itemsize for k in range(d)], max(d, 1), n, real, x
+    return [x.ctypes.data + k * x.itemsize for k in range(d)], max(d, 1), n, real_type, x
 
 
 class Noise:
@@ -77,26 +98,31 @@ class Noise:
 
     def __init__(self, table: str | None = None, seed: int = 0, kind: str = "improved", period=0):
         self._handle = None
-        if kind not in KINDS:
-            raise ValueError(f"udm1.Noise: kind {kind!r} is not one of {sorted(KINDS)}")
-        periods = [period] * 4 if np.isscalar(period) else list(period)
+        where = "udm1.Noise"
+        kind = choice(kind, "kind", KINDS, where=where)
+        if table is not None:
+            text(table, "table", where=where)
+        if isinstance(period, (list, tuple, np.ndarray)):
+            given = np.asarray(period, dtype=object).ravel()
+            periods = [u32(p, f"period[{k}]", where=where) for k, p in enumerate(given)]
+        else:
+            periods = [u32(period, "period", where=where)] * 4
         if len(periods) == 3:
             periods.append(0)
         if len(periods) != 4:
             raise ValueError("udm1.Noise: period must be a non-negative int or 3 or 4 of them")
-        periods = [u32(p, "period") for p in periods]
         desc = _native.NoiseDesc()
         lib.udm1_noise_desc_init(ctypes.byref(desc))
         desc.kind = KINDS[kind]
         desc.table = table.encode() if table else None
-        desc.seed = u64(seed, "seed")
+        desc.seed = u64(seed, "seed", where=where)
         for i, p in enumerate(periods[:3]):
             desc.period[i] = p
         desc.period_w = periods[3]
         handle = ctypes.c_void_p()
         check(lib.udm1_noise_create(ctypes.byref(desc), ctypes.byref(handle)))
         self._handle = handle
-        self.table, self.seed, self.kind, self.period = table or "perlin", seed, kind, tuple(periods)
+        self.table, self.seed, self.kind, self.period = table or "perlin", desc.seed, kind, tuple(periods)
 
     def __del__(self):
         if getattr(self, "_handle", None) is not None and lib is not None:
@@ -128,12 +154,13 @@ class Noise:
         on every machine), anything else in double (the per-point functions' values, bit for bit);
         dtype= forces the precision ("float32" or "float64"). Returns the values, an (n,) array; with
         gradient=True, (values, gradients) with gradients of shape (n, d): d noise / d x_k, analytic."""
-        ptrs, stride, n, real, keep = _coordinates(points, dtype, 1, 4, "udm1.Noise.noise")
+        gradient = flag(gradient, "gradient", where="udm1.Noise.noise")
+        ptrs, stride, n, real_type, keep = _coordinates(points, dtype, 1, 4, "udm1.Noise.noise")
         d = len(ptrs)
-        values = np.empty(n, dtype=real)
-        grads = np.empty((n, d), dtype=real) if gradient else None
+        values = np.empty(n, dtype=real_type)  # written whole by the call, or refused before any write
+        grads = np.empty((n, d), dtype=real_type) if gradient else None
         arg = (ctypes.c_void_p * d)(*ptrs)
-        fn = lib.udm1_noise_eval_f32 if real == np.float32 else lib.udm1_noise_eval
+        fn = lib.udm1_noise_eval_f32 if real_type == np.float32 else lib.udm1_noise_eval
         check(fn(self._handle, d, arg, stride, n, values.ctypes.data, grads.ctypes.data if gradient else None))
         del keep
         return (values, grads) if gradient else values
@@ -147,18 +174,17 @@ class Noise:
         metric: "euclidean", "manhattan", "chebyshev" or "minkowski" (with exponent); jitter in [0, 1]: how
         far a point strays from its cell's centre (1: anywhere in the cell). float32 points are evaluated
         in float, others in double (dtype= forces one). The search is exact in every case."""
-        if output not in CELL_OUTPUTS:
-            raise ValueError(f"udm1.Noise.cellular: output {output!r} is not one of {list(CELL_OUTPUTS)}")
-        if metric not in CELL_METRICS:
-            raise ValueError(f"udm1.Noise.cellular: metric {metric!r} is not one of {list(CELL_METRICS)}")
-        ptrs, stride, n, real, keep = _coordinates(points, dtype, 2, 3, "udm1.Noise.cellular")
+        where = "udm1.Noise.cellular"
+        output = choice(output, "output", CELL_OUTPUTS, where=where)
+        metric = choice(metric, "metric", CELL_METRICS, where=where)
+        ptrs, stride, n, real_type, keep = _coordinates(points, dtype, 2, 3, where)
         p = _native.CellularParams()
         lib.udm1_cellular_params_init(ctypes.byref(p))
         p.output, p.metric = CELL_OUTPUTS[output], CELL_METRICS[metric]
-        p.jitter, p.exponent = _real(jitter, "jitter"), _real(exponent, "exponent")
-        out = np.empty(n, dtype=real)
+        p.jitter, p.exponent = _real(jitter, "jitter", where), _real(exponent, "exponent", where)
+        out = np.empty(n, dtype=real_type)  # written whole by the call, or refused before any write
         arg = (ctypes.c_void_p * len(ptrs))(*ptrs)
-        fn = lib.udm1_cellular_eval_f32 if real == np.float32 else lib.udm1_cellular_eval
+        fn = lib.udm1_cellular_eval_f32 if real_type == np.float32 else lib.udm1_cellular_eval
         check(fn(self._handle, ctypes.byref(p), len(ptrs), arg, stride, n, out.ctypes.data))
         del keep
         return out
@@ -166,45 +192,44 @@ class Noise:
     def _params(self, pattern: str, octaves=None, omega=None, lacunarity=None, turbulence=None, frequency=None,
                 phase=None, wave=None, exponent=None, agate_turb=None, form=None, metric=None, offset=None,
                 solid=None) -> _native.PatternParams:
-        code = lib.udm1_pattern_from_name(pattern.encode())
+        where = "udm1.Noise"
+        code = lib.udm1_pattern_from_name(text(pattern, "pattern", where=where).encode())
         if code == 0:
             raise ValueError(f"udm1: unknown pattern {pattern!r}; known: {patterns()}")
         p = _native.PatternParams()
         lib.udm1_pattern_params_init(ctypes.byref(p), code)
         if octaves is not None:
-            p.octaves = u32(octaves, "octaves")
+            p.octaves = u32(octaves, "octaves", where=where)
         if omega is not None:
-            p.omega = float(omega)
+            p.omega = _real(omega, "omega")
         if lacunarity is not None:
-            p.lambda_ = float(lacunarity)
-        if turbulence is not None:
-            t = [float(turbulence)] * 3 if np.isscalar(turbulence) else [float(v) for v in turbulence]
+            p.lambda_ = _real(lacunarity, "lacunarity")
+        if turbulence is not None:  # one number for the three axes, or three
+            scalar = not isinstance(turbulence, (list, tuple, np.ndarray)) or np.ndim(turbulence) == 0
+            t = [_real(turbulence, "turbulence")] * 3 if scalar else _reals(turbulence, "turbulence", 3)
             for i in range(3):
                 p.turbulence[i] = t[i]
         if frequency is not None:
-            p.frequency = float(frequency)
+            p.frequency = _real(frequency, "frequency")
         if phase is not None:
-            p.phase = float(phase)
+            p.phase = _real(phase, "phase")
         if wave is not None:
-            if wave not in WAVES:
+            if not isinstance(wave, str) or wave not in WAVES:
                 raise ValueError(f"udm1: unknown wave {wave!r}; known: {sorted(WAVES)}")
             p.wave = WAVES[wave]
         if exponent is not None:
-            p.exponent = float(exponent)
+            p.exponent = _real(exponent, "exponent")
         if agate_turb is not None:
-            p.agate_turb = float(agate_turb)
-        if form is not None:  # crackle's
-            f = [_real(v, "form") for v in form]
-            if len(f) != 3:
-                raise ValueError("udm1.Noise: form must be 3 numbers (the weights of F1, F2, F3)")
-            for i in range(3):
-                p.crackle_form[i] = f[i]
+            p.agate_turb = _real(agate_turb, "agate_turb")
+        if form is not None:  # crackle's: the weights of F1, F2, F3
+            for i, f in enumerate(_reals(form, "form", 3)):
+                p.crackle_form[i] = f
         if metric is not None:
             p.crackle_metric = _real(metric, "metric")
         if offset is not None:
             p.crackle_offset = _real(offset, "offset")
         if solid is not None:
-            p.crackle_solid = 1 if solid else 0
+            p.crackle_solid = 1 if flag(solid, "solid", where=where) else 0
         return p
 
     def pattern(self, name: str, points, gradient: bool = False, **params):
@@ -212,11 +237,13 @@ class Noise:
         noise patterns noise, fbm, turbulence, ridged): (values, gradients (n, 3)), analytic, the values
         bit for bit those of gradient=False. Parameters: octaves, omega, lacunarity, turbulence, frequency,
         phase, wave, exponent, agate_turb; crackle's form, metric, offset, solid."""
-        x = np.ascontiguousarray(np.asarray(points, dtype=np.float64))
+        where = "udm1.Noise.pattern"
+        gradient = flag(gradient, "gradient", where=where)
+        x = real_array(points, "points", where=where)
         if x.ndim != 2 or x.shape[1] != 3:
-            raise ValueError("udm1.Noise.pattern: points must be an (n, 3) array")
+            raise ValueError(f"{where}: points must be an (n, 3) array, not shape {x.shape}")
         p = self._params(name, **params)
-        out = np.empty(x.shape[0])
+        out = np.empty(x.shape[0])  # written whole by the call, or refused before any write
         if gradient:
             grads = np.empty((x.shape[0], 3))
             check(lib.udm1_pattern_gradient(self._handle, ctypes.byref(p), x.ctypes.data, x.shape[0], 3,
@@ -227,14 +254,17 @@ class Noise:
 
     def pattern_grid(self, name: str, width: int, height: int, origin=(0.0, 0.0, 0.0), size=(4.0, 4.0),
                      **params) -> np.ndarray:
-        """A (height, width) float32 image of a pattern over the rectangle origin + [0, size) in x, y."""
+        """A (height, width) float32 image of a pattern over the rectangle origin + [0, size) in x, y
+        (origin: 3 finite numbers, size: 2)."""
+        where = "udm1.Noise.pattern_grid"
         p = self._params(name, **params)
-        width, height = u32(width, "width"), u32(height, "height")
+        width, height = u32(width, "width", where=where), u32(height, "height", where=where)
+        origin, size = _reals(origin, "origin", 3, where), _reals(size, "size", 2, where)
         fits = 0 < width <= 65536 and 0 < height <= 65536  # otherwise the library's own check speaks
-        out = np.empty((height, width) if fits else 0, dtype=np.float32)
-        o = (ctypes.c_double * 3)(*[float(v) for v in origin])
-        sx = (ctypes.c_double * 3)(float(size[0]) / width if width else 0.0, 0.0, 0.0)
-        sy = (ctypes.c_double * 3)(0.0, float(size[1]) / height if height else 0.0, 0.0)
+        out = np.empty((height, width) if fits else 0, dtype=np.float32)  # written whole, or refused
+        o = (ctypes.c_double * 3)(*origin)
+        sx = (ctypes.c_double * 3)(size[0] / width if width else 0.0, 0.0, 0.0)
+        sy = (ctypes.c_double * 3)(0.0, size[1] / height if height else 0.0, 0.0)
         check(lib.udm1_pattern_grid(self._handle, ctypes.byref(p), width, height, 0, height, o, sx, sy,
                                     out.ctypes.data))
         return out

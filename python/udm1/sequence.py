@@ -9,7 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _native
-from ._convert import U128, integer, u32, u64
+from ._convert import U128, index_array, integer, real, text, u32, u64
 from ._native import lib
 from .errors import check
 from .metrics import _integrand_code
@@ -32,24 +32,24 @@ class Fixed:
     value: int
 
 
-def _alpha_struct(a) -> _native.Alpha:
+def _alpha_struct(a, name: str = "alpha") -> _native.Alpha:
     s = _native.Alpha()
     if isinstance(a, Sqrt):
         s.kind, s.k = ALPHA_SQRT, u64(a.k, "Sqrt.k")
     elif isinstance(a, Fixed):
         v = integer(a.value, "Fixed.value", 0, U128)
         s.kind, s.fixed_hi, s.fixed_lo = ALPHA_FIXED, v >> 64, v & ((1 << 64) - 1)
-    elif isinstance(a, numbers.Real):
-        s.kind, s.value = ALPHA_DOUBLE, float(a)
+    elif isinstance(a, numbers.Real) and not isinstance(a, (bool, np.bool_)):
+        s.kind, s.value = ALPHA_DOUBLE, real(a, name, finite=False)  # the library names a non-finite one
     else:
-        raise TypeError(f"udm1: alpha {a!r} is not udm1.Sqrt, udm1.Fixed or a float")
+        raise TypeError(f"udm1: {name} = {a!r} is not udm1.Sqrt, udm1.Fixed or a real number")
     return s
 
 
 def _alpha_array(alphas):
     arr = (_native.Alpha * len(alphas))()
     for i, a in enumerate(alphas):
-        arr[i] = _alpha_struct(a)
+        arr[i] = _alpha_struct(a, f"alphas[{i}]")
     return arr
 
 
@@ -90,10 +90,10 @@ def _dtype(dtype) -> np.dtype:
 
 def _offsets(offsets, d: int) -> np.ndarray:
     """offsets as d uint64 values, each checked (numpy would wrap a negative or a too large one)."""
-    values = [u64(v, f"offsets[{j}]") for j, v in enumerate(np.asarray(offsets, dtype=object).ravel())]
-    if len(values) != d:
-        raise ValueError(f"udm1.Sequence: offsets must have {d} entries")
-    return np.array(values, dtype=np.uint64)
+    values = index_array(offsets, "offsets", where="udm1.Sequence")
+    if values.shape != (d,):
+        raise ValueError(f"udm1.Sequence: offsets must have {d} entries, not shape {values.shape}")
+    return values
 
 
 class Sequence:
@@ -118,27 +118,30 @@ class Sequence:
     def __init__(self, preset: str | None = None, d: int | None = None, *, alphas=None, point_count: int = 0,
                  seed: int = 0, randomize: bool = True, offsets=None, screen_spp: int = 0):
         self._handle = None
+        where = "udm1.Sequence"
         if (preset is None) == (alphas is None):
             raise ValueError("udm1.Sequence: give either a preset name or alphas")
         if alphas is not None:
+            if isinstance(alphas, (str, bytes)) or not hasattr(alphas, "__iter__"):
+                raise TypeError(f"udm1.Sequence: alphas must be a list of generators, not {type(alphas).__name__}")
             alphas = list(alphas)
             if d is None:
                 d = len(alphas)
-            if d != len(alphas):
+            if u32(d, "d", where=where) != len(alphas):
                 raise ValueError(f"udm1.Sequence: d = {d} but {len(alphas)} alphas")
         if d is None:
             raise ValueError("udm1.Sequence: d (the number of dimensions) is required with a preset")
-        d = u32(d, "d")
+        d = u32(d, "d", where=where)
         desc = _native.SeqDesc()
         lib.udm1_seq_desc_init(ctypes.byref(desc))
         desc.dimensions = d
-        desc.point_count = u64(point_count, "point_count")
-        desc.seed = u64(seed, "seed")
+        desc.point_count = u64(point_count, "point_count", where=where)
+        desc.seed = u64(seed, "seed", where=where)
         desc.randomize = _randomize_code(randomize)
-        desc.screen_spp = u32(screen_spp, "screen_spp")
+        desc.screen_spp = u32(screen_spp, "screen_spp", where=where)
         keep = []
         if preset is not None:
-            desc.preset = str(preset).encode()
+            desc.preset = text(preset, "preset", where=where).encode()
         else:
             arr = _alpha_array(alphas)
             keep.append(arr)
@@ -222,15 +225,12 @@ class Sequence:
     def points(self, n: int, first: int = 0, *, stream: int = 0, dims=None, dtype=np.float64,
                out: np.ndarray | None = None) -> np.ndarray:
         """Points [first, first + n) as an (n, nd) array; dims is a range or slice
-        of dimensions (default all). With out, fills that C-contiguous array."""
+        of dimensions (default all). With out, fills that C-contiguous, writeable array."""
         d = self.d
         if dims is None:
             d0, nd = 0, d
         else:
-            r = range(d)[dims] if isinstance(dims, slice) else dims
-            if not isinstance(r, range) or r.step != 1 or len(r) == 0:
-                raise ValueError("udm1.Sequence.points: dims must be a non-empty contiguous range")
-            d0, nd = u32(r.start, "dims"), u32(len(r), "dims")
+            d0, nd = _dims(range(d)[dims] if isinstance(dims, slice) else dims, "udm1.Sequence.points")
         dt = _dtype(dtype)
         fill_name = _DTYPES[dt][0]
         n = u64(n, "n")
@@ -242,9 +242,11 @@ class Sequence:
             st = fill(self.handle, stream, first, n, d0, nd, None, nd)
             if st not in (0, 1):
                 check(st)
-            out = np.empty((n, nd), dtype=dt)
-        elif out.dtype != dt or out.shape != (n, nd) or not out.flags.c_contiguous:
-            raise ValueError(f"udm1.Sequence.points: out must be a C-contiguous {dt} array of shape ({n}, {nd})")
+            out = np.empty((n, nd), dtype=dt)  # written whole by the fill below, or refused before any write
+        elif (not isinstance(out, np.ndarray) or out.dtype != dt or out.shape != (n, nd) or not out.flags.c_contiguous
+              or not out.flags.writeable):
+            raise ValueError(f"udm1.Sequence.points: out must be a C-contiguous, writeable {dt} array of shape "
+                             f"({n}, {nd})")
         check(fill(self.handle, stream, first, n, d0, nd, out.ctypes.data if n else None, nd))
         return out
 
@@ -252,16 +254,17 @@ class Sequence:
         """Point indices[k] of stream streams[k] for every k, as an (n, nd) float64 array (dims: a
         contiguous range of dimensions, default all; past the sequence's own they are padded, as
         the cursor pads them). What a wavefront renderer asks at each bounce: one call
-        (udm1_seq_fill_points_f64), equal to per-point samples; keep a stream's points together."""
-        s = np.ascontiguousarray(streams, dtype=np.uint64)
-        i = np.ascontiguousarray(indices, dtype=np.uint64)
+        (udm1_seq_fill_points_f64), equal to per-point samples; keep a stream's points together.
+        streams and indices are 1-D arrays of integers in [0, 2^64) (integral floats are taken, as
+        for the scalar stream and index of points and sample)."""
+        where = "udm1.Sequence.points_at"
+        s = index_array(streams, "streams", where=where)
+        i = index_array(indices, "indices", where=where)
         if s.ndim != 1 or s.shape != i.shape:
-            raise ValueError("udm1.Sequence.points_at: streams and indices must be 1-D arrays of one length")
-        r = range(self.d) if dims is None else dims
-        if not isinstance(r, range) or r.step != 1 or len(r) == 0 or r.start < 0:
-            raise ValueError("udm1.Sequence.points_at: dims must be a non-empty contiguous range")
-        d0, nd = u32(r.start, "dims"), u32(len(r), "dims")
-        out = np.empty((len(s), nd))
+            raise ValueError(f"{where}: streams and indices must be 1-D arrays of one length, not shapes "
+                             f"{s.shape} and {i.shape}")
+        d0, nd = _dims(range(self.d) if dims is None else dims, where)
+        out = np.empty((len(s), nd))  # written whole by the fill, or refused before any write
         check(lib.udm1_seq_fill_points_f64(self.handle, len(s), s.ctypes.data_as(_native.u64p),
                                            i.ctypes.data_as(_native.u64p), d0, nd, out.ctypes.data_as(_native.f64p)))
         return out
@@ -325,10 +328,18 @@ def _report_dict(rep) -> dict:
     }
 
 
+def _dims(r, where: str) -> tuple[int, int]:
+    """(first dimension, count) of a non-empty contiguous range of dimensions inside [0, 2^32)."""
+    if not isinstance(r, range) or r.step != 1 or len(r) == 0:
+        raise ValueError(f"{where}: dims must be a non-empty contiguous range, not {r!r}")
+    d0, stop = u32(r.start, "dims", where=where), u32(r.stop, "dims", where=where)
+    return d0, stop - d0
+
+
 def _randomize_code(randomize) -> int:
-    if randomize is True:
+    if randomize is True or randomize is np.True_:
         return RANDOMIZE["default"]
-    if randomize is False or randomize is None:
+    if randomize is False or randomize is np.False_ or randomize is None:
         return RANDOMIZE["none"]
     if isinstance(randomize, str) and randomize in RANDOMIZE:
         return RANDOMIZE[randomize]

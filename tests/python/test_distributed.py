@@ -10,6 +10,7 @@ import random
 import signal
 import subprocess
 import sys
+import time
 from fractions import Fraction
 
 import numpy as np
@@ -198,6 +199,55 @@ def test_distributed_integral_survives_a_killed_worker(client):
     assert kill.victim is not None and kill.lost, "no worker was killed mid-run"
     assert est.sum == whole.sum and est.value == whole.value
     client.wait_for_workers(3)
+
+
+class Blocked:
+    """An integrand that waits until a file exists (a stuck part), then computes."""
+
+    def __init__(self, flag):
+        self.flag = str(flag)
+
+    def __call__(self, x):
+        while not os.path.exists(self.flag):
+            time.sleep(0.02)
+        return np.cos(x).prod(axis=1)
+
+
+def test_a_stuck_wait_raises_naming_what_it_waited_for(client, tmp_path):
+    """Every wait has a timeout: parts that never finish give a TimeoutError within about the timeout (not
+    a hang), naming what was waited for and the parts still pending; the tasks are cancelled and the
+    workers are usable again once the parts return."""
+    flag = tmp_path / "release"
+    blocked = Blocked(flag)
+    cases = [
+        (lambda: ud.integrate(blocked, "wr", 2, 3000, tasks=3, client=client, progress=False, timeout=1.5),
+         r"waited 1.5 s for integral of 3000 wr points and no part finished: 3 of 3 parts still pending \(udm1-"),
+        (lambda: ud.integrate_to_tolerance(blocked, "lattice-seq", 2, abs_tol=1e-6, transform="baker", blocks=2,
+                                           client=client, timeout=1.5),
+         r"waited 1.5 s for lattice points \[0, 256\) and no part finished: 2 of 2 parts still pending"),
+        (lambda: ud.integrate_to_tolerance(blocked, "wr", 2, abs_tol=1e-6, replications=2, blocks=1, client=client,
+                                           timeout=1.5),
+         r"waited 1.5 s for 2 replicates of \[0, 256\) and no part finished"),
+    ]
+    try:
+        for call, words in cases:
+            t0 = time.monotonic()
+            with pytest.raises(TimeoutError, match=words):
+                call()
+            assert time.monotonic() - t0 < 60  # the timeout acted: without it the call never returns
+    finally:
+        flag.touch()  # the cancelled parts return; the workers are free again
+    # a part no worker can take (workers idle, as in the hang this guards against) and a render's wait
+    never = client.submit(np.sum, [1, 2], resources={"no-such-resource": 1}, key="udm1-test-never")
+    with pytest.raises(TimeoutError, match=r"waited 1 s for a part nobody runs and no part finished: 1 of 1 parts "
+                                           r"still pending \(udm1-test-never\)"):
+        list(ud._completed(client, [never], what="a part nobody runs", timeout=1.0, with_results=True))
+    with pytest.raises(TimeoutError, match=r"waited 1 s for tiles and no part finished"):
+        ud._watch(client, [never], [], False, None, "tiles", 1.0)
+    client.cancel([never])
+    one = udm1.integrate(prod, "wr", 3, 3000, seed=1)
+    again = ud.integrate(prod, "wr", 3, 3000, seed=1, tasks=3, client=client, progress=False, timeout=60)
+    assert again.sum == one.sum
 
 
 @pytest.mark.skipif(not PT or not AO, reason="UDM1_PT_TOOL / UDM1_AO_TOOL not set")

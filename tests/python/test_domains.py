@@ -12,32 +12,8 @@ import pytest
 
 import reference as ref
 import udm1
+from stream_abi import M32, M64, Domain, Stream  # the ctypes mirror of udm1/stream.h and udm1/domain.h
 from udm1._native import lib
-
-M32, M64 = (1 << 32) - 1, (1 << 64) - 1
-DIMS = 64
-
-
-class Stream(ctypes.Structure):
-    _fields_ = [("struct_size", ctypes.c_uint32), ("flags", ctypes.c_uint32), ("seq", ctypes.c_void_p),
-                ("stream", ctypes.c_uint64), ("key", ctypes.c_uint64), ("index_base", ctypes.c_uint64),
-                ("point_count", ctypes.c_uint64), ("first", ctypes.c_uint32), ("count", ctypes.c_uint32),
-                ("held", ctypes.c_uint32), ("dimensions", ctypes.c_uint32), ("a_hi", ctypes.c_uint64 * DIMS),
-                ("a_lo", ctypes.c_uint64 * DIMS), ("offset", ctypes.c_uint64 * DIMS),
-                ("base", ctypes.c_uint64 * DIMS), ("dim_key", ctypes.c_uint64 * DIMS),
-                ("table", ctypes.c_void_p), ("table_bits", ctypes.c_uint32), ("table_mode", ctypes.c_uint32)]
-
-
-class Domain(ctypes.Structure):
-    _fields_ = [("stream", ctypes.POINTER(Stream)), ("key", ctypes.c_uint64), ("index", ctypes.c_uint64),
-                ("dim", ctypes.c_uint32), ("reserved", ctypes.c_uint32)]
-
-
-lib.udm1_stream_init.argtypes = [ctypes.POINTER(Stream), ctypes.c_void_p, ctypes.c_uint64, ctypes.c_uint32,
-                                 ctypes.c_uint32]
-lib.udm1_stream_fill_raw.argtypes = [ctypes.POINTER(Stream), ctypes.c_uint64, ctypes.c_uint32, ctypes.c_uint32,
-                                     ctypes.POINTER(ctypes.c_uint64)]
-lib.udm1_domain_fill_raw.argtypes = [ctypes.POINTER(Domain), ctypes.c_uint32, ctypes.POINTER(ctypes.c_uint64)]
 
 
 # ---- the reference: the documented derivations, written out independently ----
