@@ -363,7 +363,7 @@ static void test_glass_and_metal_in_the_furnace()
         m.type = c.type, m.params.params = c.params;
         s.materials.push_back(m);
         Shape ball;
-        ball.kind = Shape::Sphere, ball.center = Vec3(0, 0, 0.5), ball.radius = 0.3;
+        make_sphere(Mat4::translate(Vec3(0, 0, 0.5)), 0.3, &ball);
         ball.material = (int)s.materials.size() - 1;
         s.shapes.push_back(ball);
         EmbreeScene rt(s);
