@@ -347,7 +347,7 @@ private:
             {"PixelFilter", &Parser::on_PixelFilter},
             {"WorldBegin", &Parser::on_WorldBegin},
             {"AttributeBegin", &Parser::on_AttributeBegin},
-            {"TransformBegin", &Parser::on_AttributeBegin},
+            {"TransformBegin", &Parser::on_AttributeBegin},  // (pbrt-v4 reads TransformBegin/End as AttributeBegin/End)
             {"AttributeEnd", &Parser::on_AttributeEnd},
             {"TransformEnd", &Parser::on_AttributeEnd},
             {"ReverseOrientation", &Parser::on_ReverseOrientation},
@@ -365,7 +365,18 @@ private:
         // what a geometry-only load (udm1-ao) skips: appearance, lights, media
         static const std::set<std::string> APPEARANCE = {"AreaLightSource", "LightSource", "Texture",   "MakeNamedMedium",
                                                          "MediumInterface", "ColorSpace",  "Option", "Attribute"};
+        // pbrt-v4's blocks: options before WorldBegin, the scene's description after it
+        static const std::set<std::string> OPTIONS = {"Camera",      "Sampler",    "Film",      "PixelFilter",
+                                                      "Accelerator", "Integrator", "WorldBegin"};
+        static const std::set<std::string> WORLD = {"ReverseOrientation", "AttributeBegin",    "AttributeEnd",
+                                                    "TransformBegin",     "TransformEnd",      "LightSource",
+                                                    "Shape",              "Texture",           "Material",
+                                                    "MakeNamedMaterial",  "NamedMaterial",     "AreaLightSource"};
         const std::string here = lex.where(t.line);
+        if (in_world_ && OPTIONS.count(t.text))
+            throw SceneError(here + ": " + t.text + " after WorldBegin: pbrt-v4 takes it only before");
+        if (!in_world_ && WORLD.count(t.text))
+            throw SceneError(here + ": " + t.text + " before WorldBegin: pbrt-v4 takes it only after");
         if (geometry_only_ && APPEARANCE.count(t.text)) return skip(lex, t);  // the emitters' shapes stay geometry
         auto it = HANDLERS.find(t.text);
         if (it == HANDLERS.end()) throw SceneError(here + ": unsupported directive '" + t.text + "'");
@@ -569,7 +580,6 @@ private:
         if (stack_.empty()) throw SceneError(here + ": " + d + " without a matching begin");
         State s = stack_.back();
         stack_.pop_back();
-        if (d == "TransformEnd") s.material = st_.material, s.light_template = st_.light_template, s.reverse = st_.reverse;
         st_ = s;
     }
 
@@ -839,7 +849,6 @@ private:
     void shape(Lexer &lex, const Token &t, const std::string &dir)
     {
         const std::string here = lex.where(t.line);
-        if (!in_world_) throw SceneError(here + ": Shape before WorldBegin");
         std::string type = string_arg(lex, "Shape");
         ParamSet ps = params(lex, t.line);
         Shape s;

@@ -1,8 +1,8 @@
 // test_pt_scene.cpp - udm1-pt renders what a pbrt-v4 scene file describes, as pbrt-v4 renders it, or refuses
 // it with its file and line: a sphere under any affine transform is the quadric it makes (met in object
 // space, normals by the inverse transpose, texture coordinates from the object-space point, checked against
-// the world-space quadric solved here), the same image from both path loops; emitters oriented by
-// ReverseOrientation and by transforms that swap handedness as pbrt-v4 orients them; what pbrt-v4 itself
+// the world-space quadric solved here), the same image from both path loops; emitters and glass oriented
+// by ReverseOrientation and by transforms that swap handedness as pbrt-v4 orients them; what pbrt-v4 itself
 // renders inconsistently (sphere lights that are not rigidly placed, spot lights and environment maps under
 // transforms that are not similarities, projective transforms) and degenerate lenses refused; reflectance
 // spectra clamped to [0, 1] per wavelength as pbrt-v4's materials clamp them.
@@ -263,6 +263,29 @@ void test_reversed_sphere_light()
     CHECK(rt.intersect(Vec3(0, 0, 0), Vec3(0, 0, 1), 0, 1e300, &h) && lights.emitted(h, Vec3(0, 0, -1)).x == 1);
 }
 
+// A reflection turns a sphere's normals inwards as ReverseOrientation does (pbrt-v4 flips them by orientation
+// XOR handedness): a mirrored glass sphere renders as a reversed one, bit for bit (air in glass), and not as
+// the plain one.
+void test_mirrored_sphere_is_reversed()
+{
+    Accumulator img[3];
+    const char *flips[3] = {"", "ReverseOrientation\n", "Scale -1 1 1\n"};
+    for (int k = 0; k < 3; ++k) {
+        Scene s = load(std::string(HEAD) + "LightSource \"infinite\" \"rgb L\" [ 1 1 1 ]\n"
+                                           "Material \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
+                                           "Shape \"trianglemesh\" \"point3 P\" [ -9 -1.5 -9  9 -1.5 -9  9 -1.5 9  -9 -1.5 9 ] "
+                                           "\"integer indices\" [ 0 1 2 0 2 3 ]\nMaterial \"dielectric\"\n" +
+                       flips[k] + "Shape \"sphere\" \"float radius\" [ 1.5 ]\n");
+        if (s.shapes.size() != 2) return;
+        EmbreeScene rt(s);
+        Options o;
+        o.width = o.height = 16, o.spp = 16, o.sampler = "sobol-owen";
+        Stats st;
+        img[k] = render(s, rt, o, &st);
+    }
+    CHECK(img[1].sum == img[2].sum && img[0].sum != img[1].sum);
+}
+
 // Vertex normals under ReverseOrientation are flipped (pbrt-v4's TriangleMesh), and the geometric normal
 // faces them: a one-sided emitter with normals shines the other way.
 void test_reversed_vertex_normals()
@@ -337,6 +360,7 @@ int main()
     test_sphere_texture_coordinates();
     test_ellipsoid_in_both_loops();
     test_reversed_sphere_light();
+    test_mirrored_sphere_is_reversed();
     test_reversed_vertex_normals();
     test_refusals();
     test_albedo_spectra_clamped();

@@ -253,6 +253,13 @@ def test_scaled_texture_albedo_is_clamped(tmp_path):
     assert np.array_equal(scaled, white), (scaled.mean(), white.mean())
 
 
+def test_transform_blocks_restore_attributes(tmp_path):
+    # pbrt-v4 reads TransformBegin/End as AttributeBegin/End: a material set inside is gone after the end
+    inner = ('Material "diffuse" "rgb reflectance" [ 1 1 1 ]\nTransformBegin\nTranslate 0 0 1\n'
+             'Material "diffuse" "rgb reflectance" [ 0 0 0 ]\nTransformEnd\n')
+    assert np.all(albedo_image(tmp_path, "tb", "", inner) == 1)
+
+
 def test_mix_amounts_outside_0_1(tmp_path):
     # a mix's amount outside [0, 1] takes one of the two materials, as pbrt-v4's MixMaterial
     named = ('MakeNamedMaterial "black" "string type" "diffuse" "rgb reflectance" [ 0 0 0 ]\n'
@@ -320,6 +327,17 @@ def test_integrators_sampling_directions_uniformly_refuse_specular_lobes(integra
     ('WorldBegin\nConcatTransform [ 1 0 0 0  0 1 0 0  0 0 1 0.1  0 0 0 1 ]\nShape "sphere"\n', 3, "projective"),
     ('WorldBegin\nConcatTransform [ 1 0 0 0  0 1 0 0  0 0 1 0.1  0 0 0 1 ]\nLightSource "distant"\n', 3, "projective"),
     ('ConcatTransform [ 1 0 0 0.2  0 1 0 0  0 0 1 0  0 0 0 1 ]\nCamera "perspective"\n', 2, "projective"),
+    # directives in the other block than pbrt-v4 takes them in
+    ('WorldBegin\nCamera "perspective"\n', 2, "Camera after WorldBegin"),
+    ('WorldBegin\nFilm "rgb"\n', 2, "Film after WorldBegin"),
+    ('Material "diffuse"\nWorldBegin\n', 1, "Material before WorldBegin"),
+    ('AttributeBegin\nAttributeEnd\nWorldBegin\n', 1, "AttributeBegin before WorldBegin"),
+    ('LightSource "point"\nWorldBegin\n', 1, "LightSource before WorldBegin"),
+    # parameters of another type than pbrt-v4 reads them as
+    ('Camera "perspective" "integer fov" 40\n', 1, '\'fov\' must be "float fov"'),
+    ('WorldBegin\nShape "sphere" "integer radius" 2\n', 2, '\'radius\' must be "float radius"'),
+    ('WorldBegin\nShape "trianglemesh" "point P" [ 0 0 0 1 0 0 0 1 0 ]\n', 2, '\'P\' must be "point3 P"'),
+    ('Film "rgb" "float xresolution" 64\n', 1, '\'xresolution\' must be "integer xresolution"'),
     # "st" is read by pbrt-v4 only when it upgrades an old file
     ('WorldBegin\nShape "trianglemesh" "point3 P" [ 0 0 0 1 0 0 0 1 0 ] "point2 st" [ 0 0 1 0 0 1 ]\n', 2, "'st'"),
 ])
@@ -363,7 +381,7 @@ DEFAULTS = dict(film="", camera='"float fov" [ 50 ]', integrator="", lights=AREA
 # (parameter, the scene's fields for the base image, the fields changed, expected mean ratio or None for
 # "differs"): every parameter of the `only(...)` lists of apps/scene/pbrt_parser.cpp and apps/pt/material.cpp
 # that changes pbrt-v4's image
-C = "Material \"conductor\" \"spectrum eta\" \"metal-Ag-eta\" \"spectrum k\" \"metal-Ag-k\""
+SILVER = "Material \"conductor\" \"spectrum eta\" \"metal-Ag-eta\" \"spectrum k\" \"metal-Ag-k\""
 PARAMETERS = [
     ("Camera fov", {}, {"camera": '"float fov" [ 30 ]'}, None),
     ("Camera lensradius, focaldistance", {}, {"camera": '"float fov" [ 50 ] "float lensradius" 0.3 "float focaldistance" 2'},
@@ -422,11 +440,13 @@ PARAMETERS = [
      {"material": 'Material "conductor" "float roughness" 0.3 "spectrum eta" "metal-Ag-eta"'}, None),
     ("conductor k", {"material": 'Material "conductor" "float roughness" 0.3'},
      {"material": 'Material "conductor" "float roughness" 0.3 "spectrum k" "metal-Ag-k"'}, None),
-    ("conductor roughness", {"material": C}, {"material": C + ' "float roughness" 0.4'}, None),
-    ("conductor uroughness", {"material": C + ' "float roughness" 0.1'}, {"material": C + ' "float uroughness" 0.5'}, None),
-    ("conductor vroughness", {"material": C + ' "float roughness" 0.1'}, {"material": C + ' "float vroughness" 0.5'}, None),
-    ("conductor remaproughness", {"material": C + ' "float roughness" 0.2'},
-     {"material": C + ' "float roughness" 0.2 "bool remaproughness" false'}, None),
+    ("conductor roughness", {"material": SILVER}, {"material": SILVER + ' "float roughness" 0.4'}, None),
+    ("conductor uroughness", {"material": SILVER + ' "float roughness" 0.1'},
+     {"material": SILVER + ' "float uroughness" 0.5'}, None),
+    ("conductor vroughness", {"material": SILVER + ' "float roughness" 0.1'},
+     {"material": SILVER + ' "float vroughness" 0.5'}, None),
+    ("conductor remaproughness", {"material": SILVER + ' "float roughness" 0.2'},
+     {"material": SILVER + ' "float roughness" 0.2 "bool remaproughness" false'}, None),
     ("dielectric eta", {"material": 'Material "dielectric" "float roughness" 0.3'},
      {"material": 'Material "dielectric" "float roughness" 0.3 "float eta" 2.4'}, None),
     ("dielectric roughness", {"material": 'Material "dielectric"'},
