@@ -238,6 +238,9 @@ def test_texture_point_filter(tmp_path):
     bilinear = albedo_image(tmp_path, "bilinear", tex.replace("{f}", "bilinear"), mat)
     mid = lambda a: ((a > 0.05) & (a < 0.95)).mean()
     assert mid(point) < 0.2 and mid(bilinear) > 0.6, (mid(point), mid(bilinear))
+    # "invert" true: 1 - the texel (clamped at 0, as pbrt-v4)
+    inverted = albedo_image(tmp_path, "inverted", tex.replace("{f}", "point").replace("\n", ' "bool invert" true\n'), mat)
+    assert np.allclose(inverted, 1 - point, atol=1e-6), np.abs(inverted - (1 - point)).max()
 
 
 def test_scaled_texture_albedo_is_clamped(tmp_path):
