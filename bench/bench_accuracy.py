@@ -98,6 +98,7 @@ def cases() -> list[Case]:
                    "reflectances; with white lights the spectra's RGB agree",
              variants=[Variant("white lights", [(r'"spectrum L" "spds/sodium-ish.spd"', '"rgb L" [ 1 1 1 ]'),
                                                 (r'"blackbody L" \[ 9000 \]', '"rgb L" [ 1 1 1 ]')])]),
+        Case("transforms", TEST_SCENES / "transforms.pbrt", (160, 120), 1024),
     ]
     return out
 

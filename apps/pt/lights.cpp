@@ -181,6 +181,7 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
             Light l;
             l.kind = Light::Sphere, l.center = s.center, l.radius = s.radius, l.area = 4 * PI * s.radius * s.radius;
             l.L = L, l.twosided = al.twosided, l.shape = (int)k;
+            l.reversed = s.reverse_orientation;  // (the parser refused sphere lights that are not rigidly placed)
             lights_.push_back(l);
             continue;
         }
@@ -195,6 +196,14 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
             l.centroid = (l.p0 + l.p1 + l.p2) * (1.0 / 3);
             l.n = l.area > 0 ? udm1scene::triangle_normal(s, t) : Vec3(0, 0, 1);
             l.L = L, l.twosided = al.twosided, l.shape = (int)k;
+            // pbrt-v4 faces the normal to the interpolated vertex normal point by point: one side emits
+            // throughout only where the vertex normals all lie on that side (triangle_normal's)
+            if (!s.N.empty() && !l.twosided && l.area > 0)
+                for (int v = 0; v < 3; ++v)
+                    if (dot(l.n, Vec3(s.N[3 * i[v]], s.N[3 * i[v] + 1], s.N[3 * i[v] + 2])) < 0)
+                        throw udm1scene::SceneError(s.where + ": a one-sided emitting triangle whose vertex normals point "
+                                                              "to both sides of it (its emitting side changes across "
+                                                              "it) is not modelled");
             total += l.area;
             lights_.push_back(l);  // zero-area triangles stay (indices match) with zero power
         }
@@ -603,6 +612,7 @@ bool Lights::sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const
             nq = (f.t * (sin_alpha * cos_phi) + f.b * (sin_alpha * sin_phi)) + (-wc) * cos_alpha;
             nq = normalize(nq);
             q = l.center + nq * l.radius;
+            if (l.reversed) nq = -nq;  // the side it emits from, as where rays hit it
             Vec3 d = q - p;
             s->dist = length(d);
             s->wi = d * (1 / s->dist);
@@ -616,6 +626,7 @@ bool Lights::sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const
         udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
         nq = Vec3(r * cos_phi, r * sin_phi, z);
         q = l.center + nq * l.radius;
+        if (l.reversed) nq = -nq;
     } else {
         // by solid angle where the spherical triangle is well formed (pbrt-v4), else by area
         spherical = by_solid_angle(l, p, &omega);

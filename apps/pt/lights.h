@@ -98,6 +98,7 @@ public:
         double cos_start = 1, cos_end = 0;  // spot
         Vec3 L;              // radiance (area, distant, uniform environment) or intensity (point, spot)
         bool twosided = false;
+        bool reversed = false;  // sphere: emits inwards (ReverseOrientation)
         int shape = -1;
         int map = -1;                      // environment: its image (maps_), or -1 for a uniform one
         udm1scene::Mat4 light_from_world;  // environment: the map's frame

@@ -261,6 +261,34 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
         if (models_[i].mix) walk(models_[i].parts[0], depth + 1), walk(models_[i].parts[1], depth + 1);
     };
     for (size_t i = 0; i < models_.size(); ++i) walk((int)i, 0);
+    if (!scene.bsdf_sampling) refuse_specular(scene);
+}
+
+void Materials::refuse_specular(const udm1scene::Scene &scene) const
+{
+    std::vector<char> used(models_.size(), 0);  // the materials of shapes, and the parts of their mixes
+    std::function<void(int)> use = [&](int i) {
+        if (i < 0 || used[i]) return;
+        used[i] = 1;
+        if (models_[i].mix) use(models_[i].parts[0]), use(models_[i].parts[1]);
+    };
+    for (const udm1scene::Shape &s : scene.shapes) use(s.material);
+    for (size_t i = 0; i < models_.size(); ++i) {
+        const MaterialModel &m = models_[i];
+        if (!used[i] || m.mix) continue;
+        // smooth (or, with a roughness texture, maybe smooth somewhere) metal and glass, a smooth coat
+        bool textured = m.roughness_tex >= 0;
+        bool specular = m.base.kind == Bsdf::ConductorKind    ? textured || m.base.conductor.specular()
+                        : m.base.kind == Bsdf::DielectricKind ? textured || m.base.dielectric.specular()
+                        : m.base.kind == Bsdf::CoatedDiffuse
+                            ? textured || (m.base.coated.top.mf.smooth() && m.base.coated.top.eta != 1)
+                            : false;
+        if (specular)
+            throw SceneError(scene.integrator_where + ": Integrator samples directions uniformly (randomwalk, or "
+                                                      "samplebsdf false), which never finds the specular reflection of "
+                                                      "the material at " + scene.materials[i].params.where +
+                             ": pbrt-v4's image leaves it out, which udm1-pt does not model");
+    }
 }
 
 namespace {
@@ -269,12 +297,13 @@ namespace {
 void surface_derivatives(const udm1scene::Shape &s, const udm1scene::Hit &h, Vec3 n, Vec3 *dpdu, Vec3 *dpdv)
 {
     const double PI = 3.14159265358979323846;
-    if (s.kind == udm1scene::Shape::Sphere) {
-        Vec3 d = h.p - s.center;
-        double phi_max = 2 * PI, r = s.radius, rho = std::sqrt(d.x * d.x + d.y * d.y);
+    if (s.kind == udm1scene::Shape::Sphere) {  // in object space (pbrt-v4's Sphere), then to world space
+        Vec3 d = udm1scene::sphere_object_point(s, h.p);
+        double phi_max = 2 * PI, r = s.object_radius, rho = std::sqrt(d.x * d.x + d.y * d.y);
         *dpdu = Vec3(-phi_max * d.y, phi_max * d.x, 0);
         double cos_phi = rho > 0 ? d.x / rho : 1, sin_phi = rho > 0 ? d.y / rho : 0, theta = std::acos(std::clamp(d.z / r, -1.0, 1.0));
         *dpdv = Vec3(d.z * cos_phi, d.z * sin_phi, -r * std::sin(theta)) * (-PI);  // v = 1 - theta / pi
+        *dpdu = s.world_from_object.vector(*dpdu), *dpdv = s.world_from_object.vector(*dpdv);
         return;
     }
     const uint32_t *i = &s.indices[3 * (size_t)h.prim];
@@ -353,8 +382,8 @@ const Bsdf &Materials::at(int material, const udm1scene::Shape &shape, const udm
 
 void hit_uv(const udm1scene::Shape &s, const udm1scene::Hit &h, double *u, double *v)
 {
-    if (s.kind == udm1scene::Shape::Sphere) {
-        Vec3 d = (h.p - s.center) * (1 / s.radius);
+    if (s.kind == udm1scene::Shape::Sphere) {  // pbrt-v4's, of the point in object space
+        Vec3 d = udm1scene::sphere_object_point(s, h.p) * (1 / s.object_radius);
         double phi = std::atan2(d.y, d.x);
         if (phi < 0) phi += 2 * 3.14159265358979323846;
         *u = phi / (2 * 3.14159265358979323846);

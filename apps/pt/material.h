@@ -32,7 +32,9 @@ struct MaterialModel {
 class Materials {
 public:
     // Validates every material (unknown types and parameters, missing textures and named materials,
-    // mixes that contain themselves) with its file:line, and reads the textures' images.
+    // mixes that contain themselves) with its file:line, and reads the textures' images. With an
+    // integrator that samples directions uniformly (Scene::bsdf_sampling false) a material in use that
+    // may have a specular lobe is refused: pbrt-v4's image leaves that lobe out.
     explicit Materials(const udm1scene::Scene &scene);
     // The BSDF at hit h of shape (a mix resolved, textures evaluated) and, through *ns, the shading
     // normal: the caller's (interpolated or geometric) on entry, bumped as pbrt-v4's BumpMap if the
@@ -44,6 +46,7 @@ public:
     size_t size() const { return models_.size(); }
 
 private:
+    void refuse_specular(const udm1scene::Scene &scene) const;
     Textures textures_;
     std::vector<MaterialModel> models_;
     std::vector<std::unique_ptr<FresnelTable>> tables_;  // spectral conductors' (their BSDFs point here)
@@ -54,7 +57,7 @@ private:
 Bsdf default_material();
 
 // The texture coordinates of a hit: the mesh's per-vertex uv interpolated, else pbrt-v4's defaults
-// ((0,0), (1,0), (1,1) per triangle; spheres by longitude and colatitude around the centre).
+// ((0,0), (1,0), (1,1) per triangle; spheres by longitude and colatitude in their object space).
 void hit_uv(const udm1scene::Shape &shape, const udm1scene::Hit &h, double *u, double *v);
 
 }  // namespace udm1pt

@@ -140,8 +140,7 @@ Scene furnace_sphere()
     s.lights.push_back(l);
     Shape sh;
     sh.where = s.source;
-    sh.kind = Shape::Sphere;
-    sh.radius = 1;
+    make_sphere(Mat4(), 1, &sh);
     sh.material = grey;
     sh.light = 0;
     s.shapes.push_back(sh);

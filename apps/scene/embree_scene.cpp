@@ -28,6 +28,79 @@ Segment segment_to_infinity(Vec3 p, Vec3 n, double t, Vec3 w)
     return {p + (dot(n, w) > 0 ? n : -n) * ray_offset(p, t), w, std::numeric_limits<double>::infinity()};
 }
 
+namespace {
+
+// A sphere that is not a sphere in world space (an ellipsoid: Shape::ellipsoid), as an Embree user
+// geometry: the ray taken to object space and met with the sphere there in double precision (pbrt-v4's
+// Sphere::BasicIntersect: t is the same parameter in both spaces, the map being affine).
+void ellipsoid_bounds(const RTCBoundsFunctionArguments *args)
+{
+    const Shape &s = *(const Shape *)args->geometryUserPtr;
+    Vec3 lo, hi;
+    sphere_bounds(s, &lo, &hi);
+    RTCBounds *b = args->bounds_o;  // widened by a float ulp or so, so that float rounding keeps it outside
+    b->lower_x = std::nextafter((float)lo.x, -INFINITY), b->lower_y = std::nextafter((float)lo.y, -INFINITY);
+    b->lower_z = std::nextafter((float)lo.z, -INFINITY);
+    b->upper_x = std::nextafter((float)hi.x, INFINITY), b->upper_y = std::nextafter((float)hi.y, INFINITY);
+    b->upper_z = std::nextafter((float)hi.z, INFINITY);
+}
+
+// The nearest t in (tnear, tfar] where o + t d meets ellipsoid s, or -1.
+double ellipsoid_hit(const Shape &s, Vec3 o, Vec3 d, double tnear, double tfar)
+{
+    Vec3 oo = s.object_from_world.point(o), dd = s.object_from_world.vector(d);
+    double r = s.object_radius, a = dot(dd, dd), b = 2 * dot(oo, dd), c = dot(oo, oo) - r * r;
+    if (!(a > 0)) return -1;
+    Vec3 v = oo - dd * (b / (2 * a));  // the discriminant as pbrt-v4 forms it: 4 a (r + |v|)(r - |v|)
+    double len = length(v), disc = 4 * a * (r + len) * (r - len);
+    if (!(disc >= 0)) return -1;
+    double root = std::sqrt(disc), q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
+    double t0 = q / a, t1 = q != 0 ? c / q : t0;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > tnear && t0 <= tfar) return t0;
+    if (t1 > tnear && t1 <= tfar) return t1;
+    return -1;
+}
+
+void ellipsoid_intersect(const RTCIntersectFunctionNArguments *args)
+{
+    const Shape &s = *(const Shape *)args->geometryUserPtr;
+    RTCRayN *ray = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN *hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    const unsigned N = args->N;
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        Vec3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+        Vec3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+        float &tfar = RTCRayN_tfar(ray, N, i);
+        double t = ellipsoid_hit(s, o, d, RTCRayN_tnear(ray, N, i), tfar);
+        if (!(t >= 0) || !((float)t <= tfar)) continue;
+        tfar = (float)t;
+        Vec3 n = sphere_normal(s, o + d * t);  // (hit_of makes the normal the renderers use)
+        RTCHitN_Ng_x(hit, N, i) = (float)n.x, RTCHitN_Ng_y(hit, N, i) = (float)n.y, RTCHitN_Ng_z(hit, N, i) = (float)n.z;
+        RTCHitN_u(hit, N, i) = 0, RTCHitN_v(hit, N, i) = 0;
+        RTCHitN_primID(hit, N, i) = args->primID;
+        RTCHitN_geomID(hit, N, i) = args->geomID;
+        RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
+    }
+}
+
+void ellipsoid_occluded(const RTCOccludedFunctionNArguments *args)
+{
+    const Shape &s = *(const Shape *)args->geometryUserPtr;
+    const unsigned N = args->N;
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        RTCRayN *ray = args->ray;
+        Vec3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+        Vec3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+        float &tfar = RTCRayN_tfar(ray, N, i);
+        if (ellipsoid_hit(s, o, d, RTCRayN_tnear(ray, N, i), tfar) >= 0) tfar = -INFINITY;
+    }
+}
+
+}  // namespace
+
 EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
 {
     device_ = rtcNewDevice(nullptr);
@@ -48,6 +121,13 @@ EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
             if (!v || !i) throw SceneError(scene.source + ": Embree could not allocate a mesh");
             std::copy(s.P.begin(), s.P.end(), v);
             std::copy(s.indices.begin(), s.indices.end(), i);
+        } else if (s.ellipsoid) {
+            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+            rtcSetGeometryUserPrimitiveCount(g, 1);
+            rtcSetGeometryUserData(g, (void *)&s);
+            rtcSetGeometryBoundsFunction(g, ellipsoid_bounds, nullptr);
+            rtcSetGeometryIntersectFunction(g, ellipsoid_intersect);
+            rtcSetGeometryOccludedFunction(g, ellipsoid_occluded);
         } else {
             g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
             float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
@@ -122,7 +202,7 @@ Hit EmbreeScene::hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned p
     hit.p = o + d * hit.t;
     const Shape &s = src_.shapes[hit.shape];
     if (s.kind == Shape::Sphere) {
-        hit.ng = normalize(hit.p - s.center);
+        hit.ng = sphere_normal(s, hit.p);
         if (s.reverse_orientation) hit.ng = -hit.ng;
     } else {
         hit.ng = normals_[first_normal_[hit.shape] + hit.prim];

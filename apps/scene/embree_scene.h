@@ -1,5 +1,6 @@
 // embree_scene.h - a Scene on Embree 3: one device, one committed scene of
-// triangle meshes and spheres (as Embree sphere points), each triangle's geometric
+// triangle meshes and spheres (as Embree sphere points; as user geometry intersected in object space
+// where a transform makes them ellipsoids), each triangle's geometric
 // normal (computed once), and the queries the renderers need. Const methods are
 // safe from any number of threads.
 #pragma once

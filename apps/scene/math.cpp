@@ -126,11 +126,29 @@ bool Mat4::inverse(Mat4 *out) const
     return true;
 }
 
-double Mat4::scale_factor() const
+double Mat4::determinant3() const
 {
-    double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
-                 m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
-    return std::cbrt(std::fabs(det));
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+double Mat4::scale_factor() const { return std::cbrt(std::fabs(determinant3())); }
+
+bool Mat4::similarity(double tolerance, double *s) const
+{
+    double g[3][3], trace = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            g[i][j] = m[0][i] * m[0][j] + m[1][i] * m[1][j] + m[2][i] * m[2][j];
+            if (i == j) trace += g[i][j];
+        }
+    double s2 = trace / 3;
+    if (!(s2 > 0) || !std::isfinite(s2)) return false;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (!(std::fabs(g[i][j] - (i == j ? s2 : 0.0)) <= tolerance * s2)) return false;
+    *s = std::sqrt(s2);
+    return true;
 }
 
 }  // namespace udm1scene

@@ -68,6 +68,11 @@ struct Mat4 {
     Vec3 normal(Vec3 n) const;  // by the inverse transpose; pass the inverse's transpose-less normal: see .cpp
     bool inverse(Mat4 *out) const;
     double scale_factor() const;  // the cube root of |det| of the 3x3 part
+    double determinant3() const;  // of the 3x3 part (negative: the transform swaps handedness)
+    bool affine() const { return m[3][0] == 0 && m[3][1] == 0 && m[3][2] == 0 && m[3][3] == 1; }
+    // Whether the 3x3 part is s times an orthogonal matrix (a rotation, maybe with a reflection), each
+    // entry of its Gram matrix A^T A within `tolerance` of s^2 I relative to s^2; *s then holds s.
+    bool similarity(double tolerance, double *s) const;
 };
 Mat4 operator*(const Mat4 &a, const Mat4 &b);
 

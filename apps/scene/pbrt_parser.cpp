@@ -9,6 +9,7 @@
 #include "mesh_io.h"
 #include "spectrum.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cctype>
 #include <cerrno>
@@ -21,6 +22,10 @@
 namespace udm1scene {
 
 namespace {
+
+// Refused wherever it would matter: pbrt-v4 applies a matrix's projective part to points but not to
+// directions and normals.
+const char *const PROJECTIVE = "a projective transform (its bottom row is not 0 0 0 1) is not modelled";
 
 struct Token {
     enum Kind { Word, String, Number, Open, Close, End } kind = End;
@@ -140,6 +145,15 @@ public:
     {
         if (!camera_set_) { /* pbrt's default camera: at the origin looking down +z */
             scene_.camera.world_from_camera = Mat4();
+        }
+        if (!scene_.light_sampling) {  // lights that only light sampling finds
+            std::vector<LightSource> &ls = scene_.light_sources;
+            size_t before = ls.size();
+            ls.erase(std::remove_if(ls.begin(), ls.end(), [](const LightSource &l) { return l.kind != LightSource::Infinite; }),
+                     ls.end());
+            if (ls.size() != before)
+                scene_.notes.push_back(scene_.integrator_where + ": point, spot and distant lights are left out: without "
+                                                                 "light sampling pbrt-v4 never finds them");
         }
     }
 
@@ -333,7 +347,7 @@ private:
             {"PixelFilter", &Parser::on_PixelFilter},
             {"WorldBegin", &Parser::on_WorldBegin},
             {"AttributeBegin", &Parser::on_AttributeBegin},
-            {"TransformBegin", &Parser::on_AttributeBegin},
+            {"TransformBegin", &Parser::on_AttributeBegin},  // (pbrt-v4 reads TransformBegin/End as AttributeBegin/End)
             {"AttributeEnd", &Parser::on_AttributeEnd},
             {"TransformEnd", &Parser::on_AttributeEnd},
             {"ReverseOrientation", &Parser::on_ReverseOrientation},
@@ -351,7 +365,18 @@ private:
         // what a geometry-only load (udm1-ao) skips: appearance, lights, media
         static const std::set<std::string> APPEARANCE = {"AreaLightSource", "LightSource", "Texture",   "MakeNamedMedium",
                                                          "MediumInterface", "ColorSpace",  "Option", "Attribute"};
+        // pbrt-v4's blocks: options before WorldBegin, the scene's description after it
+        static const std::set<std::string> OPTIONS = {"Camera",      "Sampler",    "Film",      "PixelFilter",
+                                                      "Accelerator", "Integrator", "WorldBegin"};
+        static const std::set<std::string> WORLD = {"ReverseOrientation", "AttributeBegin",    "AttributeEnd",
+                                                    "TransformBegin",     "TransformEnd",      "LightSource",
+                                                    "Shape",              "Texture",           "Material",
+                                                    "MakeNamedMaterial",  "NamedMaterial",     "AreaLightSource"};
         const std::string here = lex.where(t.line);
+        if (in_world_ && OPTIONS.count(t.text))
+            throw SceneError(here + ": " + t.text + " after WorldBegin: pbrt-v4 takes it only before");
+        if (!in_world_ && WORLD.count(t.text))
+            throw SceneError(here + ": " + t.text + " before WorldBegin: pbrt-v4 takes it only after");
         if (geometry_only_ && APPEARANCE.count(t.text)) return skip(lex, t);  // the emitters' shapes stay geometry
         auto it = HANDLERS.find(t.text);
         if (it == HANDLERS.end()) throw SceneError(here + ": unsupported directive '" + t.text + "'");
@@ -423,6 +448,18 @@ private:
         scene_.camera.lens_radius = ps.get_float("lensradius", 0);
         scene_.camera.focal_distance = ps.get_float("focaldistance", 1e6);
         if (!(scene_.camera.fov > 0 && scene_.camera.fov < 180)) throw SceneError(here + ": Camera fov outside (0, 180)");
+        if (!geometry_only_) {  // (a geometry-only load renders through a pinhole)
+            const Param *lr = ps.find("lensradius"), *fd = ps.find("focaldistance");
+            if (scene_.camera.lens_radius < 0)
+                throw SceneError(lr->where + ": Camera: lensradius " + number_text(scene_.camera.lens_radius) +
+                                 " is negative (0 is a pinhole)");
+            if (scene_.camera.lens_radius > 0 && !(scene_.camera.focal_distance > 0))
+                throw SceneError(fd->where + ": Camera: focaldistance " + number_text(scene_.camera.focal_distance) +
+                                 " with a lens is not modelled: pbrt-v4 focuses a lens on the plane at that distance, "
+                                 "which at 0 is the lens itself (rays along the lens plane) and below 0 behind it");
+        }
+        // (a transform that is not rigid maps the rays as pbrt-v4 maps them, which warns that it may be wrong)
+        if (!st_.ctm.affine()) throw SceneError(here + ": Camera: " + PROJECTIVE);
         if (!st_.ctm.inverse(&scene_.camera.world_from_camera)) throw SceneError(here + ": Camera: singular transform");
         camera_set_ = true;
     }
@@ -487,17 +524,30 @@ private:
             if (in != "path" && in != "volpath" && in != "simplepath" && in != "randomwalk")
                 throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath without media; "
                                         "simplepath and randomwalk render as path)");
-            only(ps, {"maxdepth", "lightsampler", "samplelights", "samplebsdf", "regularize"}, "Integrator");
+            // each integrator's own parameters (pbrt-v4 refuses the others as unused)
+            if (in == "path" || in == "volpath") only(ps, {"maxdepth", "lightsampler", "regularize"}, "Integrator \"" + in + "\"");
+            else if (in == "simplepath") only(ps, {"maxdepth", "samplelights", "samplebsdf"}, "Integrator \"simplepath\"");
+            else only(ps, {"maxdepth"}, "Integrator \"randomwalk\"");
             if (ps.get_bool("regularize", false))
                 throw SceneError(ps.find("regularize")->where + ": Integrator: regularize (a biased image) is not supported");
+            std::string sampler = ps.get_string("lightsampler", "bvh");
+            if (sampler != "bvh" && sampler != "power" && sampler != "uniform" && sampler != "exhaustive")
+                throw SceneError(ps.find("lightsampler")->where + ": Integrator: lightsampler \"" + sampler +
+                                 "\" is not one of pbrt-v4's (bvh, power, uniform, exhaustive)");
+            // without light sampling (simplepath's samplelights false, randomwalk) pbrt-v4 finds lights only
+            // where paths hit them; without BSDF sampling (samplebsdf false, randomwalk) it samples directions
+            // uniformly, which never finds a specular lobe: the renderer models both (Scene)
+            scene_.light_sampling = in == "randomwalk" ? false : ps.get_bool("samplelights", true);
+            scene_.bsdf_sampling = in == "randomwalk" ? false : ps.get_bool("samplebsdf", true);
+            scene_.integrator_where = here;
             if (in == "simplepath" || in == "randomwalk") {  // the same image in the limit, found another way
                 scene_.notes.push_back(here + ": Integrator \"" + in + "\" renders as \"path\" (the same image it "
                                               "converges to; noise differs)");
                 scene_.integrator = "path";
             }
-            if (ps.find("lightsampler") || ps.find("samplelights") || ps.find("samplebsdf"))
-                scene_.notes.push_back(here + ": Integrator: lightsampler, samplelights and samplebsdf ignored (they "
-                                              "change the noise, not the image; udm1-pt chooses lights by power, with MIS)");
+            if (ps.find("lightsampler"))
+                scene_.notes.push_back(here + ": Integrator: lightsampler ignored (it changes the noise, not the image; "
+                                              "udm1-pt chooses lights by their importance, with MIS)");
         }
         scene_.max_depth = ps.get_int("maxdepth", 5);
         if (scene_.max_depth < 0 || scene_.max_depth > 1000)
@@ -530,7 +580,6 @@ private:
         if (stack_.empty()) throw SceneError(here + ": " + d + " without a matching begin");
         State s = stack_.back();
         stack_.pop_back();
-        if (d == "TransformEnd") s.material = st_.material, s.light_template = st_.light_template, s.reverse = st_.reverse;
         st_ = s;
     }
 
@@ -652,7 +701,8 @@ private:
                 throw SceneError(here + ": Texture imagemap: only \"repeat\" wrapping is supported");
             std::string filter = ps.get_string("filter", "bilinear");
             if (filter != "bilinear" && filter != "point")
-                throw SceneError(here + ": Texture imagemap: filter \"" + filter + "\" is not supported (bilinear)");
+                throw SceneError(here + ": Texture imagemap: filter \"" + filter + "\" is not supported (bilinear, point)");
+            tx.point = filter == "point";
         } else if (tx.type == "scale") {
             only(ps, {"tex", "scale"}, "Texture scale");
             const Param *p = ps.find("tex");
@@ -696,6 +746,26 @@ private:
             if (!m.empty() && !media_.count(m)) throw SceneError(here + ": MediumInterface: medium \"" + m + "\" was not made");
     }
 
+    // An emitting sphere under transform m: refused where pbrt-v4's image of it is not consistent. pbrt-v4
+    // intersects a sphere in object space (any affine transform) but samples a sphere light as the sphere
+    // of its object-space radius about its world centre, with normals flipped by ReverseOrientation
+    // only: under a transform that scales or shears it, or (one-sided) swaps handedness, light sampling
+    // and the rays that hit the light see different lights.
+    void sphere_light_transform(const std::string &here, const Mat4 &m, bool twosided)
+    {
+        double scale;
+        if (!m.similarity(1e-9, &scale) || std::fabs(scale - 1) > 1e-9)
+            throw SceneError(here + ": an emitting sphere under a transform that scales or shears it is not modelled: "
+                                    "pbrt-v4 samples a sphere light as the sphere of its \"float radius\" about its "
+                                    "centre, not as the shape it intersects, so its image is not consistent (give the "
+                                    "size by the radius)");
+        if (m.determinant3() < 0 && !twosided)
+            throw SceneError(here + ": a one-sided emitting sphere under a transform that swaps handedness is not "
+                                    "modelled: pbrt-v4 flips the normals where rays hit it but not where it samples "
+                                    "it, so its image is not consistent (use ReverseOrientation, or \"bool twosided\" "
+                                    "true)");
+    }
+
     // LightSource "point" | "spot" | "distant" | "infinite", placed by the current transform, with pbrt-v4's
     // parameters, defaults and normalization: the emission spectrum at 1 nit (or as rgb), times "scale";
     // "power" (point, spot) or "illuminance" (distant, infinite) in its place where given.
@@ -708,6 +778,9 @@ private:
         LightSource l;
         l.where = here;
         const Mat4 &m = st_.ctm;
+        if (!m.affine()) throw SceneError(here + ": LightSource \"" + type + "\": " + PROJECTIVE);
+        double similar_scale;
+        const bool similar = m.similarity(1e-9, &similar_scale);
         auto emitted = [&](const char *name) { return ps.find(name) ? emission(ps, name, "LightSource") : Vec3(1, 1, 1); };
         double scale = ps.get_float("scale", 1.0), power = ps.get_float("power", -1), lux = ps.get_float("illuminance", -1);
         if (!(scale >= 0) || !std::isfinite(scale)) throw SceneError(here + ": LightSource: scale must not be negative");
@@ -719,6 +792,11 @@ private:
             l.position = m.point(from);
             double solid_angle = 4 * PI;  // of the emission at full intensity, for "power"
             if (type == "spot") {
+                if (!similar)
+                    throw SceneError(here + ": LightSource \"spot\" under a transform that is not a rotation and a "
+                                            "uniform scale is not modelled: pbrt-v4 shapes its cone by the transform "
+                                            "but bounds it unshaped when it chooses lights, so its image is not "
+                                            "consistent");
                 l.kind = LightSource::Spot;
                 Vec3 axis = m.vector(ps.get_point("to", Vec3(0, 0, 1)) - from);
                 if (!(length(axis) > 0)) throw SceneError(here + ": LightSource \"spot\": from and to coincide");
@@ -750,6 +828,10 @@ private:
             std::string file = ps.get_string("filename", "");
             if (!file.empty()) {
                 if (ps.find("L")) throw SceneError(here + ": LightSource \"infinite\": both \"L\" and \"filename\" given");
+                if (!similar)
+                    throw SceneError(here + ": LightSource \"infinite\" with an image under a transform that is not a "
+                                            "rotation and a uniform scale is not modelled: pbrt-v4 samples it by the "
+                                            "untransformed image's density, so its image is not consistent");
                 l.filename = file[0] == '/' ? file : dir + file;
                 l.illuminance = lux;  // needs the image: the renderer applies it
                 l.L = Vec3(scale, scale, scale);
@@ -767,7 +849,6 @@ private:
     void shape(Lexer &lex, const Token &t, const std::string &dir)
     {
         const std::string here = lex.where(t.line);
-        if (!in_world_) throw SceneError(here + ": Shape before WorldBegin");
         std::string type = string_arg(lex, "Shape");
         ParamSet ps = params(lex, t.line);
         Shape s;
@@ -780,13 +861,10 @@ private:
         }
         // a transform that swaps handedness flips the geometric normal too (pbrt)
         const Mat4 &m = st_.ctm;
-        double det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
-                     m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
-                     m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
-        if (det < 0) s.reverse_orientation = !s.reverse_orientation;
+        if (m.determinant3() < 0) s.reverse_orientation = !s.reverse_orientation;
         if (type == "trianglemesh") {
-            only(ps, {"indices", "P", "N", "uv", "st"}, "trianglemesh");
-            const Param *P = ps.find("P"), *I = ps.find("indices");
+            only(ps, {"indices", "P", "N", "uv"}, "trianglemesh");  // ("st": pbrt-v4 reads it only when upgrading a file)
+            const Param *P = ps.find("P", "point3"), *I = ps.find("indices", "integer");
             if (!P || P->numbers.size() % 3 || P->numbers.empty())
                 throw SceneError(here + ": trianglemesh needs \"point3 P\" with 3 numbers per vertex");
             size_t nv = P->numbers.size() / 3;
@@ -804,14 +882,14 @@ private:
                 s.P.insert(s.P.end(), {(float)p.x, (float)p.y, (float)p.z});
             }
             for (double v : idx) s.indices.push_back((uint32_t)v);
-            if (const Param *N = ps.find("N")) {
+            if (const Param *N = ps.find("N", "normal")) {
                 if (N->numbers.size() != 3 * nv) throw SceneError(N->where + ": trianglemesh: N needs one normal per vertex");
                 for (size_t k = 0; k < nv; ++k) {
                     Vec3 n = normalize(m.normal(Vec3(N->numbers[3 * k], N->numbers[3 * k + 1], N->numbers[3 * k + 2])));
                     s.N.insert(s.N.end(), {(float)n.x, (float)n.y, (float)n.z});
                 }
             }
-            const Param *uv = ps.find("uv") ? ps.find("uv") : ps.find("st");
+            const Param *uv = ps.find("uv", "point2");
             if (uv) {
                 if (uv->numbers.size() != 2 * nv) throw SceneError(uv->where + ": trianglemesh: uv needs 2 numbers per vertex");
                 for (double v : uv->numbers) s.UV.push_back((float)v);
@@ -831,15 +909,21 @@ private:
             }
         } else if (type == "sphere") {
             only(ps, {"radius"}, "sphere");
-            s.kind = Shape::Sphere;
             double r = ps.get_float("radius", 1.0);
             if (!(r > 0)) throw SceneError(here + ": sphere radius must be positive");
-            s.center = m.point(Vec3(0, 0, 0));
-            s.radius = r * m.scale_factor();
+            if (!m.affine()) throw SceneError(here + ": sphere: " + PROJECTIVE);
+            if (!make_sphere(m, r, &s)) throw SceneError(here + ": sphere: singular transform");
+            if (s.light >= 0) sphere_light_transform(here, m, templates_[st_.light_template].twosided);
         } else {
             throw SceneError(here + ": Shape \"" + type + "\" is not supported (trianglemesh, plymesh, sphere)");
         }
         if (s.kind == Shape::Triangles && s.indices.empty()) throw SceneError(here + ": the shape has no triangles");
+        if (!s.N.empty()) {  // vertex normals: pbrt-v4 transforms them by the inverse transpose (normal()) and
+                             // ReverseOrientation flips them; the geometric normal then faces them
+            if (!m.affine()) throw SceneError(here + ": " + type + " with normals: " + PROJECTIVE);
+            if (st_.reverse)
+                for (float &x : s.N) x = -x;
+        }
         scene_.shapes.push_back(std::move(s));
     }
 

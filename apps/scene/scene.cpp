@@ -21,9 +21,18 @@ const Param *ParamSet::find(const std::string &name) const
     return nullptr;
 }
 
-double ParamSet::get_float(const std::string &name, double fallback) const
+const Param *ParamSet::find(const std::string &name, const char *type) const
 {
     const Param *p = find(name);
+    if (p && p->type != type)
+        throw SceneError(p->where + ": '" + name + "' must be \"" + type + " " + name + "\", not \"" + p->type + " " + name +
+                         "\"");
+    return p;
+}
+
+double ParamSet::get_float(const std::string &name, double fallback) const
+{
+    const Param *p = find(name, "float");
     if (!p) return fallback;
     if (p->numbers.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one number");
     return p->numbers[0];
@@ -31,9 +40,12 @@ double ParamSet::get_float(const std::string &name, double fallback) const
 
 int ParamSet::get_int(const std::string &name, int fallback) const
 {
-    double v = get_float(name, fallback);
+    const Param *p = find(name, "integer");
+    if (!p) return fallback;
+    if (p->numbers.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one number");
+    double v = p->numbers[0];
     if (!(v >= -2147483648.0 && v <= 2147483647.0) || v != std::floor(v))  // range first: the cast is UB outside
-        throw SceneError(find(name)->where + ": '" + name + "' needs a whole number between -2^31 and 2^31 - 1, not " +
+        throw SceneError(p->where + ": '" + name + "' needs a whole number between -2^31 and 2^31 - 1, not " +
                          number_text(v));
     return (int)v;
 }
@@ -47,7 +59,7 @@ std::string number_text(double v)
 
 bool ParamSet::get_bool(const std::string &name, bool fallback) const
 {
-    const Param *p = find(name);
+    const Param *p = find(name, "bool");
     if (!p) return fallback;
     if (p->strings.size() != 1 || (p->strings[0] != "true" && p->strings[0] != "false"))
         throw SceneError(p->where + ": '" + name + "' needs true or false");
@@ -56,7 +68,7 @@ bool ParamSet::get_bool(const std::string &name, bool fallback) const
 
 std::string ParamSet::get_string(const std::string &name, const std::string &fallback) const
 {
-    const Param *p = find(name);
+    const Param *p = find(name, "string");
     if (!p) return fallback;
     if (p->strings.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one string");
     return p->strings[0];
@@ -74,7 +86,7 @@ bool ParamSet::get_rgb(const std::string &name, Vec3 *rgb) const
 
 Vec3 ParamSet::get_point(const std::string &name, Vec3 fallback) const
 {
-    const Param *p = find(name);
+    const Param *p = find(name, "point3");
     if (!p) return fallback;
     if (p->numbers.size() != 3) throw SceneError(p->where + ": '" + name + "' needs a point (3 numbers)");
     return Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
@@ -99,7 +111,12 @@ void Scene::bounds(Vec3 *lo, Vec3 *hi) const
         }
     };
     for (const Shape &s : shapes) {
-        if (s.kind == Shape::Sphere) grow(s.center, s.radius);
+        if (s.kind == Shape::Sphere && !s.ellipsoid) grow(s.center, s.radius);
+        if (s.kind == Shape::Sphere && s.ellipsoid) {
+            Vec3 a, b;
+            sphere_bounds(s, &a, &b);
+            grow(a, 0), grow(b, 0);
+        }
         for (size_t i = 0; i + 2 < s.P.size(); i += 3) grow(Vec3(s.P[i], s.P[i + 1], s.P[i + 2]), 0);
     }
 }
@@ -120,6 +137,54 @@ struct Fnv1a {
 };
 }  // namespace
 
+namespace {
+// Whether sphere s's object space is the world's axes about its centre (moved and uniformly scaled only).
+bool object_frame_is_world(const Shape &s)
+{
+    const Mat4 &m = s.world_from_object;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            if (m.m[i][j] != (i == j ? m.m[0][0] : 0.0)) return false;
+    return m.m[0][0] > 0;
+}
+}  // namespace
+
+bool make_sphere(const Mat4 &world_from_object, double r, Shape *s)
+{
+    Mat4 inverse;
+    if (!world_from_object.affine() || !world_from_object.inverse(&inverse) || !(r > 0)) return false;
+    s->kind = Shape::Sphere;
+    s->world_from_object = world_from_object, s->object_from_world = inverse;
+    s->object_radius = r;
+    s->center = world_from_object.point(Vec3(0, 0, 0));
+    double scale;
+    s->ellipsoid = !world_from_object.similarity(1e-9, &scale);
+    s->radius = s->ellipsoid ? 0 : r * world_from_object.scale_factor();
+    return true;
+}
+
+Vec3 sphere_object_point(const Shape &s, Vec3 p) { return s.object_from_world.point(p); }
+
+Vec3 sphere_normal(const Shape &s, Vec3 p)
+{
+    if (!s.ellipsoid) return normalize(p - s.center);
+    Vec3 q = sphere_object_point(s, p);
+    const Mat4 &inv = s.object_from_world;  // by the inverse transpose
+    return normalize(Vec3(inv.m[0][0] * q.x + inv.m[1][0] * q.y + inv.m[2][0] * q.z,
+                          inv.m[0][1] * q.x + inv.m[1][1] * q.y + inv.m[2][1] * q.z,
+                          inv.m[0][2] * q.x + inv.m[1][2] * q.y + inv.m[2][2] * q.z));
+}
+
+void sphere_bounds(const Shape &s, Vec3 *lo, Vec3 *hi)
+{
+    // the image of the ball: along world axis i it reaches r times the length of row i of the 3x3 part
+    const Mat4 &m = s.world_from_object;
+    for (int i = 0; i < 3; ++i) {
+        double e = s.object_radius * std::sqrt(m.m[i][0] * m.m[i][0] + m.m[i][1] * m.m[i][1] + m.m[i][2] * m.m[i][2]);
+        (*lo)[i] = s.center[i] - e, (*hi)[i] = s.center[i] + e;
+    }
+}
+
 uint64_t Scene::digest() const
 {
     Fnv1a f;
@@ -132,6 +197,9 @@ uint64_t Scene::digest() const
         f.value((int)s.kind), f.vec(s.P), f.vec(s.N), f.vec(s.indices);
         f.value(s.center.x), f.value(s.center.y), f.value(s.center.z), f.value(s.radius);
         f.value(s.material), f.value(s.light), f.value(s.reverse_orientation);
+        if (s.kind == Shape::Sphere && (s.ellipsoid || !object_frame_is_world(s)))  // (its texture coordinates)
+            for (int r = 0; r < 4; ++r)
+                for (int c = 0; c < 4; ++c) f.value(s.world_from_object.m[r][c]);
     }
     for (const Material &m : materials) {
         f.vec(std::vector<char>(m.type.begin(), m.type.end()));
@@ -139,6 +207,10 @@ uint64_t Scene::digest() const
             f.vec(std::vector<char>(p.name.begin(), p.name.end())), f.vec(p.numbers);
             for (const std::string &t : p.strings) f.vec(std::vector<char>(t.begin(), t.end()));
         }
+    }
+    for (const Texture &t : textures) {
+        for (const std::string *x : {&t.name, &t.kind, &t.type, &t.filename}) f.vec(std::vector<char>(x->begin(), x->end()));
+        f.value(t.srgb), f.value(t.invert), f.value(t.point), f.value(t.scale), f.value(t.tex);
     }
     for (const AreaLight &l : lights) f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.scale), f.value(l.twosided);
     for (const LightSource &l : light_sources) {

@@ -30,10 +30,14 @@ struct Param {
     std::string where;                 // "file:line"
 };
 
+// Its getters read a parameter of one type ("float", "integer", "bool", "string", "point3": pbrt-v4's for
+// it) and refuse it given as another: pbrt-v4 looks parameters up by type and name, and refuses one it did
+// not use.
 struct ParamSet {
     std::vector<Param> params;
     std::string where;  // the directive's "file:line"
     const Param *find(const std::string &name) const;
+    const Param *find(const std::string &name, const char *type) const;  // refused if given as another type
     double get_float(const std::string &name, double fallback) const;
     int get_int(const std::string &name, int fallback) const;
     bool get_bool(const std::string &name, bool fallback) const;
@@ -42,12 +46,14 @@ struct ParamSet {
     Vec3 get_point(const std::string &name, Vec3 fallback) const;  // "point3 name" [x y z]
 };
 
-// A pbrt-v4 texture of the subset: "imagemap" (an image file, repeated, bilinear, 8-bit files
-// decoded from sRGB unless "encoding" says "linear") or "scale" (texture tex times float scale).
+// A pbrt-v4 texture of the subset: "imagemap" (an image file, repeated, bilinear or point-sampled at
+// the finest level, 8-bit files decoded from sRGB unless "encoding" says "linear") or "scale" (texture
+// tex times float scale).
 struct Texture {
     std::string name, kind, type;  // kind "float" or "spectrum"; type "imagemap" or "scale"
     std::string filename;          // imagemap: resolved against the scene file's folder
     bool srgb = true, invert = false;
+    bool point = false;            // imagemap: "filter" "point" (the nearest texel), else bilinear
     double scale = 1;              // imagemap "scale", or the scale texture's factor
     int tex = -1;                  // scale: the texture scaled (Scene::textures index)
     std::string where;
@@ -81,14 +87,23 @@ struct LightSource {
     std::string where;
 };
 
+// A triangle mesh, or pbrt-v4's sphere: the sphere of radius object_radius about the origin of its
+// object space, placed by an affine world_from_object. Where that transform is a similarity (a rotation and
+// a uniform scale, maybe mirrored) the sphere is a sphere in world space too, of centre `center` and
+// radius `radius`, and is intersected as one; otherwise (`ellipsoid`) it is intersected in object space.
+// Either way its normals are the object-space normals by the inverse transpose and its texture
+// coordinates pbrt-v4's, from the object-space point (make_sphere sets all of this).
 struct Shape {
     enum Kind { Triangles, Sphere } kind = Triangles;
     std::vector<float> P;            // xyz per vertex, world space
     std::vector<float> N;            // optional per-vertex normals, world space
     std::vector<float> UV;           // optional
     std::vector<uint32_t> indices;   // 3 per triangle
-    Vec3 center;                     // sphere
-    double radius = 0;               // sphere
+    Vec3 center;                     // sphere: world space
+    double radius = 0;               // sphere: world space, if not an ellipsoid
+    double object_radius = 0;        // sphere: in object space
+    Mat4 world_from_object, object_from_world;  // sphere
+    bool ellipsoid = false;          // sphere: world_from_object is not a similarity
     int material = -1;               // index into Scene::materials
     int light = -1;                  // index into Scene::lights (an emitter), or -1
     bool reverse_orientation = false;
@@ -113,6 +128,12 @@ struct Scene {
     int pixel_samples = 16;     // its "pixelsamples" (pbrt-v4's default 16)
     std::string integrator = "path";
     int max_depth = 5;
+    // pbrt-v4's integrators without light sampling (simplepath "samplelights" false, randomwalk) find
+    // lights only where paths hit them: point, spot and distant lights are left out of the scene. Without
+    // BSDF sampling ("samplebsdf" false, randomwalk) they sample directions uniformly, which finds no
+    // specular lobe: udm1-pt refuses materials that have one (pt/material.h).
+    bool light_sampling = true, bsdf_sampling = true;
+    std::string integrator_where;  // the Integrator's file:line ("" without one)
     std::vector<Material> materials;
     std::vector<Texture> textures;  // referenced from material parameters "texture NAME" by name
     std::vector<AreaLight> lights;
@@ -132,6 +153,16 @@ struct Scene {
     // the same digest render the same image (cached references are keyed by it).
     uint64_t digest() const;
 };
+
+// A sphere of radius r (> 0) about the origin of object space, placed by world_from_object: false if that
+// transform is not affine and invertible. Transforms within 1e-9 of a similarity make a world sphere.
+bool make_sphere(const Mat4 &world_from_object, double r, Shape *s);
+// Sphere s at a world point p on it: the point in object space, and the unit outward normal in world
+// space (the object-space normal by the inverse transpose; before any flip for orientation).
+Vec3 sphere_object_point(const Shape &s, Vec3 p);
+Vec3 sphere_normal(const Shape &s, Vec3 p);
+// The world-space bounds of sphere s.
+void sphere_bounds(const Shape &s, Vec3 *lo, Vec3 *hi);
 
 // The unit geometric normal of triangle `prim` of a triangle shape, oriented as pbrt-v4 orients it:
 // cross(p0 - p2, p1 - p2), towards the shading normals if the mesh has them, else flipped by

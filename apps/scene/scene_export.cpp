@@ -81,6 +81,10 @@ void export_scene(const udm1scene::Scene &scene, int width, int height, int max_
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const udm1scene::Shape &s = scene.shapes[k];
         js << "    {";
+        if (s.kind == udm1scene::Shape::Sphere && s.ellipsoid)  // scene.json has spheres by centre and radius
+            throw Error(s.where + ": export writes spheres by centre and radius: this one, under a transform that is "
+                                  "not a rotation and a uniform scale, is an ellipsoid",
+                        1);
         if (s.kind == udm1scene::Shape::Sphere) {
             js << "\"sphere\": {\"center\": " << vec(s.center) << ", \"radius\": " << num(s.radius)
                << ", \"flip_normals\": " << (s.reverse_orientation ? "true" : "false") << "}";

@@ -217,7 +217,7 @@ Vec3 albedo_rgb(const double *at_each_nm)
 Vec3 albedo_rgb(const Spectrum &s)
 {
     double v[WAVELENGTHS];
-    for (int i = 0; i < WAVELENGTHS; ++i) v[i] = s.at(FIRST_NM + i);
+    for (int i = 0; i < WAVELENGTHS; ++i) v[i] = std::clamp(s.at(FIRST_NM + i), 0.0, 1.0);
     return albedo_rgb(v);
 }
 

@@ -46,10 +46,12 @@ Vec3 xyz_to_rgb(Vec3 xyz);
 // A light's spectrum as linear sRGB at luminance Y = 1 (negative components, of colours outside the
 // sRGB gamut, clamped to 0). Throws SceneError(where) for a spectrum of no luminance.
 Vec3 illuminant_rgb(const Spectrum &s, const std::string &where);
-// A reflectance spectrum as the linear sRGB reflectance that pbrt-v4 would record under D65.
+// A reflectance spectrum as the linear sRGB reflectance that pbrt-v4 would record under D65, after
+// clamping it to [0, 1] at every wavelength as pbrt-v4's materials clamp a reflectance.
 Vec3 albedo_rgb(const Spectrum &s);
 
-// The same for a reflectance given at every integer wavelength 360..830 nm (WAVELENGTHS values).
+// The same (unclamped: a metal's Fresnel reflectance, already in [0, 1]) for a reflectance given at every
+// integer wavelength 360..830 nm (WAVELENGTHS values).
 constexpr int WAVELENGTHS = 471;
 Vec3 albedo_rgb(const double *at_each_nm);
 

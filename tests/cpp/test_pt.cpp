@@ -363,7 +363,7 @@ static void test_glass_and_metal_in_the_furnace()
         m.type = c.type, m.params.params = c.params;
         s.materials.push_back(m);
         Shape ball;
-        ball.kind = Shape::Sphere, ball.center = Vec3(0, 0, 0.5), ball.radius = 0.3;
+        make_sphere(Mat4::translate(Vec3(0, 0, 0.5)), 0.3, &ball);
         ball.material = (int)s.materials.size() - 1;
         s.shapes.push_back(ball);
         EmbreeScene rt(s);
@@ -898,6 +898,57 @@ static void test_light_sources()
     }
 }
 
+// pbrt-v4's normalizations of "power" and "illuminance" and the current transform applied to each kind of
+// LightSource, against the closed form of the floor's irradiance: a point light of power P has intensity
+// P / 4 pi and a spot P / (2 pi (1 - cos start + (cos start - cos end) / 2)); a distant light of
+// illuminance E gives E cos theta, a uniform sky of illuminance E gives E (its radiance E / pi); the
+// transform moves a point light's "from" (here by a non-uniform scale), turns a spot's axis (a rotation) and
+// a distant light's direction (the vector by the transform: a non-uniform scale tilts it).
+static void test_light_parameters_and_transforms()
+{
+    TempScene t;
+    const double h = 8;
+    Options o;
+    o.spp = 256;
+    {
+        Scene s = t.load(floor_under("AttributeBegin\nScale 1 2 1\nLightSource \"point\" \"point3 from\" [ 3 4 2 ] "
+                                     "\"float power\" [ 100 ]\nAttributeEnd"));
+        EmbreeScene rt(s);
+        const double I = 100 / (4 * M_PI);
+        check_floor(s, rt, o, [&](Vec3 p) {
+            Vec3 d = Vec3(3, h, 2) - p;
+            double r = length(d);
+            return I * h / (r * r * r);
+        }, 2e-3, "point light, power, scaled");
+    }
+    {
+        Scene s = t.load(floor_under("AttributeBegin\nTranslate 0 8 0\nRotate 90 1 0 0\nLightSource \"spot\" "
+                                     "\"float power\" [ 100 ] \"float coneangle\" [ 30 ] \"float conedeltaangle\" [ 10 ]\n"
+                                     "AttributeEnd"));
+        EmbreeScene rt(s);
+        const double c_end = std::cos(30 * M_PI / 180), c_start = std::cos(20 * M_PI / 180);
+        const double I = 100 / (2 * M_PI * ((1 - c_start) + (c_start - c_end) / 2));
+        check_floor(s, rt, o, [&](Vec3 p) {
+            Vec3 d = Vec3(0, h, 0) - p;
+            double r = length(d), c = h / r, x = std::clamp((c - c_end) / (c_start - c_end), 0.0, 1.0);
+            return I * x * x * (3 - 2 * x) * h / (r * r * r);
+        }, 2e-3, "spot light, power, rotated");
+    }
+    {
+        Scene s = t.load(floor_under("AttributeBegin\nScale 1 2 1\nLightSource \"distant\" \"point3 from\" [ 1 1 0 ] "
+                                     "\"point3 to\" [ 0 0 0 ] \"float illuminance\" [ 3 ]\nAttributeEnd"));
+        EmbreeScene rt(s);
+        o.spp = 4;
+        check_floor(s, rt, o, [](Vec3) { return 3 * 2 / std::sqrt(5.0); }, 1e-6, "distant light, illuminance, scaled");
+    }
+    {
+        Scene s = t.load(floor_under("LightSource \"infinite\" \"float illuminance\" [ 5 ]"));
+        EmbreeScene rt(s);
+        o.spp = 64, o.strategy = Strategy::Bsdf;
+        check_floor(s, rt, o, [](Vec3) { return 5.0; }, 1e-6, "uniform sky, illuminance");  // (the sums' 2^-24 steps)
+    }
+}
+
 // The Crown (the paper's scene, ../shared/scenes): with its lights one at a time, direct light only, light
 // sampling, BSDF sampling and MIS agree in the mean. Its lights are lit at grazing angles over much of
 // the crown, where a shadow ray that met the light's own surface once lost up to 55 % of one light.
@@ -1145,6 +1196,7 @@ int main()
     test_light_choice();
     test_light_over_plane();
     test_light_sources();
+    test_light_parameters_and_transforms();
     test_crown_lights_one_by_one();
     test_blackbody();
     test_metal_and_glass();

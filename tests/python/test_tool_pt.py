@@ -767,6 +767,22 @@ def test_spectra_become_rgb_as_pbrt_records_them(tmp_path):
     assert np.allclose(got, 1 + _albedo_rgb(lam, cmf, d65, rgb_from_xyz, values), rtol=2e-4), got
 
 
+def test_reflectance_spectra_are_clamped_as_pbrt_clamps_them(tmp_path):
+    # a reflectance spectrum above 1 or below 0 is clamped to [0, 1] at each wavelength (pbrt-v4's materials
+    # clamp it; an rgb albedo above 1 is refused): inside a sphere that emits 1 everywhere, one bounce of BSDF
+    # sampling sees 1 + the clamped spectrum's RGB under D65
+    lam, cmf, d65, rgb_from_xyz = _cie()
+    for refl in ([(400, 0), (500, 8), (600, 0.5), (700, 2)], [(380, -1), (500, 0.6), (780, 3)]):
+        values = np.interp(lam, [a for a, _ in refl], [b for _, b in refl], left=0, right=0)
+        scene = tmp_path / "refl.pbrt"
+        scene.write_text(SPECTRAL_HEAD.format(depth=1) + 'Material "diffuse" "spectrum reflectance" [ '
+                         + " ".join(f"{a} {b}" for a, b in refl) + ' ]\n'
+                         'AreaLightSource "diffuse" "rgb L" [ 1 1 1 ] "bool twosided" true\nShape "sphere" "float radius" [ 10 ]\n')
+        got = mean_of(ok("--scene", str(scene), "--spp", "4", "--strategy", "bsdf", "-o", str(tmp_path / "refl.exr")))
+        want = 1 + _albedo_rgb(lam, cmf, d65, rgb_from_xyz, np.clip(values, 0, 1))
+        assert np.allclose(got, want, rtol=2e-4), (refl, got, want)
+
+
 def test_spectral_gold_reflects_as_pbrt_records_it(tmp_path):
     # a smooth gold mirror seen head-on, reflecting a white light behind the camera: each channel is the
     # spectral Fresnel reflectance projected as pbrt-v4's film records it (red above 1: out of gamut)
