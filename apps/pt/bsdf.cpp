@@ -335,7 +335,54 @@ bool Lambert::sample(Vec3 wo, double u1, double u2, unsigned lobes, Sample *s) c
     return s->pdf > 0;
 }
 
-// ---- layered: dielectric coat over a diffuse base, two-sided, no medium ----
+// ---- diffuse transmission ----
+
+Vec3 DiffuseTransmission::f(Vec3 wo, Vec3 wi) const { return (same_hemisphere(wo, wi) ? R : T) * (1 / PI); }
+
+double DiffuseTransmission::pdf(Vec3 wo, Vec3 wi) const
+{
+    double pr = std::max({R.x, R.y, R.z}), pt = std::max({T.x, T.y, T.z});
+    if (pr == 0 && pt == 0) return 0;
+    return (same_hemisphere(wo, wi) ? pr : pt) / (pr + pt) * std::fabs(wi.z) / PI;
+}
+
+bool DiffuseTransmission::sample(Vec3 wo, double uc, double u1, double u2, Sample *s) const
+{
+    double pr = std::max({R.x, R.y, R.z}), pt = std::max({T.x, T.y, T.z});
+    if (pr == 0 && pt == 0) return false;
+    bool reflect = uc < pr / (pr + pt);
+    double r = std::sqrt(u1), sin_phi, cos_phi;
+    udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+    Vec3 wi(r * cos_phi, r * sin_phi, std::sqrt(std::max(0.0, 1 - u1)));
+    if ((wo.z < 0) == reflect) wi.z = -wi.z;  // reflection: wo's side; transmission: the other
+    s->wi = wi, s->f = (reflect ? R : T) * (1 / PI);
+    s->pdf = (reflect ? pr : pt) / (pr + pt) * std::fabs(wi.z) / PI;
+    s->specular = false, s->reflection = reflect, s->eta = 1;
+    return s->pdf > 0;
+}
+
+// ---- Henyey-Greenstein ----
+
+double henyey_greenstein(double cos_theta, double g)
+{
+    g = std::clamp(g, -0.99, 0.99);
+    double denom = 1 + g * g + 2 * g * cos_theta;
+    return (1 - g * g) / (4 * PI * denom * std::sqrt(std::max(0.0, denom)));
+}
+
+Vec3 sample_henyey_greenstein(Vec3 wo, double g, double u1, double u2, double *pdf)
+{
+    g = std::clamp(g, -0.99, 0.99);
+    double cos_t = std::fabs(g) < 1e-3 ? 1 - 2 * u1
+                                       : -1 / (2 * g) * (1 + g * g - sqr((1 - g * g) / (1 + g - 2 * g * u1)));
+    double sin_t = std::sqrt(std::max(0.0, 1 - cos_t * cos_t)), sin_phi, cos_phi;
+    udm1scene::sincos_2pi(u2, &sin_phi, &cos_phi);
+    udm1scene::Frame f(wo);
+    *pdf = henyey_greenstein(cos_t, g);
+    return f.from_local(Vec3(sin_t * cos_phi, sin_t * sin_phi, cos_t));
+}
+
+// ---- layered: dielectric coat over a diffuse or conductor base, two-sided, a medium between ----
 
 namespace {
 
@@ -343,21 +390,30 @@ namespace {
 struct Interface {
     const Coated *c;
     bool top;
-    Vec3 f(Vec3 wo, Vec3 wi, Mode mode) const { return top ? c->top.f(wo, wi, mode) : c->bottom.f(wo, wi); }
+    Vec3 f(Vec3 wo, Vec3 wi, Mode mode) const
+    {
+        return top ? c->top.f(wo, wi, mode) : c->metal_base ? c->metal.f(wo, wi) : c->bottom.f(wo, wi);
+    }
     double pdf(Vec3 wo, Vec3 wi, Mode mode, unsigned lobes = Both) const
     {
-        return top ? c->top.pdf(wo, wi, mode, lobes) : c->bottom.pdf(wo, wi, lobes);
+        if (top) return c->top.pdf(wo, wi, mode, lobes);
+        if (c->metal_base) return lobes & Reflect ? c->metal.pdf(wo, wi) : 0;
+        return c->bottom.pdf(wo, wi, lobes);
     }
     bool sample(Vec3 wo, double uc, double u1, double u2, Mode mode, unsigned lobes, Sample *s) const
     {
-        return top ? c->top.sample(wo, uc, u1, u2, mode, lobes, s) : c->bottom.sample(wo, u1, u2, lobes, s);
+        if (top) return c->top.sample(wo, uc, u1, u2, mode, lobes, s);
+        if (c->metal_base) return (lobes & Reflect) && c->metal.sample(wo, u1, u2, s);
+        return c->bottom.sample(wo, u1, u2, lobes, s);
     }
-    bool specular() const { return top && c->top.specular(); }
+    bool specular() const { return top ? c->top.specular() : c->metal_base && c->metal.specular(); }
 };
 
 inline Mode flip(Mode m) { return m == Mode::Radiance ? Mode::Importance : Mode::Radiance; }
 inline double max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline bool nonzero(Vec3 v) { return v.x != 0 || v.y != 0 || v.z != 0; }
+// pbrt-v4's SampleExponential: -log(1 - u) / a
+inline double sample_exponential(double u, double a) { return -std::log(1 - u) / a; }
 
 }  // namespace
 
@@ -366,10 +422,11 @@ Vec3 Coated::f(Vec3 wo, Vec3 wi, Mode mode) const
     if (wo.z < 0) wo = -wo, wi = -wi;  // two-sided
     Interface top_i{this, true}, bottom_i{this, false};
     // light enters through the top; it leaves through the top (reflection) or, for
-    // transmission, the bottom (the diffuse base transmits nothing)
+    // transmission, the bottom (neither base transmits)
     bool refl = same_hemisphere(wo, wi);
     Interface enter = top_i, exit = refl ? top_i : bottom_i, non_exit = refl ? bottom_i : top_i;
     double exit_z = refl ? thickness : 0;
+    const bool medium = nonzero(albedo);
     Vec3 f;
     if (refl) f = enter.f(wo, wi, mode) * samples;
     Rng rng(Rng::hash(wo, 1), Rng::hash(wi, 2));
@@ -390,8 +447,36 @@ Vec3 Coated::f(Vec3 wo, Vec3 wi, Mode mode) const
                 if (rng() < q) break;
                 beta = beta * (1 / (1 - q));
             }
-            z = z == thickness ? 0 : thickness;
-            beta = beta * Tr(thickness, w);
+            if (!medium) {
+                z = z == thickness ? 0 : thickness;
+                beta = beta * Tr(thickness, w);
+            } else {  // the medium: a scattering event inside the layer, or the next interface
+                double zp = w.z > 0 ? z + sample_exponential(rng(), 1 / std::fabs(w.z))
+                                    : z - sample_exponential(rng(), 1 / std::fabs(w.z));
+                if (zp == z) continue;
+                if (0 < zp && zp < thickness) {
+                    // next-event estimate through the exit interface along the presampled wis
+                    double wt = 1;
+                    if (!exit.specular()) wt = power_heuristic(wis.pdf, henyey_greenstein(dot(-w, -wis.wi), g));
+                    f = f + mul(mul(beta, albedo), wis.f) *
+                                (henyey_greenstein(dot(-w, -wis.wi), g) * wt * Tr(zp - exit_z, wis.wi) / wis.pdf);
+                    double ps_pdf;
+                    double u1 = rng(), u2 = rng();
+                    Vec3 pw = sample_henyey_greenstein(-w, g, u1, u2, &ps_pdf);
+                    if (ps_pdf == 0 || pw.z == 0) continue;
+                    beta = mul(beta, albedo);  // (p / pdf = 1)
+                    w = pw, z = zp;
+                    if (((z < exit_z && w.z > 0) || (z > exit_z && w.z < 0)) && !exit.specular()) {
+                        Vec3 fexit = exit.f(-w, wi, mode);
+                        if (nonzero(fexit)) {  // (the density of the presampled strategy: see below)
+                            double wexit = power_heuristic(ps_pdf, exit.pdf(wi, -w, flip(mode), Transmit));
+                            f = f + mul(beta, fexit) * (Tr(zp - exit_z, pw) * wexit);
+                        }
+                    }
+                    continue;
+                }
+                z = std::clamp(zp, 0.0, thickness);
+            }
             if (z == exit_z) {
                 Sample bs;
                 uc = rng(), a = rng(), b = rng();
@@ -453,15 +538,19 @@ double Coated::pdf(Vec3 wo, Vec3 wi, Mode mode) const
                     Sample rs;
                     a = rng(), b = rng(), c = rng();
                     if (r_i.sample(-wos.wi, a, b, c, mode, Both, &rs) && nonzero(rs.f) && rs.pdf > 0) {
-                        double r_pdf = r_i.pdf(-wos.wi, -wis.wi, mode);
-                        sum += power_heuristic(wis.pdf, r_pdf) * r_pdf;
-                        double t_pdf = t_i.pdf(-rs.wi, wi, mode);
-                        sum += power_heuristic(rs.pdf, t_pdf) * t_pdf;
+                        if (r_i.specular()) {
+                            sum += t_i.pdf(-rs.wi, wi, mode);
+                        } else {
+                            double r_pdf = r_i.pdf(-wos.wi, -wis.wi, mode);
+                            sum += power_heuristic(wis.pdf, r_pdf) * r_pdf;
+                            double t_pdf = t_i.pdf(-rs.wi, wi, mode);
+                            sum += power_heuristic(rs.pdf, t_pdf) * t_pdf;
+                        }
                     }
                 }
             }
         }
-        // TT (transmission through both layers) is impossible: the base does not transmit
+        // TT (transmission through both layers) is impossible: neither base transmits
     }
     return 0.1 * (1 / (4 * PI)) + 0.9 * (sum / samples);  // mixed with a uniform density, as pbrt
 }
@@ -484,6 +573,7 @@ bool Coated::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, Sample 
                                         Rng::mix(Rng::mix((uint64_t)(u2 * 0x1p53)))));
     Vec3 f = bs.f * std::fabs(bs.wi.z);
     double pdf = bs.pdf, z = thickness;
+    const bool medium = nonzero(albedo);
     Interface top_i{this, true}, bottom_i{this, false};
     for (int depth = 0; depth < max_depth; ++depth) {
         double rr = max_component(f) / pdf;
@@ -493,8 +583,25 @@ bool Coated::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, Sample 
             pdf *= 1 - q;
         }
         if (w.z == 0) return false;
-        z = z == thickness ? 0 : thickness;
-        f = f * Tr(thickness, w);
+        if (medium) {  // a scattering event inside the layer, or the next interface
+            double dz = sample_exponential(rng(), 1 / std::fabs(w.z)), zp = w.z > 0 ? z + dz : z - dz;
+            if (zp == z) return false;
+            if (0 < zp && zp < thickness) {
+                double ps_pdf;
+                double a = rng(), b = rng();
+                Vec3 pw = sample_henyey_greenstein(-w, g, a, b, &ps_pdf);
+                if (ps_pdf == 0 || pw.z == 0) return false;
+                f = mul(f, albedo) * ps_pdf;  // (albedo p, p = pdf)
+                pdf *= ps_pdf;
+                specular_path = false;
+                w = pw, z = zp;
+                continue;
+            }
+            z = std::clamp(zp, 0.0, thickness);
+        } else {
+            z = z == thickness ? 0 : thickness;
+            f = f * Tr(thickness, w);
+        }
         Interface in = z == 0 ? bottom_i : top_i;
         Sample s;
         double c = rng(), a = rng(), b = rng();
@@ -523,8 +630,9 @@ Vec3 Bsdf::f(Vec3 wo, Vec3 wi, Mode mode) const
 {
     switch (kind) {
     case Diffuse: return diffuse.f(wo, wi);
-    case CoatedDiffuse: return coated.f(wo, wi, mode);
+    case CoatedDiffuse: case CoatedConductor: return coated.f(wo, wi, mode);
     case DielectricKind: return dielectric.f(wo, wi, mode);
+    case DiffuseTransmissionKind: return transmission.f(wo, wi);
     default: return conductor.f(wo, wi);
     }
 }
@@ -533,8 +641,9 @@ double Bsdf::pdf(Vec3 wo, Vec3 wi, Mode mode) const
 {
     switch (kind) {
     case Diffuse: return diffuse.pdf(wo, wi, Both);
-    case CoatedDiffuse: return coated.pdf(wo, wi, mode);
+    case CoatedDiffuse: case CoatedConductor: return coated.pdf(wo, wi, mode);
     case DielectricKind: return dielectric.pdf(wo, wi, mode, Both);
+    case DiffuseTransmissionKind: return transmission.pdf(wo, wi);
     default: return conductor.pdf(wo, wi);
     }
 }
@@ -544,8 +653,9 @@ bool Bsdf::sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode
     *s = Sample();
     switch (kind) {
     case Diffuse: return diffuse.sample(wo, u1, u2, Both, s);
-    case CoatedDiffuse: return coated.sample(wo, uc, u1, u2, mode, s);
+    case CoatedDiffuse: case CoatedConductor: return coated.sample(wo, uc, u1, u2, mode, s);
     case DielectricKind: return dielectric.sample(wo, uc, u1, u2, mode, Both, s);
+    case DiffuseTransmissionKind: return transmission.sample(wo, uc, u1, u2, s);
     default: return conductor.sample(wo, u1, u2, s);
     }
 }

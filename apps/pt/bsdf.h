@@ -3,11 +3,12 @@
 //   diffuse        Lambertian reflection on both sides (pbrt-v4 DiffuseBxDF)
 //   conductor      metal: Trowbridge-Reitz microfacets or a mirror, complex Fresnel per channel
 //   dielectric     glass: smooth or rough reflection and refraction (one eta for all channels)
-//   coateddiffuse  a dielectric coat (Trowbridge-Reitz microfacets, or smooth) over a
-//                  diffuse base, two-sided, evaluated by pbrt-v4's stochastic layered
-//                  random walk (LayeredBxDF) for the case the scenes use: no medium
-//                  between the layers (albedo 0), thickness t, maxdepth, nsamples.
-// f() and pdf() of coateddiffuse are themselves unbiased random estimates, drawn from a
+//   diffusetransmission  Lambertian reflection R and transmission T (pbrt-v4 DiffuseTransmissionBxDF)
+//   coateddiffuse, coatedconductor  a dielectric coat (Trowbridge-Reitz microfacets, or smooth) over
+//                  a diffuse or a conductor base, two-sided, with a homogeneous medium between them
+//                  (thickness, albedo, Henyey-Greenstein g; none where the albedo is 0), evaluated
+//                  by pbrt-v4's stochastic layered random walk (LayeredBxDF), maxdepth, nsamples.
+// f() and pdf() of the coated materials are themselves unbiased random estimates, drawn from a
 // generator seeded by a hash of the directions (as pbrt does), so they are deterministic.
 #pragma once
 
@@ -85,10 +86,30 @@ struct Lambert {
     bool sample(Vec3 wo, double u1, double u2, unsigned lobes, Sample *s) const;
 };
 
+// Lambertian reflection R on the side of wo and transmission T to the other side, chosen in proportion to
+// their largest components (pbrt-v4's DiffuseTransmissionBxDF).
+struct DiffuseTransmission {
+    Vec3 R{0.25, 0.25, 0.25}, T{0.25, 0.25, 0.25};
+    Vec3 f(Vec3 wo, Vec3 wi) const;
+    double pdf(Vec3 wo, Vec3 wi) const;
+    bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s) const;
+};
+
+// pbrt-v4's Henyey-Greenstein phase function p(wo, wi) = HG(wo . wi, g) (wo pointing away), g clamped to
+// [-0.99, 0.99], and its sampling.
+double henyey_greenstein(double cos_theta, double g);
+Vec3 sample_henyey_greenstein(Vec3 wo, double g, double u1, double u2, double *pdf);
+
+// A dielectric coat over a base (diffuse, or a conductor: metal_base), the medium between them of
+// thickness `thickness` (sigma_t 1), single-scattering albedo `albedo` (zero: no medium) and
+// Henyey-Greenstein asymmetry g.
 struct Coated {
     Dielectric top;
     Lambert bottom;
-    double thickness = 0.01;
+    Conductor metal;
+    bool metal_base = false;
+    double thickness = 0.01, g = 0;
+    Vec3 albedo;
     int max_depth = 10, samples = 1;
     Vec3 f(Vec3 wo, Vec3 wi, Mode mode) const;
     double pdf(Vec3 wo, Vec3 wi, Mode mode) const;
@@ -97,17 +118,22 @@ struct Coated {
 
 // A material at a point: one of the above.
 struct Bsdf {
-    enum Kind { Diffuse, CoatedDiffuse, DielectricKind, ConductorKind } kind = Diffuse;
+    enum Kind { Diffuse, CoatedDiffuse, DielectricKind, ConductorKind, CoatedConductor, DiffuseTransmissionKind } kind =
+        Diffuse;
     Lambert diffuse;
-    Coated coated;
+    Coated coated;  // coateddiffuse and coatedconductor
     Dielectric dielectric;
     Conductor conductor;
+    DiffuseTransmission transmission;
     Vec3 f(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     double pdf(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode = Mode::Radiance) const;
     // false for perfect mirrors and smooth glass: next-event estimation cannot reach them
     bool has_non_specular() const
     {
+        if (kind == CoatedConductor)  // (pbrt-v4's LayeredBxDF: specular only if both interfaces are and no medium)
+            return !(coated.top.specular() && coated.metal.specular() && coated.albedo.x == 0 && coated.albedo.y == 0 &&
+                     coated.albedo.z == 0);
         return kind == DielectricKind ? !dielectric.specular() : kind == ConductorKind ? !conductor.specular() : true;
     }
 };

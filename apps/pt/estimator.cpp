@@ -1,6 +1,8 @@
 // estimator.cpp - see estimator.h.
 #include "estimator.h"
 
+#include "surface.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -16,17 +18,6 @@ namespace {
 inline double max_component(Vec3 v) { return std::max({v.x, v.y, v.z}); }
 inline bool nonzero(Vec3 v) { return v.x != 0 || v.y != 0 || v.z != 0; }
 inline double power_heuristic(double f, double g) { return f * f + g * g > 0 ? f * f / (f * f + g * g) : 0; }
-
-// The shading normal: interpolated vertex normals where the mesh has them, else the geometric one.
-Vec3 shading_normal(const udm1scene::Shape &s, const Hit &h)
-{
-    if (s.kind != udm1scene::Shape::Triangles || s.N.empty()) return h.ng;
-    const uint32_t *i = &s.indices[3 * (size_t)h.prim];
-    auto N = [&](uint32_t k) { return Vec3(s.N[3 * k], s.N[3 * k + 1], s.N[3 * k + 2]); };
-    Vec3 n = N(i[0]) * (1 - h.u - h.v) + N(i[1]) * h.u + N(i[2]) * h.v;
-    double len = udm1scene::length(n);
-    return len > 0 ? n * (1 / len) : h.ng;
-}
 
 // The origin of a ray leaving hit h towards w: offset to the side of the surface w goes to.
 inline Vec3 spawn(const Hit &h, Vec3 w)
@@ -67,7 +58,7 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
     const double u_lp[2] = {u[0], u[1]}, u_lobe = u[2], u_rr = u[3], u_dir[2] = {u[4], u[5]};
 
     const udm1scene::Shape &shape = scene_.shapes[h.shape];
-    Vec3 ns = shading_normal(shape, h);
+    Vec3 ns = udm1scene::shading_normal(shape, h);  // (surface.h)
     Bsdf scratch;  // a textured material's BSDF at this vertex
     const Bsdf &bsdf = shape.material >= 0 ? materials_.at(shape.material, shape, h, wo, &ns, &scratch) : default_bsdf_;
     Frame frame(ns);

@@ -1,6 +1,8 @@
 // lights.cpp - see lights.h.
 #include "lights.h"
 
+#include "bilinear_patch.h"
+#include "quadrics.h"
 #include "udm1app/image_read.h"
 
 #include <algorithm>
@@ -71,6 +73,59 @@ bool sample_spherical_triangle(Vec3 p, Vec3 p0, Vec3 p1, Vec3 p2, double u0, dou
         b1 /= sum, b2 /= sum;
     }
     *q = p0 * (1 - b1 - b2) + p1 * b1 + p2 * b2;
+    return std::isfinite(q->x) && std::isfinite(q->y) && std::isfinite(q->z);
+}
+
+// The spherical rectangle that the rectangle s + [0, 1] eu + [0, 1] ev (eu, ev perpendicular) subtends from p,
+// in the frame of Urena, Fajardo and King (2013): x along eu, y along ev, z towards the rectangle's plane
+// from p; its corners' coordinates and its solid angle (the sum of its interior angles less 2 pi).
+struct SphericalRectangle {
+    Vec3 x, y, z;
+    double x0, y0, x1, y1, z0;
+    double b0, b1, k, solid_angle;
+    SphericalRectangle(Vec3 p, Vec3 s, Vec3 eu, Vec3 ev)
+    {
+        double lu = length(eu), lv = length(ev);
+        x = eu * (1 / lu), y = ev * (1 / lv), z = cross(x, y);
+        Vec3 d = s - p;
+        z0 = dot(d, z);
+        if (z0 > 0) z = -z, z0 = -z0;
+        x0 = dot(d, x), y0 = dot(d, y), x1 = x0 + lu, y1 = y0 + lv;
+        Vec3 v00(x0, y0, z0), v01(x0, y1, z0), v10(x1, y0, z0), v11(x1, y1, z0);
+        auto unit = [](Vec3 v) {
+            double l = length(v);
+            return l > 0 ? v * (1 / l) : Vec3();
+        };
+        Vec3 n0 = unit(cross(v00, v10)), n1 = unit(cross(v10, v11)), n2 = unit(cross(v11, v01)), n3 = unit(cross(v01, v00));
+        double g0 = angle_between(-n0, n1), g1 = angle_between(-n1, n2), g2 = angle_between(-n2, n3), g3 = angle_between(-n3, n0);
+        b0 = n0.z, b1 = n2.z, k = 2 * PI - g2 - g3;
+        solid_angle = g0 + g1 + g2 + g3 - 2 * PI;
+        if (!(solid_angle > 0) || !std::isfinite(solid_angle)) solid_angle = 0;
+    }
+};
+
+// pbrt-v4 samples a rectangular patch by solid angle where it subtends more than 1e-4 sr; udm1-pt also by area
+// where it subtends nearly a hemisphere (as pbrt-v4 limits triangles): there the shading point lies on or
+// next to the rectangle's plane, and directions uniform over the hemisphere would put every sample at the
+// point's foot, lighting a rectangle by itself.
+bool rectangle_by_solid_angle(double omega) { return omega > 1e-4 && omega <= MAX_SPHERICAL_AREA; }
+
+double rectangle_solid_angle(Vec3 p, Vec3 s, Vec3 eu, Vec3 ev) { return SphericalRectangle(p, s, eu, ev).solid_angle; }
+
+// A point of the rectangle whose direction from p is uniform over the solid angle it subtends (Urena et al.).
+bool sample_spherical_rectangle(Vec3 p, Vec3 s, Vec3 eu, Vec3 ev, double u0, double u1, Vec3 *q)
+{
+    SphericalRectangle r(p, s, eu, ev);
+    if (!(r.solid_angle > 0)) return false;
+    double au = u0 * r.solid_angle + r.k;  // the azimuth of the sampled sub-rectangle's edge
+    double fu = (std::cos(au) * r.b0 - r.b1) / std::sin(au);
+    double cu = std::clamp(std::copysign(1 / std::sqrt(fu * fu + r.b0 * r.b0), fu), -0x1.fffffffffffffp-1, 0x1.fffffffffffffp-1);
+    double xu = std::clamp(-(cu * r.z0) / safe_sqrt(1 - cu * cu), r.x0, r.x1);
+    double dd = std::sqrt(xu * xu + r.z0 * r.z0);
+    double h0 = r.y0 / std::sqrt(dd * dd + r.y0 * r.y0), h1 = r.y1 / std::sqrt(dd * dd + r.y1 * r.y1);
+    double hv = h0 + u1 * (h1 - h0), hv2 = hv * hv;
+    double yv = hv2 < 1 - 1e-12 ? hv * dd / std::sqrt(1 - hv2) : r.y1;
+    *q = p + r.x * xu + r.y * yv + r.z * r.z0;
     return std::isfinite(q->x) && std::isfinite(q->y) && std::isfinite(q->z);
 }
 }  // namespace
@@ -176,13 +231,49 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
         if (s.light < 0) continue;
         const udm1scene::AreaLight &al = scene.lights[s.light];
         Vec3 L = al.L * al.scale;
+        // pbrt-v4: an emitter of alpha 0 is a delta light that rays never meet; one of alpha below 0 (its
+        // emission masked everywhere) sends no light (the parser refused alpha textures and alphas in (0, 1))
+        const bool invisible = s.alpha_tex < 0 && s.alpha == 0;
+        if (s.alpha_tex < 0 && s.alpha < 0) L = Vec3();
         first_of_shape_[k] = (int)lights_.size();
         if (s.kind == udm1scene::Shape::Sphere) {
             Light l;
             l.kind = Light::Sphere, l.center = s.center, l.radius = s.radius, l.area = 4 * PI * s.radius * s.radius;
-            l.L = L, l.twosided = al.twosided, l.shape = (int)k;
+            l.L = L, l.twosided = al.twosided, l.shape = (int)k, l.invisible = invisible;
             l.reversed = s.reverse_orientation;  // (the parser refused sphere lights that are not rigidly placed)
             lights_.push_back(l);
+            continue;
+        }
+        if (s.kind == udm1scene::Shape::Disk || s.kind == udm1scene::Shape::Cylinder) {
+            Light l;  // (the parser refused those pbrt-v4 renders inconsistently: rigidly placed, whole disks)
+            l.kind = s.kind == udm1scene::Shape::Disk ? Light::Disk : Light::Cylinder;
+            l.src = &s, l.area = udm1scene::quadric_area(s), l.center = s.center;
+            l.L = L, l.twosided = al.twosided, l.shape = (int)k, l.invisible = invisible;
+            l.reversed = s.reverse_orientation;
+            if (l.kind == Light::Disk) {
+                l.n = udm1scene::quadric_normal(s, s.world_from_object.point(Vec3(0, 0, s.height)));
+                if (l.reversed) l.n = -l.n;
+            }
+            lights_.push_back(l);
+            continue;
+        }
+        if (s.kind == udm1scene::Shape::Bilinear) {
+            double total = 0;
+            for (unsigned t = 0; t < s.indices.size() / 4; ++t) {
+                udm1scene::Patch q = udm1scene::patch_of(s, t);
+                Light l;
+                l.kind = Light::Patch, l.src = &s, l.prim = t;
+                l.p0 = q.p00, l.p1 = q.p10, l.p2 = q.p01, l.p3 = q.p11;
+                l.rectangle = q.rectangle(), l.area = q.area();
+                if (!std::isfinite(l.area)) l.area = 0;
+                q.corner_weights(l.w);
+                l.centroid = (q.p00 + q.p10 + q.p01 + q.p11) * 0.25;
+                l.n = udm1scene::patch_normal(s, t, 0.5, 0.5);
+                l.L = L, l.twosided = al.twosided, l.shape = (int)k, l.invisible = invisible;
+                total += l.area;
+                lights_.push_back(l);  // (zero-area patches stay, with zero power)
+            }
+            if (!(total > 0)) throw udm1scene::SceneError(s.where + ": an area light of zero area");
             continue;
         }
         double total = 0;
@@ -195,7 +286,7 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
             l.area = 0.5 * length(cross(l.p1 - l.p0, l.p2 - l.p0));
             l.centroid = (l.p0 + l.p1 + l.p2) * (1.0 / 3);
             l.n = l.area > 0 ? udm1scene::triangle_normal(s, t) : Vec3(0, 0, 1);
-            l.L = L, l.twosided = al.twosided, l.shape = (int)k;
+            l.L = L, l.twosided = al.twosided, l.shape = (int)k, l.invisible = invisible;
             // pbrt-v4 faces the normal to the interpolated vertex normal point by point: one side emits
             // throughout only where the vertex normals all lie on that side (triangle_normal's)
             if (!s.N.empty() && !l.twosided && l.area > 0)
@@ -266,9 +357,9 @@ Lights::Lights(const udm1scene::Scene &scene, double near) : near_(near)
     double sum = 0;
     size_t next_extra = 0;
     for (const Light &l : lights_) {
-        double power = l.kind == Light::Triangle || l.kind == Light::Sphere
-                           ? luminance(l.L) * l.area * PI * (l.twosided ? 2 : 1)
-                           : extra_power[next_extra++];
+        bool surface = l.kind == Light::Triangle || l.kind == Light::Sphere || l.kind == Light::Disk ||
+                       l.kind == Light::Cylinder || l.kind == Light::Patch;
+        double power = surface ? luminance(l.L) * l.area * PI * (l.twosided ? 2 : 1) : extra_power[next_extra++];
         power_.push_back(power > 0 ? power : 0);
         sum += power_.back();
         cdf_.push_back(sum);
@@ -296,8 +387,8 @@ void Lights::make_groups()
         }
         Group g;
         g.first = i, g.count = 1;
-        if (l.kind == Light::Triangle)  // the shape's triangles
-            while (i + g.count < lights_.size() && lights_[i + g.count].kind == Light::Triangle &&
+        if (l.kind == Light::Triangle || l.kind == Light::Patch)  // the shape's triangles or patches
+            while (i + g.count < lights_.size() && lights_[i + g.count].kind == l.kind &&
                    lights_[i + g.count].shape == l.shape)
                 ++g.count;
         double sum = 0;
@@ -316,6 +407,27 @@ void Lights::make_groups()
             for (size_t k = i; k < i + g.count && len > 0; ++k)
                 if (lights_[k].area > 0) g.cos_o = std::min(g.cos_o, dot(g.w, lights_[k].n));
             g.twosided = l.twosided;
+        } else if (l.kind == Light::Patch) {  // (pbrt-v4's NormalBounds: each patch's corner normals)
+            g.lo = g.hi = l.p0;
+            Vec3 axis;
+            for (size_t k = i; k < i + g.count; ++k) {
+                const Light &t = lights_[k];
+                for (Vec3 v : {t.p0, t.p1, t.p2, t.p3}) g.lo = min3(g.lo, v), g.hi = max3(g.hi, v);
+                axis = axis + t.n * t.area;
+                g.phi += max_component(t.L) * t.area * PI;
+            }
+            double len = length(axis);
+            g.w = len > 0 ? axis * (1 / len) : Vec3(0, 0, 1), g.cos_o = len > 0 ? 1 : -1;
+            for (size_t k = i; k < i + g.count && len > 0; ++k)
+                if (lights_[k].area > 0)
+                    for (double u : {0.0, 1.0})
+                        for (double v : {0.0, 1.0})
+                            g.cos_o = std::min(g.cos_o, dot(g.w, udm1scene::patch_normal(*lights_[k].src, lights_[k].prim, u, v)));
+            g.twosided = l.twosided;
+        } else if (l.kind == Light::Disk || l.kind == Light::Cylinder) {  // a disk's one normal; a cylinder's all
+            udm1scene::shape_bounds(*l.src, &g.lo, &g.hi);
+            g.w = l.kind == Light::Disk ? l.n : Vec3(0, 0, 1), g.cos_o = l.kind == Light::Disk ? 1 : -1;
+            g.phi = max_component(l.L) * l.area * PI, g.twosided = l.twosided;
         } else if (l.kind == Light::Sphere) {  // its normals: every direction
             Vec3 r(l.radius, l.radius, l.radius);
             g.lo = l.center - r, g.hi = l.center + r, g.w = Vec3(0, 0, 1), g.cos_o = -1;
@@ -456,7 +568,8 @@ int Lights::light_of(const udm1scene::Hit &h) const
 {
     if (h.shape >= first_of_shape_.size() || first_of_shape_[h.shape] < 0) return -1;
     const Light &first = lights_[first_of_shape_[h.shape]];
-    return first_of_shape_[h.shape] + (first.kind == Light::Sphere ? 0 : (int)h.prim);
+    bool single = first.kind == Light::Sphere || first.kind == Light::Disk || first.kind == Light::Cylinder;
+    return first_of_shape_[h.shape] + (single ? 0 : (int)h.prim);
 }
 
 Vec3 Lights::radiance(const Light &l, Vec3 n, Vec3 w) const
@@ -555,8 +668,9 @@ bool Lights::by_solid_angle(const Light &l, Vec3 p, double *omega) const
     return *omega >= MIN_SPHERICAL_AREA && *omega <= MAX_SPHERICAL_AREA;
 }
 
-double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
+double Lights::pdf_light(const Light &l, Vec3 p, const udm1scene::Hit &h) const
 {
+    const Vec3 q = h.p, nq = h.ng;
     Vec3 d = q - p;
     double d2 = dot(d, d);
     if (l.kind == Light::Sphere) {
@@ -569,15 +683,69 @@ double Lights::pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const
     double omega;
     if (l.kind == Light::Triangle && by_solid_angle(l, p, &omega)) return 1 / omega;
     double c = std::fabs(dot(nq, d)) / std::sqrt(d2);
-    return c > 0 ? d2 / (c * l.area) : 0;
+    if (!(c > 0)) return 0;
+    if (l.kind == Light::Patch) {
+        if (l.rectangle) {
+            omega = rectangle_solid_angle(p, l.p0, l.p1 - l.p0, l.p2 - l.p0);
+            if (rectangle_by_solid_angle(omega)) return 1 / omega;
+            return d2 / (c * l.area);
+        }
+        udm1scene::Patch pq{l.p0, l.p1, l.p2, l.p3};
+        Vec3 dpdu, dpdv;
+        pq.derivatives(h.u, h.v, &dpdu, &dpdv);
+        double jac = length(cross(dpdu, dpdv));
+        return jac > 0 ? udm1scene::bilinear_pdf(h.u, h.v, l.w) / jac * d2 / c : 0;
+    }
+    return d2 / (c * l.area);
 }
 
 double Lights::pdf(Vec3 p, Vec3 n, const udm1scene::Hit &h, double importance_sum) const
 {
     int i = light_of(h);
-    if (i < 0) return 0;
+    if (i < 0 || lights_[i].invisible) return 0;
     double prob = probability((size_t)i, p, n, importance_sum);
-    return prob > 0 ? prob * pdf_light(lights_[i], p, h.p, h.ng) : 0;
+    return prob > 0 ? prob * pdf_light(lights_[i], p, h) : 0;
+}
+
+// A point on a disk, cylinder or patch light for the shading point p, its normal (the emitting side's)
+// and the solid-angle density of choosing it (without the choice of the light): pdf_light()'s.
+bool Lights::sample_surface(const Light &l, Vec3 p, double u1, double u2, Vec3 *q, Vec3 *nq, double *pdf) const
+{
+    if (l.kind == Light::Disk || l.kind == Light::Cylinder) {
+        udm1scene::quadric_sample_area(*l.src, u1, u2, q, nq);
+        if (l.reversed) *nq = -*nq;
+        Vec3 d = *q - p;
+        double d2 = dot(d, d), c = d2 > 0 ? std::fabs(dot(*nq, d)) / std::sqrt(d2) : 0;
+        *pdf = c > 0 ? d2 / (c * l.area) : 0;
+        return *pdf > 0 && std::isfinite(*pdf);
+    }
+    udm1scene::Patch pq{l.p0, l.p1, l.p2, l.p3};
+    double u, v, pdf_uv = 1;
+    if (l.rectangle) {
+        Vec3 eu = l.p1 - l.p0, ev = l.p2 - l.p0;
+        double omega = rectangle_solid_angle(p, l.p0, eu, ev);
+        if (rectangle_by_solid_angle(omega)) {  // by solid angle
+            if (!sample_spherical_rectangle(p, l.p0, eu, ev, u1, u2, q)) return false;
+            u = std::clamp(dot(*q - l.p0, eu) / dot(eu, eu), 0.0, 1.0), v = std::clamp(dot(*q - l.p0, ev) / dot(ev, ev), 0.0, 1.0);
+            *nq = udm1scene::patch_normal(*l.src, l.prim, u, v);
+            *pdf = 1 / omega;
+            return std::isfinite(*pdf);
+        }
+        u = u1, v = u2;
+    } else {
+        udm1scene::sample_bilinear(u1, u2, l.w, &u, &v);
+        pdf_uv = udm1scene::bilinear_pdf(u, v, l.w);
+    }
+    Vec3 dpdu, dpdv;
+    pq.derivatives(u, v, &dpdu, &dpdv);
+    double jac = length(cross(dpdu, dpdv));
+    if (!(jac > 0)) return false;
+    *q = pq.at(u, v);
+    *nq = udm1scene::patch_normal(*l.src, l.prim, u, v);
+    Vec3 d = *q - p;
+    double d2 = dot(d, d), c = d2 > 0 ? std::fabs(dot(*nq, d)) / std::sqrt(d2) : 0;
+    *pdf = c > 0 ? (l.rectangle ? 1 / l.area : pdf_uv / jac) * d2 / c : 0;
+    return *pdf > 0 && std::isfinite(*pdf);
 }
 
 bool Lights::sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const
@@ -588,7 +756,21 @@ bool Lights::sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const
     const Light &l = lights_[i];
     s->shape = l.shape, s->sphere = l.kind == Light::Sphere;
     s->delta = s->infinite = false;
+    if (l.kind == Light::Disk || l.kind == Light::Cylinder || l.kind == Light::Patch) {
+        Vec3 q, nq;
+        double pdf;
+        if (!sample_surface(l, p, u1, u2, &q, &nq, &pdf)) return false;
+        Vec3 d = q - p;
+        double d2 = dot(d, d);
+        if (d2 <= 0) return false;
+        s->dist = std::sqrt(d2), s->wi = d * (1 / s->dist), s->q = q, s->n = nq;
+        s->L = radiance(l, nq, -s->wi);
+        s->pdf = prob * pdf;
+        s->delta = l.invisible;  // (pbrt-v4: a delta light, without MIS)
+        return s->pdf > 0 && std::isfinite(s->pdf) && (s->L.x > 0 || s->L.y > 0 || s->L.z > 0);
+    }
     if (l.kind != Light::Triangle && l.kind != Light::Sphere) return sample_source(l, prob, p, u1, u2, s);
+    s->delta = l.invisible;
     Vec3 q, nq;
     double omega = 0;
     bool spherical = false;  // a triangle sampled by solid angle

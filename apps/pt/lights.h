@@ -1,6 +1,7 @@
-// lights.h - the scene's lights for the path tracer: every emitting triangle and sphere (pbrt-v4's
-// diffuse area light: radiance L * scale on the side the surface normal faces, or on both sides if
-// twosided) and pbrt-v4's LightSources: point and spot lights, distant lights, and environments
+// lights.h - the scene's lights for the path tracer: every emitting triangle, sphere, disk, cylinder and
+// bilinear patch (pbrt-v4's diffuse area light: radiance L * scale on the side the surface normal faces,
+// or on both sides if twosided; an emitter of alpha 0 is invisible to rays and found by light sampling
+// alone, as pbrt-v4 makes it a delta light) and pbrt-v4's LightSources: point and spot lights, distant lights, and environments
 // ("infinite": uniform, or an equal-area octahedral image, importance-sampled by its pixels).
 // A light is chosen for a shading point (p, n) in two steps. First a group: each light at infinity
 // (distant, environment) is one with probability 1 / (lights at infinity + 1); the others are grouped, an
@@ -15,7 +16,9 @@
 // sampled as pbrt-v4 samples them, by the solid angle they subtend (Arvo's spherical triangle sampling,
 // for solid angles in 3e-4..6.22 sr), which keeps the estimate bounded where area sampling's 1/r^2
 // gives fireflies; farther away by area, which is as good there and cheaper. Spheres seen from outside
-// are sampled by their cone of directions.
+// are sampled by their cone of directions. Disks and cylinders by area (pbrt-v4's); bilinear patches as
+// pbrt-v4 samples them: a rectangle by the solid angle it subtends (Urena et al.'s spherical rectangle,
+// where that exceeds 1e-4 sr), else by area, nearly uniformly through the corners' differential areas.
 #pragma once
 
 #include "embree_scene.h"
@@ -89,8 +92,13 @@ public:
     }
 
     struct Light {
-        enum Kind { Triangle, Sphere, Point, Spot, Distant, Infinite } kind = Triangle;
+        enum Kind { Triangle, Sphere, Point, Spot, Distant, Infinite, Disk, Cylinder, Patch } kind = Triangle;
         Vec3 p0, p1, p2, n;  // triangle: vertices, unit normal (emitting side for one-sided lights)
+        Vec3 p3;             // patch: p00 p10 p01 p11 in p0 p1 p2 p3
+        bool rectangle = false;  // patch: pbrt-v4's IsRectangle
+        double w[4] = {0, 0, 0, 0};  // patch, not a rectangle: the corners' differential areas
+        const udm1scene::Shape *src = nullptr;  // disk, cylinder, patch: its shape
+        bool invisible = false;  // an emitter of alpha 0: light sampling alone finds it (a delta light)
         Vec3 centroid;       // triangle
         Vec3 center;         // sphere; point and spot: the position
         Vec3 axis;           // spot: its axis; distant: towards the light
@@ -100,6 +108,7 @@ public:
         bool twosided = false;
         bool reversed = false;  // sphere: emits inwards (ReverseOrientation)
         int shape = -1;
+        unsigned prim = 0;                 // patch: its index in its shape
         int map = -1;                      // environment: its image (maps_), or -1 for a uniform one
         udm1scene::Mat4 light_from_world;  // environment: the map's frame
         udm1scene::Mat4 world_from_light;
@@ -161,7 +170,9 @@ private:
     bool sample_source(const Light &l, double prob, Vec3 p, double u1, double u2, LightSample *s) const;
     Vec3 environment_of(const Light &l, Vec3 d) const;  // radiance along direction d (world)
     double environment_pdf_of(const Light &l, Vec3 d) const;  // without the choice
-    double pdf_light(const Light &l, Vec3 p, Vec3 q, Vec3 nq) const;  // solid angle, without the choice
+    double pdf_light(const Light &l, Vec3 p, const udm1scene::Hit &h) const;  // solid angle, without the choice
+    bool sample_surface(const Light &l, Vec3 p, double u1, double u2, Vec3 *q, Vec3 *nq, double *pdf) const;  // disk,
+                                                                                    // cylinder, patch
     bool by_solid_angle(const Light &l, Vec3 p, double *omega) const;  // triangle l sampled by solid angle from p?
     // triangle l far from p: area / distance^2 to its centroid below near_ (then sampled by area: as good, cheaper)
     bool far(const Light &l, Vec3 p) const

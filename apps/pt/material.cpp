@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "spectrum.h"
+#include "surface.h"
 
 namespace udm1pt {
 
@@ -77,27 +78,22 @@ Vec3 spectrum_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3
     throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
 }
 
-// A conductor's index given as a float or a spectrum (absent: pbrt-v4's default, copper's).
-udm1scene::Spectrum index_spectrum(const udm1scene::ParamSet &ps, const std::string &name)
-{
-    const udm1scene::Param *p = ps.find(name);
-    if (!p) return *udm1scene::named_spectrum("metal-Cu-" + name);
-    if (p->type == "float" && p->numbers.size() == 1) return udm1scene::Spectrum::constant(p->numbers[0]);
-    if (p->type == "spectrum") return spectrum_of(*p);
-    throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
-}
-
-// The Fresnel table of a spectral conductor: its reflectance at each wavelength, projected on RGB as
-// pbrt-v4's film records it under D65 (udm1scene::albedo_rgb), at 65 incident angles.
+// The Fresnel table of a spectral conductor of index eta + i k (each divided by `relative`: a coated
+// conductor's index is relative to its coat's): its reflectance at each wavelength, projected on RGB as
+// pbrt-v4's film records it under D65 (udm1scene::albedo_rgb), at 65 incident angles. pbrt-v4 takes a
+// spectrum given as pairs or read from a file as 0 outside its wavelengths (PiecewiseLinearSpectrum); where
+// that makes eta 0, its Fresnel term is not a number and its samples there black: refused.
 std::unique_ptr<FresnelTable> fresnel_table(const udm1scene::Spectrum &eta, const udm1scene::Spectrum &k,
-                                            const std::string &where)
+                                            const std::string &where, double relative = 1)
 {
     double n[udm1scene::WAVELENGTHS], kk[udm1scene::WAVELENGTHS], r[udm1scene::WAVELENGTHS];
     for (int l = 0; l < udm1scene::WAVELENGTHS; ++l) {
-        n[l] = eta.at(360 + l), kk[l] = k.at(360 + l);
+        n[l] = eta.at(360 + l) / relative, kk[l] = k.at(360 + l) / relative;
         if (!(n[l] > 0) || !(kk[l] >= 0))
-            throw SceneError(where + ": conductor: eta must be positive and k not negative at every wavelength (" +
-                             std::to_string(360 + l) + " nm)");
+            throw SceneError(where + ": conductor: eta must be positive and k not negative at every wavelength pbrt-v4 "
+                                     "samples (360..830 nm; not at " + std::to_string(360 + l) +
+                             " nm): pbrt-v4 takes a spectrum as 0 outside the wavelengths it lists, and an eta of 0 "
+                             "makes its Fresnel term not a number and its samples black");
     }
     auto t = std::make_unique<FresnelTable>();
     for (int i = 0; i < FresnelTable::N; ++i) {
@@ -109,36 +105,68 @@ std::unique_ptr<FresnelTable> fresnel_table(const udm1scene::Spectrum &eta, cons
     return t;
 }
 
-// pbrt-v4's roughness parameters: roughness or uroughness/vroughness, remapped unless remaproughness false.
-udm1pt::Microfacets roughness_param(const udm1scene::ParamSet &ps, const std::string &what)
+// pbrt-v4's conductor "reflectance" r as a complex index: eta 1, k = 2 sqrt(r) / sqrt(1 - r), r clamped
+// to [0, 0.9999].
+inline double reflectance_k(double r)
 {
-    double r = ps.get_float("roughness", 0.0);
-    double ur = ps.get_float("uroughness", r), vr = ps.get_float("vroughness", r);
-    if (!(ur >= 0 && vr >= 0)) throw SceneError(ps.where + ": " + what + ": roughness must not be negative");
-    if (ps.get_bool("remaproughness", true)) ur = std::sqrt(ur), vr = std::sqrt(vr);  // pbrt's RoughnessToAlpha
-    udm1pt::Microfacets mf;
-    mf.ax = ur, mf.ay = vr;
-    return mf;
+    r = std::clamp(r, 0.0, 0.9999);
+    return 2 * std::sqrt(r) / std::sqrt(1 - r);
 }
 
 inline bool nonzero(Vec3 v) { return v.x != 0 || v.y != 0 || v.z != 0; }
 
-// A "texture NAME" parameter: the texture's index (checking its kind), -1 if the parameter is absent
-// or is not a texture reference.
+// A "texture NAME" parameter: the texture's index (the last texture of that name and kind), -1 if the
+// parameter is absent or is not a texture reference.
 int texture_param(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, const std::string &name,
                   const char *kind)
 {
     const udm1scene::Param *p = ps.find(name);
     if (!p || p->type != "texture") return -1;
     if (p->strings.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one texture name");
-    for (size_t i = 0; i < scene.textures.size(); ++i)
+    int other = -1;
+    for (size_t i = scene.textures.size(); i-- > 0;)
         if (scene.textures[i].name == p->strings[0]) {
-            if (scene.textures[i].kind != kind)
-                throw SceneError(p->where + ": '" + name + "' needs a " + kind + " texture, \"" + p->strings[0] +
-                                 "\" is a " + scene.textures[i].kind + " texture");
-            return (int)i;
+            if (scene.textures[i].kind == kind) return (int)i;
+            other = (int)i;
         }
+    if (other >= 0)
+        throw SceneError(p->where + ": '" + name + "' needs a " + kind + " texture, \"" + p->strings[0] + "\" is a " +
+                         scene.textures[other].kind + " texture");
     throw SceneError(p->where + ": '" + name + "': texture \"" + p->strings[0] + "\" was not made");
+}
+
+// A float parameter that pbrt-v4 reads as a float texture: a texture (*tex its index) or a constant.
+double float_param(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, const std::string &name,
+                   double fallback, int *tex)
+{
+    *tex = texture_param(scene, ps, name, "float");
+    return *tex >= 0 ? fallback : ps.get_float(name, fallback);
+}
+
+// An albedo that pbrt-v4 reads as a spectrum texture: a texture (*tex) or a constant (albedo_param).
+Vec3 albedo_texture_param(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, const std::string &name,
+                          Vec3 fallback, int *tex)
+{
+    *tex = texture_param(scene, ps, name, "spectrum");
+    return *tex >= 0 ? fallback : albedo_param(ps, name, fallback);
+}
+
+// pbrt-v4's roughness parameters with a prefix ("", "interface.", "conductor."): P + "uroughness" and P +
+// "vroughness", each P + "roughness" where absent, each a constant or a float texture (bound to the two
+// slots), remapped unless remaproughness is false.
+void roughness_params(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, const std::string &prefix,
+                      MaterialModel *mm, Microfacets *mf, MaterialModel::Slot uslot, MaterialModel::Slot vslot,
+                      const std::string &what)
+{
+    int rt, ut, vt;
+    double r = float_param(scene, ps, prefix + "roughness", 0.0, &rt);
+    double ur = ps.find(prefix + "uroughness") ? float_param(scene, ps, prefix + "uroughness", 0.0, &ut) : (ut = rt, r);
+    double vr = ps.find(prefix + "vroughness") ? float_param(scene, ps, prefix + "vroughness", 0.0, &vt) : (vt = rt, r);
+    if (!(ur >= 0 && vr >= 0)) throw SceneError(ps.where + ": " + what + ": roughness must not be negative");
+    if (mm->remap) ur = std::sqrt(ur), vr = std::sqrt(vr);  // pbrt's RoughnessToAlpha
+    mf->ax = ur, mf->ay = vr;
+    if (ut >= 0) mm->bindings.push_back({uslot, ut});
+    if (vt >= 0) mm->bindings.push_back({vslot, vt});
 }
 
 uint64_t mix_bits(uint64_t z)
@@ -161,6 +189,60 @@ double hash_unit(Vec3 p, Vec3 w)
     return (double)(h >> 11) * 0x1.0p-53;
 }
 
+// A conductor's index (eta, k: spectra, rgb triples, or "reflectance"), relative to `relative` (a coat's
+// index), into *c: per channel, or its spectral Fresnel table (kept in *tables). Prefix "conductor." for
+// a coated conductor's base. A textured reflectance is bound to its slot.
+void conductor_index(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, const std::string &prefix,
+                     double relative, const std::string &what, MaterialModel *mm, Conductor *c,
+                     std::vector<std::unique_ptr<FresnelTable>> *tables)
+{
+    const udm1scene::Param *pe = ps.find(prefix + "eta"), *pk = ps.find(prefix + "k"), *pr = ps.find("reflectance");
+    for (const udm1scene::Param *p : {pe, pk})
+        if (p && p->type == "texture")
+            throw SceneError(p->where + ": " + what + ": a textured '" + p->name + "' is not supported (a spectrum or rgb)");
+    if (pr) {
+        if (pe || pk)
+            throw SceneError(pr->where + ": " + what + ": both \"reflectance\" and \"eta\" and \"k\" given (pbrt-v4 "
+                                         "refuses that too)");
+        int tex = texture_param(scene, ps, "reflectance", "spectrum");
+        if (tex >= 0) {
+            mm->bindings.push_back({MaterialModel::Slot::ConductorReflectance, tex});
+            c->eta = Vec3(1, 1, 1) * (1 / relative), c->k = Vec3(0, 0, 0);
+            return;
+        }
+        if (pr->type == "spectrum") {  // per wavelength, as pbrt-v4 computes it
+            udm1scene::Spectrum r = spectrum_of(*pr), eta = udm1scene::Spectrum::constant(1), k;
+            for (int l = 0; l < udm1scene::WAVELENGTHS; ++l)
+                k.nm.push_back(360 + l), k.value.push_back(reflectance_k(r.at(360 + l)));
+            tables->push_back(fresnel_table(eta, k, ps.where, relative));
+            c->table = tables->back().get();
+            return;
+        }
+        Vec3 r = albedo_param(ps, "reflectance", Vec3());
+        c->eta = Vec3(1, 1, 1) * (1 / relative);
+        c->k = Vec3(reflectance_k(r.x), reflectance_k(r.y), reflectance_k(r.z)) * (1 / relative);
+        return;
+    }
+    if ((pe && pe->type == "rgb") || (pk && pk->type == "rgb")) {  // per channel (pbrt upsamples the rgb)
+        c->eta = spectrum_param(ps, prefix + "eta", Vec3()) * (1 / relative);
+        c->k = spectrum_param(ps, prefix + "k", Vec3()) * (1 / relative);
+        if (!pe || !pk) throw SceneError(ps.where + ": " + what + ": an rgb eta or k needs the other one too");
+        if (!(c->eta.x > 0 && c->eta.y > 0 && c->eta.z > 0) || !(c->k.x >= 0 && c->k.y >= 0 && c->k.z >= 0))
+            throw SceneError(ps.where + ": " + what + ": eta must be positive and k not negative");
+        return;
+    }
+    // spectral (pbrt's default: copper): its Fresnel reflectance as pbrt-v4 records it
+    auto index = [&](const std::string &name, const std::string &cu) {
+        const udm1scene::Param *p = ps.find(name);
+        if (!p) return *udm1scene::named_spectrum(cu);
+        if (p->type == "float" && p->numbers.size() == 1) return udm1scene::Spectrum::constant(p->numbers[0]);
+        if (p->type == "spectrum") return spectrum_of(*p);
+        throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
+    };
+    tables->push_back(fresnel_table(index(prefix + "eta", "metal-Cu-eta"), index(prefix + "k", "metal-Cu-k"), ps.where, relative));
+    c->table = tables->back().get();
+}
+
 }  // namespace
 
 Bsdf default_material()
@@ -173,63 +255,94 @@ Bsdf default_material()
 
 Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
 {
+    using Slot = MaterialModel::Slot;
     for (const udm1scene::Material &m : scene.materials) {
         MaterialModel mm;
         Bsdf &b = mm.base;
         const udm1scene::ParamSet &ps = m.params;
         mm.remap = ps.get_bool("remaproughness", true);
-        auto roughness = [&](Microfacets *mf, const char *what) {
-            mm.roughness_tex = texture_param(scene, ps, "roughness", "float");
-            if (mm.roughness_tex < 0) *mf = roughness_param(ps, what);
+        // the layers' medium and walk (coateddiffuse, coatedconductor)
+        auto layers = [&](Coated &c, const std::string &what) {
+            int tex;
+            c.thickness = std::max(float_param(scene, ps, "thickness", 0.01, &tex), 1e-300);
+            if (tex >= 0) mm.bindings.push_back({Slot::Thickness, tex});
+            c.g = std::clamp(float_param(scene, ps, "g", 0.0, &tex), -1.0, 1.0);
+            if (tex >= 0) mm.bindings.push_back({Slot::G, tex});
+            c.albedo = albedo_texture_param(scene, ps, "albedo", Vec3(), &tex);
+            if (tex >= 0) mm.bindings.push_back({Slot::Albedo, tex});
+            c.max_depth = ps.get_int("maxdepth", 10);
+            c.samples = ps.get_int("nsamples", 1);
+            if (c.max_depth < 1 || c.max_depth > 100 || c.samples < 1 || c.samples > 100)
+                throw SceneError(ps.where + ": " + what + ": maxdepth and nsamples must be in 1..100");
         };
         if (m.type == "diffuse") {
-            only(ps, {"reflectance", "displacement"}, "diffuse");
+            only(ps, {"reflectance", "displacement", "normalmap"}, "diffuse");
             b.kind = Bsdf::Diffuse;
-            mm.reflectance_tex = texture_param(scene, ps, "reflectance", "spectrum");
-            if (mm.reflectance_tex < 0) b.diffuse.R = albedo_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
+            int tex;
+            b.diffuse.R = albedo_texture_param(scene, ps, "reflectance", Vec3(0.5, 0.5, 0.5), &tex);
+            if (tex >= 0) mm.bindings.push_back({Slot::Reflectance, tex});
         } else if (m.type == "coateddiffuse") {
             only(ps, {"reflectance", "roughness", "uroughness", "vroughness", "remaproughness", "thickness", "eta",
-                      "maxdepth", "nsamples", "albedo", "g", "displacement"},
+                      "maxdepth", "nsamples", "albedo", "g", "displacement", "normalmap"},
                  "coateddiffuse");
             b.kind = Bsdf::CoatedDiffuse;
             Coated &c = b.coated;
-            mm.reflectance_tex = texture_param(scene, ps, "reflectance", "spectrum");
-            if (mm.reflectance_tex < 0) c.bottom.R = albedo_param(ps, "reflectance", Vec3(0.5, 0.5, 0.5));
-            roughness(&c.top.mf, "coateddiffuse");
-            c.top.eta = ps.get_float("eta", 1.5);
-            c.thickness = std::max(ps.get_float("thickness", 0.01), 1e-300);
-            c.max_depth = ps.get_int("maxdepth", 10);
-            c.samples = ps.get_int("nsamples", 1);
+            int tex;
+            c.bottom.R = albedo_texture_param(scene, ps, "reflectance", Vec3(0.5, 0.5, 0.5), &tex);
+            if (tex >= 0) mm.bindings.push_back({Slot::Reflectance, tex});
+            roughness_params(scene, ps, "", &mm, &c.top.mf, Slot::URoughness, Slot::VRoughness, "coateddiffuse");
+            c.top.eta = spectrum_param(ps, "eta", Vec3(1.5, 1.5, 1.5)).y;  // (one index: 550 nm's)
+            if (c.top.eta == 0) c.top.eta = 1;                                // (pbrt-v4 takes 0 as 1)
             if (!(c.top.eta > 0)) throw SceneError(ps.where + ": coateddiffuse: eta must be positive");
-            if (c.max_depth < 1 || c.max_depth > 100 || c.samples < 1 || c.samples > 100)
-                throw SceneError(ps.where + ": coateddiffuse: maxdepth and nsamples must be in 1..100");
-            Vec3 albedo = albedo_param(ps, "albedo", Vec3());
-            if (nonzero(albedo))
-                throw SceneError(ps.where + ": coateddiffuse: a scattering medium between the layers (albedo > 0) "
-                                            "is not supported");
+            layers(c, "coateddiffuse");
+        } else if (m.type == "coatedconductor") {
+            only(ps, {"interface.roughness", "interface.uroughness", "interface.vroughness", "interface.eta", "thickness",
+                      "conductor.eta", "conductor.k", "reflectance", "conductor.roughness", "conductor.uroughness",
+                      "conductor.vroughness", "remaproughness", "maxdepth", "nsamples", "albedo", "g", "displacement",
+                      "normalmap"},
+                 "coatedconductor");
+            b.kind = Bsdf::CoatedConductor;
+            Coated &c = b.coated;
+            c.metal_base = true;
+            roughness_params(scene, ps, "interface.", &mm, &c.top.mf, Slot::URoughness, Slot::VRoughness, "coatedconductor");
+            roughness_params(scene, ps, "conductor.", &mm, &c.metal.mf, Slot::ConductorURoughness,
+                             Slot::ConductorVRoughness, "coatedconductor");
+            c.top.eta = spectrum_param(ps, "interface.eta", Vec3(1.5, 1.5, 1.5)).y;  // (one index: 550 nm's)
+            if (c.top.eta == 0) c.top.eta = 1;                                          // (pbrt-v4 takes 0 as 1)
+            if (!(c.top.eta > 0)) throw SceneError(ps.where + ": coatedconductor: interface.eta must be positive");
+            mm.interface_eta = c.top.eta;
+            conductor_index(scene, ps, "conductor.", c.top.eta, "coatedconductor", &mm, &c.metal, &tables_);
+            layers(c, "coatedconductor");
         } else if (m.type == "conductor") {
-            only(ps, {"eta", "k", "roughness", "uroughness", "vroughness", "remaproughness", "displacement"}, "conductor");
+            only(ps, {"eta", "k", "reflectance", "roughness", "uroughness", "vroughness", "remaproughness", "displacement",
+                      "normalmap"},
+                 "conductor");
             b.kind = Bsdf::ConductorKind;
-            roughness(&b.conductor.mf, "conductor");
-            const udm1scene::Param *pe = ps.find("eta"), *pk = ps.find("k");
-            if ((pe && pe->type == "rgb") || (pk && pk->type == "rgb")) {  // per channel (pbrt upsamples the rgb)
-                b.conductor.eta = spectrum_param(ps, "eta", Vec3());
-                b.conductor.k = spectrum_param(ps, "k", Vec3());
-                if (!pe || !pk) throw SceneError(ps.where + ": conductor: an rgb eta or k needs the other one too");
-                if (!(b.conductor.eta.x > 0 && b.conductor.eta.y > 0 && b.conductor.eta.z > 0) ||
-                    !(b.conductor.k.x >= 0 && b.conductor.k.y >= 0 && b.conductor.k.z >= 0))
-                    throw SceneError(ps.where + ": conductor: eta must be positive and k not negative");
-            } else {  // spectral (pbrt's default: copper): its Fresnel reflectance as pbrt-v4 records it
-                tables_.push_back(fresnel_table(index_spectrum(ps, "eta"), index_spectrum(ps, "k"), ps.where));
-                b.conductor.table = tables_.back().get();
-            }
+            roughness_params(scene, ps, "", &mm, &b.conductor.mf, Slot::URoughness, Slot::VRoughness, "conductor");
+            conductor_index(scene, ps, "", 1, "conductor", &mm, &b.conductor, &tables_);
         } else if (m.type == "dielectric") {
-            only(ps, {"eta", "roughness", "uroughness", "vroughness", "remaproughness", "displacement"}, "dielectric");
+            only(ps, {"eta", "roughness", "uroughness", "vroughness", "remaproughness", "displacement", "normalmap"},
+                 "dielectric");
             b.kind = Bsdf::DielectricKind;
             Vec3 eta = spectrum_param(ps, "eta", Vec3(1.5, 1.5, 1.5));
             b.dielectric.eta = eta.y;  // one index for all channels (no dispersion): 550 nm's
-            roughness(&b.dielectric.mf, "dielectric");
+            roughness_params(scene, ps, "", &mm, &b.dielectric.mf, Slot::URoughness, Slot::VRoughness, "dielectric");
             if (!(b.dielectric.eta > 0)) throw SceneError(ps.where + ": dielectric: eta must be positive");
+        } else if (m.type == "diffusetransmission") {
+            only(ps, {"reflectance", "transmittance", "scale", "displacement", "normalmap"}, "diffusetransmission");
+            b.kind = Bsdf::DiffuseTransmissionKind;
+            mm.scale = ps.get_float("scale", 1.0);
+            if (!(mm.scale >= 0) || !std::isfinite(mm.scale))
+                throw SceneError(ps.where + ": diffusetransmission: scale must not be negative");
+            auto scaled = [&](Vec3 v) {  // (pbrt-v4: clamp(scale x, 0, 1))
+                v = v * mm.scale;
+                return Vec3(std::min(v.x, 1.0), std::min(v.y, 1.0), std::min(v.z, 1.0));
+            };
+            int tex;
+            b.transmission.R = scaled(albedo_texture_param(scene, ps, "reflectance", Vec3(0.25, 0.25, 0.25), &tex));
+            if (tex >= 0) mm.bindings.push_back({Slot::Reflectance, tex});
+            b.transmission.T = scaled(albedo_texture_param(scene, ps, "transmittance", Vec3(0.25, 0.25, 0.25), &tex));
+            if (tex >= 0) mm.bindings.push_back({Slot::Transmittance, tex});
         } else if (m.type == "mix") {
             only(ps, {"materials", "amount"}, "mix");
             const udm1scene::Param *mp = ps.find("materials");
@@ -243,14 +356,19 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             }
             mm.amount_tex = texture_param(scene, ps, "amount", "float");
             if (mm.amount_tex < 0) mm.amount = ps.get_float("amount", 0.5);
+        } else if (m.type == "measured") {
+            throw SceneError(ps.where + ": Material \"measured\" is not supported (pbrt-v4's tabulated BSDF files)");
         } else {
             throw SceneError(ps.where + ": Material \"" + m.type +
-                             "\" is not supported (diffuse, coateddiffuse, conductor, dielectric, mix)");
+                             "\" is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, "
+                             "diffusetransmission, mix)");
         }
         if (!mm.mix) {
             mm.displacement_tex = texture_param(scene, ps, "displacement", "float");
             if (ps.find("displacement") && mm.displacement_tex < 0)
                 throw SceneError(ps.find("displacement")->where + ": 'displacement' must be \"texture displacement\"");
+            std::string nm = ps.get_string("normalmap", "");
+            if (!nm.empty()) mm.normal_map = textures_.add_normal_map(nm, ps.find("normalmap")->where);
         }
         models_.push_back(mm);
     }
@@ -277,11 +395,18 @@ void Materials::refuse_specular(const udm1scene::Scene &scene) const
         const MaterialModel &m = models_[i];
         if (!used[i] || m.mix) continue;
         // smooth (or, with a roughness texture, maybe smooth somewhere) metal and glass, a smooth coat
-        bool textured = m.roughness_tex >= 0;
+        bool textured = false, base_textured = false;
+        for (const MaterialModel::Binding &bd : m.bindings) {
+            textured |= bd.slot == MaterialModel::Slot::URoughness || bd.slot == MaterialModel::Slot::VRoughness;
+            base_textured |= bd.slot == MaterialModel::Slot::ConductorURoughness ||
+                             bd.slot == MaterialModel::Slot::ConductorVRoughness;
+        }
+        const Coated &c = m.base.coated;
         bool specular = m.base.kind == Bsdf::ConductorKind    ? textured || m.base.conductor.specular()
                         : m.base.kind == Bsdf::DielectricKind ? textured || m.base.dielectric.specular()
-                        : m.base.kind == Bsdf::CoatedDiffuse
-                            ? textured || (m.base.coated.top.mf.smooth() && m.base.coated.top.eta != 1)
+                        : m.base.kind == Bsdf::CoatedDiffuse  ? textured || (c.top.mf.smooth() && c.top.eta != 1)
+                        : m.base.kind == Bsdf::CoatedConductor
+                            ? textured || (c.top.mf.smooth() && (c.top.eta != 1 || base_textured || c.metal.specular()))
                             : false;
         if (specular)
             throw SceneError(scene.integrator_where + ": Integrator samples directions uniformly (randomwalk, or "
@@ -292,112 +417,119 @@ void Materials::refuse_specular(const udm1scene::Scene &scene) const
 }
 
 namespace {
-// dp/du and dp/dv of a triangle from its uv (pbrt-v4's Triangle), or a frame around n when the uv
-// are degenerate; spheres: from the longitude/colatitude parametrization of hit_uv.
-void surface_derivatives(const udm1scene::Shape &s, const udm1scene::Hit &h, Vec3 n, Vec3 *dpdu, Vec3 *dpdv)
+
+// pbrt-v4's RotateFromTo(a, b) applied to v (a, b unit).
+Vec3 rotate_from_to(Vec3 a, Vec3 b, Vec3 v)
 {
-    const double PI = 3.14159265358979323846;
-    if (s.kind == udm1scene::Shape::Sphere) {  // in object space (pbrt-v4's Sphere), then to world space
-        Vec3 d = udm1scene::sphere_object_point(s, h.p);
-        double phi_max = 2 * PI, r = s.object_radius, rho = std::sqrt(d.x * d.x + d.y * d.y);
-        *dpdu = Vec3(-phi_max * d.y, phi_max * d.x, 0);
-        double cos_phi = rho > 0 ? d.x / rho : 1, sin_phi = rho > 0 ? d.y / rho : 0, theta = std::acos(std::clamp(d.z / r, -1.0, 1.0));
-        *dpdv = Vec3(d.z * cos_phi, d.z * sin_phi, -r * std::sin(theta)) * (-PI);  // v = 1 - theta / pi
-        *dpdu = s.world_from_object.vector(*dpdu), *dpdv = s.world_from_object.vector(*dpdv);
-        return;
-    }
-    const uint32_t *i = &s.indices[3 * (size_t)h.prim];
-    auto P = [&](uint32_t k) { return Vec3(s.P[3 * k], s.P[3 * k + 1], s.P[3 * k + 2]); };
-    double uv[3][2] = {{0, 0}, {1, 0}, {1, 1}};
-    if (!s.UV.empty())
-        for (int k = 0; k < 3; ++k) uv[k][0] = s.UV[2 * i[k]], uv[k][1] = s.UV[2 * i[k] + 1];
-    double du02 = uv[0][0] - uv[2][0], dv02 = uv[0][1] - uv[2][1], du12 = uv[1][0] - uv[2][0], dv12 = uv[1][1] - uv[2][1];
-    Vec3 dp02 = P(i[0]) - P(i[2]), dp12 = P(i[1]) - P(i[2]);
-    double det = du02 * dv12 - dv02 * du12;
-    bool ok = std::fabs(det) >= 1e-12;
-    if (ok) {
-        *dpdu = (dp02 * dv12 - dp12 * dv02) * (1 / det);
-        *dpdv = (dp12 * du02 - dp02 * du12) * (1 / det);
-        ok = udm1scene::dot(udm1scene::cross(*dpdu, *dpdv), udm1scene::cross(*dpdu, *dpdv)) > 0;
-    }
-    if (!ok) {
-        udm1scene::Frame f(n);
-        *dpdu = f.t, *dpdv = f.b;
-    }
+    Vec3 c = udm1scene::cross(a, b);
+    double cs = udm1scene::dot(a, b);
+    if (cs < -1 + 1e-12) return -v;  // (opposite: any half turn)
+    // Rodrigues: v cos + (c x v) + c (c . v) / (1 + cos)
+    return v * cs + udm1scene::cross(c, v) + c * (udm1scene::dot(c, v) / (1 + cs));
 }
+
 }  // namespace
 
 const Bsdf &Materials::at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns,
                           Bsdf *scratch) const
 {
-    double u = 0, v = 0;  // texture coordinates, computed only if a texture is read
-    bool have_uv = false;
-    auto need_uv = [&] {
-        if (!have_uv) hit_uv(shape, h, &u, &v), have_uv = true;
+    using Slot = MaterialModel::Slot;
+    udm1scene::TexturePoint tp;  // where textures are looked up, made only if one is read
+    bool have_tp = false;
+    auto need_tp = [&] {
+        if (!have_tp) tp = udm1scene::texture_point(shape, h), have_tp = true;
     };
     const MaterialModel *m = &models_[material];
     while (m->mix) {
         double amount = m->amount;
-        if (m->amount_tex >= 0) need_uv(), amount = textures_.value(m->amount_tex, u, v);
+        if (m->amount_tex >= 0) need_tp(), amount = textures_.value(m->amount_tex, tp);
         int next = amount <= 0 ? m->parts[0] : amount >= 1 ? m->parts[1]
                                                           : (hash_unit(h.p, wo) < amount ? m->parts[1] : m->parts[0]);
         m = &models_[next];
     }
-    if (m->reflectance_tex < 0 && m->roughness_tex < 0 && m->displacement_tex < 0) return m->base;
-    need_uv();
+    if (m->bindings.empty() && m->displacement_tex < 0 && m->normal_map < 0) return m->base;
+    need_tp();
     Bsdf &b = *scratch;
     b = m->base;
-    if (m->reflectance_tex >= 0) {
-        Vec3 r = textures_.rgb(m->reflectance_tex, u, v);
-        (b.kind == Bsdf::Diffuse ? b.diffuse.R : b.coated.bottom.R) = r;
+    auto alpha = [&](int tex) {
+        double r = std::max(0.0, textures_.value(tex, tp));
+        return m->remap ? std::sqrt(r) : r;
+    };
+    Microfacets &mf = b.kind == Bsdf::ConductorKind    ? b.conductor.mf
+                      : b.kind == Bsdf::DielectricKind ? b.dielectric.mf
+                                                       : b.coated.top.mf;
+    for (const MaterialModel::Binding &bd : m->bindings) {
+        switch (bd.slot) {
+        case Slot::Reflectance: {
+            Vec3 r = textures_.rgb(bd.tex, tp);
+            if (b.kind == Bsdf::DiffuseTransmissionKind) {
+                r = r * m->scale;
+                b.transmission.R = Vec3(std::min(r.x, 1.0), std::min(r.y, 1.0), std::min(r.z, 1.0));
+            } else {
+                (b.kind == Bsdf::Diffuse ? b.diffuse.R : b.coated.bottom.R) = r;
+            }
+            break;
+        }
+        case Slot::Transmittance: {
+            Vec3 t = textures_.rgb(bd.tex, tp) * m->scale;
+            b.transmission.T = Vec3(std::min(t.x, 1.0), std::min(t.y, 1.0), std::min(t.z, 1.0));
+            break;
+        }
+        case Slot::Albedo: b.coated.albedo = textures_.rgb(bd.tex, tp); break;
+        case Slot::G: b.coated.g = std::clamp(textures_.value(bd.tex, tp), -1.0, 1.0); break;
+        case Slot::Thickness: b.coated.thickness = std::max(textures_.value(bd.tex, tp), 1e-300); break;
+        case Slot::URoughness: mf.ax = alpha(bd.tex); break;
+        case Slot::VRoughness: mf.ay = alpha(bd.tex); break;
+        case Slot::ConductorURoughness: b.coated.metal.mf.ax = alpha(bd.tex); break;
+        case Slot::ConductorVRoughness: b.coated.metal.mf.ay = alpha(bd.tex); break;
+        case Slot::ConductorReflectance: {
+            Vec3 r = textures_.rgb(bd.tex, tp);
+            Conductor &c = b.kind == Bsdf::ConductorKind ? b.conductor : b.coated.metal;
+            c.table = nullptr;
+            c.eta = Vec3(1, 1, 1) * (1 / m->interface_eta);
+            c.k = Vec3(reflectance_k(r.x), reflectance_k(r.y), reflectance_k(r.z)) * (1 / m->interface_eta);
+            break;
+        }
+        }
     }
-    if (m->roughness_tex >= 0) {
-        double r = std::max(0.0, textures_.value(m->roughness_tex, u, v));
-        double a = m->remap ? std::sqrt(r) : r;
-        Microfacets &mf = b.kind == Bsdf::ConductorKind ? b.conductor.mf
-                          : b.kind == Bsdf::DielectricKind ? b.dielectric.mf
-                                                           : b.coated.top.mf;
-        mf.ax = mf.ay = a;
-    }
-    if (m->displacement_tex >= 0) {  // pbrt-v4's BumpMap
+    if (m->displacement_tex >= 0 || m->normal_map >= 0) {
+        // shading dp/du and dp/dv, as pbrt-v4 sets them: with vertex normals, turned into the shading plane
         Vec3 n = *ns, dpdu, dpdv;
-        surface_derivatives(shape, h, n, &dpdu, &dpdv);
-        if (!shape.N.empty()) {  // shading geometry as pbrt-v4 sets it with vertex normals
+        udm1scene::surface_derivatives(shape, h, n, &dpdu, &dpdv);
+        if (!shape.N.empty() && shape.kind == udm1scene::Shape::Bilinear) {  // (pbrt-v4: rotated from ng to ns)
+            dpdu = rotate_from_to(h.ng, n, dpdu), dpdv = rotate_from_to(h.ng, n, dpdv);
+        } else if (!shape.N.empty()) {
             Vec3 ts = udm1scene::cross(n, dpdu);
             if (udm1scene::dot(ts, ts) > 0) dpdu = udm1scene::cross(ts, n), dpdv = ts;
         }
-        const double du = 0.0005, dv = 0.0005;
-        double d = textures_.value(m->displacement_tex, u, v);
-        double d_u = textures_.value(m->displacement_tex, u + du, v), d_v = textures_.value(m->displacement_tex, u, v + dv);
-        Vec3 bu = dpdu + n * ((d_u - d) / du), bv = dpdv + n * ((d_v - d) / dv);
-        Vec3 bn = udm1scene::cross(bu, bv);
-        double len = udm1scene::length(bn);
-        if (len > 0 && std::isfinite(len)) {
-            bn = bn * (1 / len);
-            *ns = udm1scene::dot(bn, n) < 0 ? -bn : bn;
+        if (m->normal_map >= 0) {  // pbrt-v4's NormalMap: the map's normal in the frame (dp/du, n)
+            Vec3 x = dpdu - n * udm1scene::dot(dpdu, n);
+            double len = udm1scene::length(x);
+            x = len > 0 ? x * (1 / len) : udm1scene::Frame(n).t;
+            Vec3 y = udm1scene::cross(n, x), t = textures_.normal_map(m->normal_map, tp.u, tp.v);
+            Vec3 bn = x * t.x + y * t.y + n * t.z;
+            double bl = udm1scene::length(bn);
+            if (bl > 0 && std::isfinite(bl)) {
+                bn = bn * (1 / bl);
+                *ns = udm1scene::dot(bn, h.ng) < 0 ? -bn : bn;  // (faced to the geometric normal)
+            }
+        } else {  // pbrt-v4's BumpMap
+            const double du = 0.0005, dv = 0.0005;
+            double d = textures_.value(m->displacement_tex, tp);
+            udm1scene::TexturePoint tu = tp, tv = tp;
+            tu.u += du, tu.p = tu.p + dpdu * du;
+            tv.v += dv, tv.p = tv.p + dpdv * dv;
+            double d_u = textures_.value(m->displacement_tex, tu), d_v = textures_.value(m->displacement_tex, tv);
+            Vec3 bu = dpdu + n * ((d_u - d) / du), bv = dpdv + n * ((d_v - d) / dv);
+            Vec3 bn = udm1scene::cross(bu, bv);
+            double len = udm1scene::length(bn);
+            if (len > 0 && std::isfinite(len)) {
+                bn = bn * (1 / len);
+                *ns = udm1scene::dot(bn, n) < 0 ? -bn : bn;
+            }
         }
     }
     return b;
-}
-
-void hit_uv(const udm1scene::Shape &s, const udm1scene::Hit &h, double *u, double *v)
-{
-    if (s.kind == udm1scene::Shape::Sphere) {  // pbrt-v4's, of the point in object space
-        Vec3 d = udm1scene::sphere_object_point(s, h.p) * (1 / s.object_radius);
-        double phi = std::atan2(d.y, d.x);
-        if (phi < 0) phi += 2 * 3.14159265358979323846;
-        *u = phi / (2 * 3.14159265358979323846);
-        *v = 1 - std::acos(std::clamp(d.z, -1.0, 1.0)) / 3.14159265358979323846;
-        return;
-    }
-    double b0 = 1 - h.u - h.v;
-    if (s.UV.empty()) {  // pbrt-v4: (0,0), (1,0), (1,1)
-        *u = h.u + h.v, *v = h.v;
-        return;
-    }
-    const uint32_t *i = &s.indices[3 * (size_t)h.prim];
-    *u = b0 * s.UV[2 * i[0]] + h.u * s.UV[2 * i[1]] + h.v * s.UV[2 * i[2]];
-    *v = b0 * s.UV[2 * i[0] + 1] + h.u * s.UV[2 * i[1] + 1] + h.v * s.UV[2 * i[2] + 1];
 }
 
 }  // namespace udm1pt

@@ -1,16 +1,19 @@
 // material.h - the scene's materials for the path tracer. Each Material / MakeNamedMaterial of the
-// subset (diffuse, coateddiffuse, conductor, dielectric, mix) becomes a BSDF template plus the
-// textures that vary it over the surface (reflectance, roughness, a mix's amount); at a hit, at()
-// evaluates them and resolves a mix as pbrt-v4 does: the second material where a hash of the point and
-// the outgoing direction falls below the amount. Spectra become RGB as pbrt-v4's film would record
-// them (scene/spectrum.h): reflectances under D65, a spectral metal's Fresnel reflectance by channel
-// and angle (a table), a dielectric's single index at 550 nm.
+// subset (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, diffusetransmission, mix)
+// becomes a BSDF template plus the textures that vary it over the surface (any of pbrt-v4's texture-valued
+// parameters of these materials: reflectance, transmittance, the medium's albedo, g and thickness,
+// roughnesses, a conductor's reflectance, a mix's amount), a bump map ("displacement") or a normal map
+// ("normalmap"); at a hit, at() evaluates them and resolves a mix as pbrt-v4 does: the second material
+// where a hash of the point and the outgoing direction falls below the amount. Spectra become RGB as
+// pbrt-v4's film would record them (scene/spectrum.h): reflectances under D65, a spectral metal's Fresnel
+// reflectance by channel and angle (a table), a dielectric's single index at 550 nm.
 #pragma once
 
 #include "bsdf.h"
 #include "embree_scene.h"
 #include "scene.h"
-#include "texture.h"
+#include "surface.h"
+#include "textures.h"
 
 #include <memory>
 #include <vector>
@@ -19,10 +22,23 @@ namespace udm1pt {
 
 struct MaterialModel {
     Bsdf base;
-    int reflectance_tex = -1;  // diffuse R, or the coated base's R (a spectrum texture)
+    // A texture evaluated at the hit into one parameter of the BSDF.
+    enum class Slot {
+        Reflectance, Transmittance, Albedo, G, Thickness,
+        URoughness, VRoughness,                    // the material's, or a coated conductor's interface
+        ConductorURoughness, ConductorVRoughness,  // a coated conductor's base
+        ConductorReflectance                       // a conductor's (or coated conductor's base's) "reflectance"
+    };
+    struct Binding {
+        Slot slot;
+        int tex;
+    };
+    std::vector<Binding> bindings;
     int displacement_tex = -1; // bump mapping: a float texture of displacement along the normal
-    int roughness_tex = -1;    // conductor, dielectric, coated: a float texture in place of "roughness"
+    int normal_map = -1;       // a normal map (Textures::normal_map), which takes precedence over a bump map
     bool remap = true;         // pbrt's remaproughness: alpha = sqrt(roughness)
+    double scale = 1;          // diffusetransmission: scales its (textured) reflectance and transmittance
+    double interface_eta = 1;  // coatedconductor: the base's index is relative to the coat's
     bool mix = false;
     int parts[2] = {-1, -1};   // mix: the two materials
     double amount = 0.5;
@@ -37,9 +53,10 @@ public:
     // may have a specular lobe is refused: pbrt-v4's image leaves that lobe out.
     explicit Materials(const udm1scene::Scene &scene);
     // The BSDF at hit h of shape (a mix resolved, textures evaluated) and, through *ns, the shading
-    // normal: the caller's (interpolated or geometric) on entry, bumped as pbrt-v4's BumpMap if the
-    // material has a displacement texture (finite differences of 0.0005 in u and v: udm1-pt has no ray
-    // differentials, pbrt-v4's own fallback; the normal's change dn/du is taken as 0).
+    // normal: the caller's (interpolated or geometric) on entry, perturbed as pbrt-v4's NormalMap or
+    // BumpMap if the material has a normal map or a displacement texture (bump: finite differences of
+    // 0.0005 in u and v: udm1-pt has no ray differentials, pbrt-v4's own fallback; the normal's change
+    // dn/du is taken as 0).
     // An untextured material's BSDF is returned as it is; a textured one is written to *scratch.
     const Bsdf &at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns,
                    Bsdf *scratch) const;
@@ -47,7 +64,7 @@ public:
 
 private:
     void refuse_specular(const udm1scene::Scene &scene) const;
-    Textures textures_;
+    udm1scene::Textures textures_;
     std::vector<MaterialModel> models_;
     std::vector<std::unique_ptr<FresnelTable>> tables_;  // spectral conductors' (their BSDFs point here)
 };
@@ -56,8 +73,6 @@ private:
 // lights' shapes often have none: their back reflects): diffuse, reflectance 0.5.
 Bsdf default_material();
 
-// The texture coordinates of a hit: the mesh's per-vertex uv interpolated, else pbrt-v4's defaults
-// ((0,0), (1,0), (1,1) per triangle; spheres by longitude and colatitude in their object space).
-void hit_uv(const udm1scene::Shape &shape, const udm1scene::Hit &h, double *u, double *v);
+using udm1scene::hit_uv;
 
 }  // namespace udm1pt

@@ -18,13 +18,15 @@ std::string diffuse_wavefront_unsupported(const Scene &scene, const Options &opt
     if (scene.camera.lens_radius > 0) return "the camera has a thin lens";
     bool light = false;
     for (const Shape &s : scene.shapes) {
-        if (s.kind != Shape::Triangles) return s.where + ": a sphere";
+        if (s.kind != Shape::Triangles) return s.where + ": a shape that is not a triangle mesh";
         if (!s.N.empty()) return s.where + ": vertex normals";
+        if (s.has_alpha()) return s.where + ": an alpha cut-out";
         light = light || s.light >= 0;
         if (s.material < 0) continue;
         const udm1scene::Material &m = scene.materials[s.material];
         if (m.type != "diffuse") return s.where + ": a " + m.type + " material";
         if (m.params.find("displacement")) return s.where + ": a bump map";
+        if (m.params.find("normalmap")) return s.where + ": a normal map";
         const udm1scene::Param *refl = m.params.find("reflectance");
         if (refl && refl->type == "texture") return s.where + ": a textured reflectance";
     }

@@ -1,9 +1,14 @@
 // embree_scene.cpp - see embree_scene.h.
 #include "embree_scene.h"
 
+#include "alpha.h"
+#include "bilinear_patch.h"
+#include "quadrics.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace udm1scene {
 
@@ -30,72 +35,120 @@ Segment segment_to_infinity(Vec3 p, Vec3 n, double t, Vec3 w)
 
 namespace {
 
-// A sphere that is not a sphere in world space (an ellipsoid: Shape::ellipsoid), as an Embree user
-// geometry: the ray taken to object space and met with the sphere there in double precision (pbrt-v4's
-// Sphere::BasicIntersect: t is the same parameter in both spaces, the map being affine).
-void ellipsoid_bounds(const RTCBoundsFunctionArguments *args)
+using GeometryData = EmbreeScene::GeometryData;
+
+void set_bounds(RTCBounds *b, Vec3 lo, Vec3 hi)
 {
-    const Shape &s = *(const Shape *)args->geometryUserPtr;
-    Vec3 lo, hi;
-    sphere_bounds(s, &lo, &hi);
-    RTCBounds *b = args->bounds_o;  // widened by a float ulp or so, so that float rounding keeps it outside
+    // widened by a float ulp or so, so that float rounding keeps the shape inside
     b->lower_x = std::nextafter((float)lo.x, -INFINITY), b->lower_y = std::nextafter((float)lo.y, -INFINITY);
     b->lower_z = std::nextafter((float)lo.z, -INFINITY);
     b->upper_x = std::nextafter((float)hi.x, INFINITY), b->upper_y = std::nextafter((float)hi.y, INFINITY);
     b->upper_z = std::nextafter((float)hi.z, INFINITY);
 }
 
-// The nearest t in (tnear, tfar] where o + t d meets ellipsoid s, or -1.
-double ellipsoid_hit(const Shape &s, Vec3 o, Vec3 d, double tnear, double tfar)
+// Quadrics that are not Embree spheres (an ellipsoid, a disk, a cylinder, a sphere with alpha) as Embree
+// user geometry: the ray met in the quadric's object space in double precision (quadrics.h).
+void quadric_bounds(const RTCBoundsFunctionArguments *args)
 {
-    Vec3 oo = s.object_from_world.point(o), dd = s.object_from_world.vector(d);
-    double r = s.object_radius, a = dot(dd, dd), b = 2 * dot(oo, dd), c = dot(oo, oo) - r * r;
-    if (!(a > 0)) return -1;
-    Vec3 v = oo - dd * (b / (2 * a));  // the discriminant as pbrt-v4 forms it: 4 a (r + |v|)(r - |v|)
-    double len = length(v), disc = 4 * a * (r + len) * (r - len);
-    if (!(disc >= 0)) return -1;
-    double root = std::sqrt(disc), q = b < 0 ? -0.5 * (b - root) : -0.5 * (b + root);
-    double t0 = q / a, t1 = q != 0 ? c / q : t0;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > tnear && t0 <= tfar) return t0;
-    if (t1 > tnear && t1 <= tfar) return t1;
+    const GeometryData &g = *(const GeometryData *)args->geometryUserPtr;
+    Vec3 lo, hi;
+    shape_bounds(g.rt->scene().shapes[g.shape], &lo, &hi);
+    set_bounds(args->bounds_o, lo, hi);
+}
+
+// The nearest of a shape's hits along a ray that passes its alpha test (alpha.h): the first sees the ray's
+// hash, each later one the hash of the ray continued from the rejected hit before it. Returns its index in
+// t, or -1.
+int first_visible(const GeometryData &g, int n, const double *t, const double (*uv)[2], unsigned prim, Vec3 o, Vec3 d,
+                  float tfar)
+{
+    const Shape &s = g.rt->scene().shapes[g.shape];
+    float ho[3] = {(float)o.x, (float)o.y, (float)o.z}, hd[3] = {(float)d.x, (float)d.y, (float)d.z};
+    for (int k = 0; k < n; ++k) {
+        if (!((float)t[k] <= tfar)) return -1;
+        if (!s.has_alpha()) return k;
+        Hit h;
+        h.t = t[k], h.shape = g.shape, h.prim = prim, h.p = o + d * t[k];
+        h.u = uv ? (float)uv[k][0] : 0.0f, h.v = uv ? (float)uv[k][1] : 0.0f;
+        h.ng = g.rt->geometric_normal(h);
+        if (g.rt->alpha_passes(h, ho, hd)) return k;
+        ho[0] = (float)h.p.x, ho[1] = (float)h.p.y, ho[2] = (float)h.p.z;
+    }
     return -1;
 }
 
-void ellipsoid_intersect(const RTCIntersectFunctionNArguments *args)
+template <class Args> struct RayOf;
+template <> struct RayOf<RTCIntersectFunctionNArguments> {
+    static RTCRayN *get(const RTCIntersectFunctionNArguments *a) { return RTCRayHitN_RayN(a->rayhit, a->N); }
+};
+template <> struct RayOf<RTCOccludedFunctionNArguments> {
+    static RTCRayN *get(const RTCOccludedFunctionNArguments *a) { return a->ray; }
+};
+
+// One callback for both queries and both kinds of user geometry: the hits of each active ray, the first
+// visible one reported (intersect) or the ray marked occluded.
+template <class Args> void user_query(const Args *args)
 {
-    const Shape &s = *(const Shape *)args->geometryUserPtr;
-    RTCRayN *ray = RTCRayHitN_RayN(args->rayhit, args->N);
-    RTCHitN *hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    constexpr bool occlusion = std::is_same<Args, RTCOccludedFunctionNArguments>::value;
+    const GeometryData &g = *(const GeometryData *)args->geometryUserPtr;
+    const Shape &s = g.rt->scene().shapes[g.shape];
+    RTCRayN *ray = RayOf<Args>::get(args);
     const unsigned N = args->N;
     for (unsigned i = 0; i < N; ++i) {
         if (args->valid[i] != -1) continue;
         Vec3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
         Vec3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
         float &tfar = RTCRayN_tfar(ray, N, i);
-        double t = ellipsoid_hit(s, o, d, RTCRayN_tnear(ray, N, i), tfar);
-        if (!(t >= 0) || !((float)t <= tfar)) continue;
-        tfar = (float)t;
-        Vec3 n = sphere_normal(s, o + d * t);  // (hit_of makes the normal the renderers use)
-        RTCHitN_Ng_x(hit, N, i) = (float)n.x, RTCHitN_Ng_y(hit, N, i) = (float)n.y, RTCHitN_Ng_z(hit, N, i) = (float)n.z;
-        RTCHitN_u(hit, N, i) = 0, RTCHitN_v(hit, N, i) = 0;
-        RTCHitN_primID(hit, N, i) = args->primID;
-        RTCHitN_geomID(hit, N, i) = args->geomID;
-        RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
+        double t[2], uv[2][2];
+        int n = s.kind == Shape::Bilinear ? patch_hits(patch_of(s, args->primID), o, d, RTCRayN_tnear(ray, N, i), tfar, t, uv)
+                                          : quadric_hits(s, o, d, RTCRayN_tnear(ray, N, i), tfar, t);
+        int k = first_visible(g, n, t, s.kind == Shape::Bilinear ? uv : nullptr, args->primID, o, d, tfar);
+        if (k < 0) continue;
+        if (occlusion) {
+            tfar = -INFINITY;
+            continue;
+        }
+        if constexpr (!occlusion) {
+            RTCHitN *hit = RTCRayHitN_HitN(args->rayhit, args->N);
+            tfar = (float)t[k];
+            // (hit_of makes the normal the renderers use; Embree's is for its own use only)
+            Vec3 n = s.kind == Shape::Bilinear ? Vec3(0, 0, 1) : quadric_normal(s, o + d * t[k]);
+            RTCHitN_Ng_x(hit, N, i) = (float)n.x, RTCHitN_Ng_y(hit, N, i) = (float)n.y, RTCHitN_Ng_z(hit, N, i) = (float)n.z;
+            RTCHitN_u(hit, N, i) = s.kind == Shape::Bilinear ? (float)uv[k][0] : 0.0f;
+            RTCHitN_v(hit, N, i) = s.kind == Shape::Bilinear ? (float)uv[k][1] : 0.0f;
+            RTCHitN_primID(hit, N, i) = args->primID;
+            RTCHitN_geomID(hit, N, i) = args->geomID;
+            RTCHitN_instID(hit, N, i, 0) = args->context->instID[0];
+        }
     }
 }
 
-void ellipsoid_occluded(const RTCOccludedFunctionNArguments *args)
+void patch_bounds(const RTCBoundsFunctionArguments *args)
 {
-    const Shape &s = *(const Shape *)args->geometryUserPtr;
+    const GeometryData &g = *(const GeometryData *)args->geometryUserPtr;
+    Patch q = patch_of(g.rt->scene().shapes[g.shape], args->primID);
+    Vec3 lo = q.p00, hi = q.p00;
+    for (Vec3 p : {q.p10, q.p01, q.p11})
+        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    set_bounds(args->bounds_o, lo, hi);
+}
+
+// Embree's triangles and spheres with alpha: each candidate hit filtered by the alpha test.
+void alpha_filter(const RTCFilterFunctionNArguments *args)
+{
+    const GeometryData &g = *(const GeometryData *)args->geometryUserPtr;
     const unsigned N = args->N;
     for (unsigned i = 0; i < N; ++i) {
         if (args->valid[i] != -1) continue;
-        RTCRayN *ray = args->ray;
-        Vec3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
-        Vec3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
-        float &tfar = RTCRayN_tfar(ray, N, i);
-        if (ellipsoid_hit(s, o, d, RTCRayN_tnear(ray, N, i), tfar) >= 0) tfar = -INFINITY;
+        float o[3] = {RTCRayN_org_x(args->ray, N, i), RTCRayN_org_y(args->ray, N, i), RTCRayN_org_z(args->ray, N, i)};
+        float d[3] = {RTCRayN_dir_x(args->ray, N, i), RTCRayN_dir_y(args->ray, N, i), RTCRayN_dir_z(args->ray, N, i)};
+        float t = RTCRayN_tfar(args->ray, N, i);  // (the candidate's distance)
+        Hit h;
+        h.t = t, h.shape = g.shape, h.prim = RTCHitN_primID(args->hit, N, i);
+        h.u = RTCHitN_u(args->hit, N, i), h.v = RTCHitN_v(args->hit, N, i);
+        h.p = Vec3(o[0], o[1], o[2]) + Vec3(d[0], d[1], d[2]) * t;
+        h.ng = g.rt->geometric_normal(h);
+        if (!g.rt->alpha_passes(h, o, d)) args->valid[i] = 0;
     }
 }
 
@@ -108,8 +161,14 @@ EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
     scene_ = rtcNewScene(device_);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    bool any_alpha = false;
+    for (const Shape &s : scene.shapes) any_alpha = any_alpha || s.has_alpha();
+    if (any_alpha) alpha_ = std::make_unique<AlphaTest>(scene);
+    geometry_data_.reserve(scene.shapes.size());  // (stable: the geometries point into it)
     for (unsigned k = 0; k < scene.shapes.size(); ++k) {
         const Shape &s = scene.shapes[k];
+        geometry_data_.push_back({this, k});
+        void *user = &geometry_data_.back();
         RTCGeometry g;
         if (s.kind == Shape::Triangles) {
             g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
@@ -121,13 +180,25 @@ EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
             if (!v || !i) throw SceneError(scene.source + ": Embree could not allocate a mesh");
             std::copy(s.P.begin(), s.P.end(), v);
             std::copy(s.indices.begin(), s.indices.end(), i);
-        } else if (s.ellipsoid) {
+            if (s.has_alpha()) {
+                rtcSetGeometryUserData(g, user);
+                rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+                rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+            }
+        } else if (s.kind == Shape::Bilinear) {
+            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+            rtcSetGeometryUserPrimitiveCount(g, (unsigned)(s.indices.size() / 4));
+            rtcSetGeometryUserData(g, user);
+            rtcSetGeometryBoundsFunction(g, patch_bounds, nullptr);
+            rtcSetGeometryIntersectFunction(g, user_query<RTCIntersectFunctionNArguments>);
+            rtcSetGeometryOccludedFunction(g, user_query<RTCOccludedFunctionNArguments>);
+        } else if (s.kind != Shape::Sphere || s.ellipsoid || s.has_alpha()) {
             g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
             rtcSetGeometryUserPrimitiveCount(g, 1);
-            rtcSetGeometryUserData(g, (void *)&s);
-            rtcSetGeometryBoundsFunction(g, ellipsoid_bounds, nullptr);
-            rtcSetGeometryIntersectFunction(g, ellipsoid_intersect);
-            rtcSetGeometryOccludedFunction(g, ellipsoid_occluded);
+            rtcSetGeometryUserData(g, user);
+            rtcSetGeometryBoundsFunction(g, quadric_bounds, nullptr);
+            rtcSetGeometryIntersectFunction(g, user_query<RTCIntersectFunctionNArguments>);
+            rtcSetGeometryOccludedFunction(g, user_query<RTCOccludedFunctionNArguments>);
         } else {
             g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
             float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
@@ -200,14 +271,22 @@ Hit EmbreeScene::hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned p
     hit.u = u;
     hit.v = v;
     hit.p = o + d * hit.t;
-    const Shape &s = src_.shapes[hit.shape];
-    if (s.kind == Shape::Sphere) {
-        hit.ng = sphere_normal(s, hit.p);
-        if (s.reverse_orientation) hit.ng = -hit.ng;
-    } else {
-        hit.ng = normals_[first_normal_[hit.shape] + hit.prim];
-    }
+    hit.ng = geometric_normal(hit);
     return hit;
+}
+
+Vec3 EmbreeScene::geometric_normal(const Hit &h) const
+{
+    const Shape &s = src_.shapes[h.shape];
+    if (s.kind == Shape::Triangles) return normals_[first_normal_[h.shape] + h.prim];
+    if (s.kind == Shape::Bilinear) return patch_normal(s, h.prim, h.u, h.v);
+    Vec3 n = quadric_normal(s, h.p);
+    return s.reverse_orientation ? -n : n;
+}
+
+bool EmbreeScene::alpha_passes(const Hit &h, const float o[3], const float d[3]) const
+{
+    return alpha_->passes(src_.shapes[h.shape], h, o, d);
 }
 
 bool EmbreeScene::occluded(Vec3 o, Vec3 d, double tnear, double tfar) const

@@ -1,6 +1,8 @@
 // embree_scene.h - a Scene on Embree 3: one device, one committed scene of
 // triangle meshes and spheres (as Embree sphere points; as user geometry intersected in object space
-// where a transform makes them ellipsoids), each triangle's geometric
+// where a transform makes them ellipsoids), disks, cylinders and bilinear patches (user geometry met
+// exactly: quadrics.h, bilinear_patch.h), alpha cut-outs (alpha.h: Embree filter functions on
+// triangles, the user geometry's own test elsewhere), each triangle's geometric
 // normal (computed once), and the queries the renderers need. Const methods are
 // safe from any number of threads.
 #pragma once
@@ -9,7 +11,11 @@
 
 #include <embree3/rtcore.h>
 
+#include <memory>
+
 namespace udm1scene {
+
+class AlphaTest;
 
 // How far rays leaving p start from it: 2^-18 (64 float ulps) of the largest magnitude among p's coordinates and the
 // distance t the ray that found p travelled (float intersection errors scale with both), never less
@@ -32,9 +38,9 @@ Segment segment_to_infinity(Vec3 p, Vec3 n, double t, Vec3 w);
 
 struct Hit {
     double t = 0;
-    unsigned shape = 0, prim = 0;  // index into Scene::shapes, triangle index
+    unsigned shape = 0, prim = 0;  // index into Scene::shapes, triangle (or patch) index
     Vec3 p, ng;                    // position, unit geometric normal (as the geometry faces it)
-    double u = 0, v = 0;           // barycentrics
+    double u = 0, v = 0;           // barycentrics (a bilinear patch: its (u, v))
 };
 
 // One query as Embree received it (for the replay benchmark, bench/bench_pt_embree.cpp).
@@ -69,6 +75,16 @@ public:
     // one thread. The renderers never set it (one predictable branch per query).
     void record_queries(std::vector<RayQuery> *log) { log_ = log; }
     double scale() const { return scale_; }  // the scene's extent
+    // What the geometry's callbacks need (alpha.h): whether the float ray (o, d) meets shape h.shape at h,
+    // and the unit geometric normal of a triangle.
+    bool alpha_passes(const Hit &h, const float o[3], const float d[3]) const;
+    // The unit geometric normal at hit h (h.shape, h.prim, h.p, h.u, h.v set), as hit_of() makes it.
+    Vec3 geometric_normal(const Hit &h) const;
+    const Scene &scene() const { return src_; }
+    struct GeometryData {  // each user geometry's and alpha-tested mesh's user pointer
+        const EmbreeScene *rt;
+        unsigned shape;
+    };
 
 private:
     const Scene &src_;
@@ -79,6 +95,8 @@ private:
     std::vector<Vec3> normals_;         // triangle_normal() of every triangle, in shape order
     double scale_ = 1;
     std::vector<RayQuery> *log_ = nullptr;
+    std::unique_ptr<AlphaTest> alpha_;     // if a shape has alpha
+    std::vector<GeometryData> geometry_data_;
 };
 
 }  // namespace udm1scene

@@ -6,6 +6,7 @@
 
 #include "file_read.h"
 
+#include "loop_subdivision.h"
 #include "mesh_io.h"
 #include "spectrum.h"
 
@@ -595,6 +596,7 @@ private:
         Material m;
         m.type = string_arg(lex, "Material");
         m.params = params(lex, t.line);
+        resolve_material_files(&m.params, c.dir);
         scene_.materials.push_back(m);
         st_.material = (int)scene_.materials.size() - 1;
     }
@@ -607,11 +609,21 @@ private:
         std::string name = string_arg(lex, "MakeNamedMaterial");
         Material m;
         m.params = params(lex, t.line);
+        resolve_material_files(&m.params, c.dir);
         m.name = name;
         m.type = m.params.get_string("type", "");
         if (m.type.empty()) throw SceneError(here + ": MakeNamedMaterial \"" + name + "\" has no \"string type\"");
         scene_.materials.push_back(m);
         named_[name] = (int)scene_.materials.size() - 1;
+    }
+
+    // A material's file names (its "normalmap") resolved against the scene file's folder.
+    static void resolve_material_files(ParamSet *ps, const std::string &dir)
+    {
+        for (Param &p : ps->params)
+            if (p.name == "normalmap" && p.type == "string" && p.strings.size() == 1 && !p.strings[0].empty() &&
+                p.strings[0][0] != '/')
+                p.strings[0] = dir + p.strings[0];
     }
 
     void on_NamedMaterial(const Call &c)
@@ -686,37 +698,165 @@ private:
         tx.where = here;
         if (tx.kind != "float" && tx.kind != "spectrum")
             throw SceneError(here + ": Texture \"" + tx.name + "\": kind \"" + tx.kind + "\" is not float or spectrum");
+        const bool f = tx.kind == "float";
+        std::vector<std::string> used;  // the parameters this texture reads (pbrt-v4 refuses the others)
         if (tx.type == "imagemap") {
-            only(ps, {"filename", "encoding", "invert", "scale", "wrap", "filter"}, "Texture imagemap");
+            used = {"filename", "encoding", "invert", "scale", "wrap", "filter", "maxanisotropy"};
             std::string file = ps.get_string("filename", "");
             if (file.empty()) throw SceneError(here + ": Texture imagemap needs \"string filename\"");
             tx.filename = file[0] == '/' ? file : dir + file;
-            std::string enc = ps.get_string("encoding", "sRGB");
+            // pbrt-v4's default encoding: sRGB for .png files, linear for the others
+            std::string ext = file.size() >= 4 ? file.substr(file.size() - 4) : "";
+            std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+            std::string enc = ps.get_string("encoding", ext == ".png" ? "sRGB" : "linear");
             if (enc != "sRGB" && enc != "linear")
                 throw SceneError(here + ": Texture imagemap: encoding \"" + enc + "\" is not supported (sRGB, linear)");
             tx.srgb = enc == "sRGB";
             tx.invert = ps.get_bool("invert", false);
             tx.scale = ps.get_float("scale", 1.0);
-            if (ps.get_string("wrap", "repeat") != "repeat")
-                throw SceneError(here + ": Texture imagemap: only \"repeat\" wrapping is supported");
+            tx.wrap = ps.get_string("wrap", "repeat");
+            if (tx.wrap != "repeat" && tx.wrap != "clamp" && tx.wrap != "black")
+                throw SceneError(here + ": Texture imagemap: wrap \"" + tx.wrap + "\" is not supported (repeat, clamp, black)");
+            // the filters: udm1-pt traces no ray differentials, so pbrt-v4's footprint filters (trilinear, EWA)
+            // see the finest level, bilinear, as its own "bilinear" filter does for a footprint below a texel
             std::string filter = ps.get_string("filter", "bilinear");
-            if (filter != "bilinear" && filter != "point")
-                throw SceneError(here + ": Texture imagemap: filter \"" + filter + "\" is not supported (bilinear, point)");
+            if (filter != "bilinear" && filter != "point" && filter != "trilinear" && filter != "ewa" && filter != "EWA")
+                throw SceneError(here + ": Texture imagemap: filter \"" + filter + "\" is not one of pbrt-v4's (point, "
+                                        "bilinear, trilinear, ewa)");
             tx.point = filter == "point";
+            double aniso = ps.get_float("maxanisotropy", 8.0);  // (it shapes pbrt-v4's EWA footprint only)
+            if (!(aniso > 0)) throw SceneError(ps.find("maxanisotropy")->where + ": Texture imagemap: maxanisotropy must be positive");
+            texture_mapping(ps, here, &tx.mapping, &used);
+        } else if (tx.type == "constant") {
+            used = {"value"};
+            tx.tex1 = texture_constant(ps, "value", tx.kind, 1.0, false);
         } else if (tx.type == "scale") {
-            only(ps, {"tex", "scale"}, "Texture scale");
-            const Param *p = ps.find("tex");
-            if (!p || p->type != "texture" || p->strings.size() != 1)
-                throw SceneError(here + ": Texture scale needs \"texture tex\"");
-            auto it = textures_.find(p->strings[0]);
-            if (it == textures_.end()) throw SceneError(p->where + ": texture \"" + p->strings[0] + "\" was not made");
-            tx.tex = it->second;
-            tx.scale = ps.get_float("scale", 1.0);
+            used = {"tex", "scale"};
+            tx.tex1 = texture_input(ps, "tex", tx.kind, 1.0);
+            tx.tex2 = texture_input(ps, "scale", "float", 1.0);
+        } else if (tx.type == "mix") {
+            used = {"tex1", "tex2", "amount"};
+            tx.tex1 = texture_input(ps, "tex1", tx.kind, 0.0), tx.tex2 = texture_input(ps, "tex2", tx.kind, 1.0);
+            tx.amount = texture_input(ps, "amount", "float", 0.5);
+        } else if (tx.type == "directionmix") {
+            used = {"tex1", "tex2", "dir"};
+            tx.tex1 = texture_input(ps, "tex1", tx.kind, 0.0), tx.tex2 = texture_input(ps, "tex2", tx.kind, 1.0);
+            const Param *dp = ps.find("dir", "vector3");
+            Vec3 v(0, 1, 0);
+            if (dp) {
+                if (dp->numbers.size() != 3) throw SceneError(dp->where + ": 'dir' needs 3 numbers");
+                v = Vec3(dp->numbers[0], dp->numbers[1], dp->numbers[2]);
+            }
+            v = st_.ctm.vector(v);  // (to world space: pbrt-v4's renderFromTexture)
+            if (!(length(v) > 0)) throw SceneError(here + ": Texture directionmix: dir is zero");
+            tx.dir = normalize(v);
+        } else if (tx.type == "checkerboard") {
+            used = {"tex1", "tex2", "dimension"};
+            tx.tex1 = texture_input(ps, "tex1", tx.kind, 1.0), tx.tex2 = texture_input(ps, "tex2", tx.kind, 0.0);
+            tx.dimension = ps.get_int("dimension", 2);
+            if (tx.dimension != 2 && tx.dimension != 3)
+                throw SceneError(ps.find("dimension")->where + ": Texture checkerboard: dimension must be 2 or 3");
+            if (tx.dimension == 2) texture_mapping(ps, here, &tx.mapping, &used);
+            else if (!st_.ctm.affine() || !st_.ctm.inverse(&tx.mapping.texture_from_world))
+                throw SceneError(here + ": Texture checkerboard: its transform is singular or projective");
         } else {
-            throw SceneError(here + ": Texture \"" + tx.type + "\" is not supported (imagemap, scale)");
+            throw SceneError(here + ": Texture \"" + tx.type + "\" is not supported (imagemap, constant, scale, mix, "
+                                    "directionmix, checkerboard)");
         }
+        for (const Param &p : ps.params)
+            if (std::find(used.begin(), used.end(), p.name) == used.end())
+                throw SceneError(p.where + ": Texture " + tx.type + ": unsupported parameter '" + p.name + "'");
+        (void)f;
         scene_.textures.push_back(tx);
         textures_[tx.name] = (int)scene_.textures.size() - 1;
+        textures_by_kind_[tx.kind + "\n" + tx.name] = (int)scene_.textures.size() - 1;
+    }
+
+    // A 2D texture's mapping (pbrt-v4's TextureMapping2D::Create): "mapping" and the parameters of that
+    // mapping, added to *used; the others are refused as pbrt-v4 refuses unused parameters.
+    void texture_mapping(const ParamSet &ps, const std::string &here, TextureMapping *m, std::vector<std::string> *used)
+    {
+        std::string kind = ps.get_string("mapping", "uv");
+        used->push_back("mapping");
+        if (kind == "uv") {
+            m->kind = TextureMapping::UV;
+            m->su = ps.get_float("uscale", 1.0), m->sv = ps.get_float("vscale", 1.0);
+            m->du = ps.get_float("udelta", 0.0), m->dv = ps.get_float("vdelta", 0.0);
+            used->insert(used->end(), {"uscale", "vscale", "udelta", "vdelta"});
+        } else if (kind == "spherical" || kind == "cylindrical" || kind == "planar") {
+            m->kind = kind == "spherical" ? TextureMapping::Spherical
+                      : kind == "cylindrical" ? TextureMapping::Cylindrical
+                                              : TextureMapping::Planar;
+            if (!st_.ctm.affine() || !st_.ctm.inverse(&m->texture_from_world))
+                throw SceneError(here + ": Texture mapping \"" + kind + "\": its transform is singular or projective");
+            if (kind == "planar") {
+                auto vec = [&](const char *name, Vec3 fallback) {
+                    const Param *p = ps.find(name, "vector3");
+                    if (!p) return fallback;
+                    if (p->numbers.size() != 3) throw SceneError(p->where + ": '" + name + "' needs 3 numbers");
+                    return Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
+                };
+                m->v1 = vec("v1", Vec3(1, 0, 0)), m->v2 = vec("v2", Vec3(0, 1, 0));
+                m->du = ps.get_float("udelta", 0.0), m->dv = ps.get_float("vdelta", 0.0);
+                used->insert(used->end(), {"v1", "v2", "udelta", "vdelta"});
+            }
+        } else {
+            throw SceneError(ps.find("mapping")->where + ": Texture mapping \"" + kind +
+                             "\" is not one of pbrt-v4's (uv, spherical, cylindrical, planar)");
+        }
+        for (double x : {m->su, m->sv, m->du, m->dv, m->v1.x, m->v1.y, m->v1.z, m->v2.x, m->v2.y, m->v2.z})
+            if (!std::isfinite(x)) throw SceneError(here + ": Texture mapping: a parameter is not finite");
+    }
+
+    // A texture's constant parameter of its kind: "float" for a float texture; "rgb" or "spectrum" for a
+    // spectrum texture, as an albedo (RGB components in [0, 1], as pbrt-v4 requires of albedos; a spectrum by
+    // its RGB under D65, clamped per wavelength).
+    TextureInput texture_constant(const ParamSet &ps, const std::string &name, const std::string &kind, double fallback,
+                                  bool texture_allowed)
+    {
+        TextureInput in;
+        in.value = fallback, in.rgb = Vec3(fallback, fallback, fallback);
+        const Param *p = ps.find(name);
+        if (!p) return in;
+        if (kind == "float") {
+            if (p->type != "float" || p->numbers.size() != 1)
+                throw SceneError(p->where + ": '" + name + "' must be \"float " + name + "\"" +
+                                 (texture_allowed ? " or \"texture " + name + "\"" : std::string()));
+            in.value = p->numbers[0];
+            if (!std::isfinite(in.value)) throw SceneError(p->where + ": '" + name + "' is not finite");
+            return in;
+        }
+        if (p->type == "rgb") {
+            if (p->numbers.size() != 3) throw SceneError(p->where + ": '" + name + "' needs 3 numbers");
+            in.rgb = Vec3(p->numbers[0], p->numbers[1], p->numbers[2]);
+            for (int k = 0; k < 3; ++k)
+                if (!(in.rgb[k] >= 0 && in.rgb[k] <= 1))
+                    throw SceneError(p->where + ": RGB parameter '" + name + "' of a spectrum texture is an albedo and "
+                                                "must be in [0, 1], as pbrt-v4 requires");
+            return in;
+        }
+        if (p->type == "spectrum") {
+            const Spectrum *named = p->strings.size() == 1 ? named_spectrum(p->strings[0]) : nullptr;
+            in.rgb = albedo_rgb(named ? *named : spectrum_from_pairs(p->numbers, p->where));
+            return in;
+        }
+        throw SceneError(p->where + ": '" + name + "' must be an rgb, a spectrum" +
+                         (texture_allowed ? std::string(" or a texture") : std::string()));
+    }
+
+    // A texture-valued parameter of a texture: "texture NAME" (a texture of that kind made before), or a
+    // constant (texture_constant).
+    TextureInput texture_input(const ParamSet &ps, const std::string &name, const std::string &kind, double fallback)
+    {
+        const Param *p = ps.find(name);
+        if (!p || p->type != "texture") return texture_constant(ps, name, kind, fallback, true);
+        if (p->strings.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one texture name");
+        auto it = textures_by_kind_.find(kind + "\n" + p->strings[0]);
+        if (it == textures_by_kind_.end())
+            throw SceneError(p->where + ": '" + name + "': " + kind + " texture \"" + p->strings[0] + "\" was not made");
+        TextureInput in;
+        in.tex = it->second;
+        return in;
     }
 
     void on_MakeNamedMedium(const Call &c)
@@ -863,7 +1003,7 @@ private:
         const Mat4 &m = st_.ctm;
         if (m.determinant3() < 0) s.reverse_orientation = !s.reverse_orientation;
         if (type == "trianglemesh") {
-            only(ps, {"indices", "P", "N", "uv"}, "trianglemesh");  // ("st": pbrt-v4 reads it only when upgrading a file)
+            only(ps, {"indices", "P", "N", "uv", "alpha"}, "trianglemesh");  // ("st": pbrt-v4 reads it only when upgrading a file)
             const Param *P = ps.find("P", "point3"), *I = ps.find("indices", "integer");
             if (!P || P->numbers.size() % 3 || P->numbers.empty())
                 throw SceneError(here + ": trianglemesh needs \"point3 P\" with 3 numbers per vertex");
@@ -895,7 +1035,7 @@ private:
                 for (double v : uv->numbers) s.UV.push_back((float)v);
             }
         } else if (type == "plymesh") {
-            only(ps, {"filename", "displacement", "edgelength"}, "plymesh");
+            only(ps, {"filename", "displacement", "edgelength", "alpha"}, "plymesh");
             if (const Param *disp = ps.find("displacement")) {
                 if (!geometry_only_) throw SceneError(disp->where + ": plymesh displacement is not supported");
                 ignore(disp->where, "plymesh displacement (the mesh is used undisplaced)");
@@ -908,15 +1048,23 @@ private:
                 throw SceneError(here + ": plymesh: " + e.what());
             }
         } else if (type == "sphere") {
-            only(ps, {"radius"}, "sphere");
+            only(ps, {"radius", "alpha"}, "sphere");
             double r = ps.get_float("radius", 1.0);
             if (!(r > 0)) throw SceneError(here + ": sphere radius must be positive");
             if (!m.affine()) throw SceneError(here + ": sphere: " + PROJECTIVE);
             if (!make_sphere(m, r, &s)) throw SceneError(here + ": sphere: singular transform");
             if (s.light >= 0) sphere_light_transform(here, m, templates_[st_.light_template].twosided);
+        } else if (type == "disk" || type == "cylinder") {
+            quadric_shape(type, ps, here, m, &s);
+        } else if (type == "bilinearmesh") {
+            bilinear_shape(ps, here, m, &s);
+        } else if (type == "loopsubdiv") {
+            loop_subdivision_shape(ps, here, m, &s);
         } else {
-            throw SceneError(here + ": Shape \"" + type + "\" is not supported (trianglemesh, plymesh, sphere)");
+            throw SceneError(here + ": Shape \"" + type + "\" is not supported (trianglemesh, plymesh, sphere, disk, "
+                                    "cylinder, bilinearmesh, loopsubdiv)");
         }
+        shape_alpha(ps, here, &s);
         if (s.kind == Shape::Triangles && s.indices.empty()) throw SceneError(here + ": the shape has no triangles");
         if (!s.N.empty()) {  // vertex normals: pbrt-v4 transforms them by the inverse transpose (normal()) and
                              // ReverseOrientation flips them; the geometric normal then faces them
@@ -925,6 +1073,166 @@ private:
                 for (float &x : s.N) x = -x;
         }
         scene_.shapes.push_back(std::move(s));
+    }
+
+    // pbrt-v4's "float alpha" (a constant; 1 and above: none) or "texture alpha" (a float texture).
+    void shape_alpha(const ParamSet &ps, const std::string &here, Shape *s)
+    {
+        const Param *p = ps.find("alpha");
+        if (!p) return;
+        if (p->type == "float") {
+            double a = ps.get_float("alpha", 1.0);
+            if (!std::isfinite(a)) throw SceneError(p->where + ": alpha must be a finite number");
+            s->alpha = std::min(a, 1.0);
+        } else if (p->type == "texture") {
+            if (p->strings.size() != 1) throw SceneError(p->where + ": 'alpha' needs one texture name");
+            if (geometry_only_) return ignore(p->where, "Shape \"texture alpha\" (the shapes are solid)");
+            auto it = textures_by_kind_.find("float\n" + p->strings[0]);
+            if (it == textures_by_kind_.end())
+                throw SceneError(p->where + ": alpha: float texture \"" + p->strings[0] + "\" was not made");
+            s->alpha_tex = it->second;
+        } else {
+            throw SceneError(p->where + ": 'alpha' must be \"float alpha\" or \"texture alpha\"");
+        }
+        if (s->light >= 0 && (s->alpha_tex >= 0 || s->alpha > 0) && s->has_alpha())
+            throw SceneError(p->where + ": an emitting shape with an alpha texture or an alpha between 0 and 1 is not "
+                                        "modelled: pbrt-v4 lets rays through it by a hash of the ray but masks its "
+                                        "emission by a hash of the point, so the light that rays find and the light "
+                                        "it samples differ (alpha 0, a light only light sampling finds, is modelled)");
+        (void)here;
+    }
+
+    // pbrt-v4's disk (radius, innerradius, height, phimax) and cylinder (radius, zmin, zmax, phimax), met in
+    // their object space (quadrics.h). An emitting one is refused where pbrt-v4's image of it is not
+    // consistent: pbrt-v4 samples a disk light over its whole radius and 2 pi, and samples both by their
+    // object-space area with their normals flipped by ReverseOrientation only.
+    void quadric_shape(const std::string &type, const ParamSet &ps, const std::string &here, const Mat4 &m, Shape *s)
+    {
+        const double PI = 3.14159265358979323846;
+        bool disk = type == "disk";
+        if (disk) only(ps, {"radius", "innerradius", "height", "phimax", "alpha"}, "disk");
+        else only(ps, {"radius", "zmin", "zmax", "phimax", "alpha"}, "cylinder");
+        s->kind = disk ? Shape::Disk : Shape::Cylinder;
+        s->object_radius = ps.get_float("radius", 1.0);
+        double phimax = ps.get_float("phimax", 360.0);
+        if (!(s->object_radius > 0) || !std::isfinite(s->object_radius))
+            throw SceneError(here + ": " + type + ": radius must be positive");
+        if (!(phimax > 0) || !std::isfinite(phimax))
+            throw SceneError(here + ": " + type + ": phimax must be positive (degrees; pbrt-v4 takes it up to 360)");
+        s->phi_max = std::min(phimax, 360.0) * PI / 180;  // (pbrt-v4 clamps it to 360)
+        if (disk) {
+            s->inner_radius = ps.get_float("innerradius", 0.0), s->height = ps.get_float("height", 0.0);
+            if (!(s->inner_radius >= 0 && s->inner_radius < s->object_radius) || !std::isfinite(s->height))
+                throw SceneError(here + ": disk: innerradius must be in [0, radius) and height finite");
+        } else {
+            double z0 = ps.get_float("zmin", -1.0), z1 = ps.get_float("zmax", 1.0);
+            s->zmin = std::min(z0, z1), s->zmax = std::max(z0, z1);  // (pbrt-v4 orders them)
+            if (!(s->zmax > s->zmin) || !std::isfinite(s->zmin) || !std::isfinite(s->zmax))
+                throw SceneError(here + ": cylinder: zmin and zmax must differ");
+        }
+        if (!m.affine()) throw SceneError(here + ": " + type + ": " + PROJECTIVE);
+        if (!make_quadric(m, s)) throw SceneError(here + ": " + type + ": singular transform");
+        if (s->light < 0) return;
+        if (disk && (s->inner_radius > 0 || phimax < 360))
+            throw SceneError(here + ": an emitting disk with an innerradius or a phimax below 360 is not modelled: "
+                                    "pbrt-v4 samples a disk light over its whole radius and 2 pi, so the light it "
+                                    "samples and the light its rays find differ");
+        double scale;
+        if (!m.similarity(1e-9, &scale) || std::fabs(scale - 1) > 1e-9)
+            throw SceneError(here + ": an emitting " + type + " under a transform that scales or shears it is not "
+                                    "modelled: pbrt-v4 samples it by its object-space area, so its image is not "
+                                    "consistent (give its size by its parameters)");
+        if (m.determinant3() < 0 && !templates_[st_.light_template].twosided)
+            throw SceneError(here + ": a one-sided emitting " + type + " under a transform that swaps handedness is "
+                                    "not modelled: pbrt-v4 flips its normals where rays hit it but not where it "
+                                    "samples it, so its image is not consistent (use ReverseOrientation, or \"bool "
+                                    "twosided\" true)");
+    }
+
+    // pbrt-v4's bilinearmesh: P, indices (4 per patch: p00 p10 p01 p11; one patch of 4 vertices without
+    // them), optional N and uv per vertex.
+    void bilinear_shape(const ParamSet &ps, const std::string &here, const Mat4 &m, Shape *s)
+    {
+        only(ps, {"P", "indices", "N", "uv", "faceIndices", "alpha"}, "bilinearmesh");
+        s->kind = Shape::Bilinear;
+        const Param *P = ps.find("P", "point3"), *I = ps.find("indices", "integer");
+        if (!P || P->numbers.size() % 3 || P->numbers.empty())
+            throw SceneError(here + ": bilinearmesh needs \"point3 P\" with 3 numbers per vertex");
+        size_t nv = P->numbers.size() / 3;
+        std::vector<double> idx;
+        if (I) idx = I->numbers;
+        else if (nv == 4) idx = {0, 1, 2, 3};
+        else throw SceneError(here + ": bilinearmesh needs \"integer indices\"");
+        if (idx.empty() || idx.size() % 4)
+            throw SceneError((I ? I->where : here) + ": bilinearmesh: the indices are not a multiple of 4");
+        for (double v : idx)
+            if (!(v >= 0 && v < (double)nv) || v != std::floor(v))
+                throw SceneError((I ? I->where : here) + ": bilinearmesh: index " + number_text(v) + " out of range (" +
+                                 std::to_string(nv) + " vertices)");
+        if (const Param *F = ps.find("faceIndices", "integer"))
+            if (F->numbers.size() != idx.size() / 4)
+                throw SceneError(F->where + ": bilinearmesh: faceIndices needs one index per patch");
+        for (size_t k = 0; k < nv; ++k) {
+            Vec3 p = m.point(Vec3(P->numbers[3 * k], P->numbers[3 * k + 1], P->numbers[3 * k + 2]));
+            s->P.insert(s->P.end(), {(float)p.x, (float)p.y, (float)p.z});
+        }
+        for (double v : idx) s->indices.push_back((uint32_t)v);
+        if (const Param *N = ps.find("N", "normal")) {
+            if (N->numbers.size() != 3 * nv) throw SceneError(N->where + ": bilinearmesh: N needs one normal per vertex");
+            for (size_t k = 0; k < nv; ++k) {
+                Vec3 n = normalize(m.normal(Vec3(N->numbers[3 * k], N->numbers[3 * k + 1], N->numbers[3 * k + 2])));
+                s->N.insert(s->N.end(), {(float)n.x, (float)n.y, (float)n.z});
+            }
+        }
+        if (const Param *uv = ps.find("uv", "point2")) {
+            if (uv->numbers.size() != 2 * nv) throw SceneError(uv->where + ": bilinearmesh: uv needs 2 numbers per vertex");
+            for (double v : uv->numbers) s->UV.push_back((float)v);
+        }
+    }
+
+    // pbrt-v4's loopsubdiv: the mesh refined "levels" times by Loop's rules at load time, its vertices on
+    // the limit surface with the limit normals (loop_subdivision.h), in object space, then placed.
+    void loop_subdivision_shape(const ParamSet &ps, const std::string &here, const Mat4 &m, Shape *s)
+    {
+        only(ps, {"P", "indices", "levels", "scheme", "alpha"}, "loopsubdiv");
+        const Param *P = ps.find("P", "point3"), *I = ps.find("indices", "integer");
+        if (!P || P->numbers.size() % 3 || P->numbers.empty())
+            throw SceneError(here + ": loopsubdiv needs \"point3 P\" with 3 numbers per vertex");
+        if (!I || I->numbers.empty() || I->numbers.size() % 3)
+            throw SceneError(here + ": loopsubdiv needs \"integer indices\", 3 per triangle");
+        std::string scheme = ps.get_string("scheme", "loop");
+        if (scheme != "loop") throw SceneError(ps.find("scheme")->where + ": loopsubdiv: scheme \"" + scheme + "\" is not \"loop\"");
+        int levels = ps.get_int("levels", 3);
+        size_t nv = P->numbers.size() / 3, nf = I->numbers.size() / 3;
+        if (levels < 0 || levels > 12 || (double)nf * std::pow(4.0, levels) > 1e8)
+            throw SceneError(here + ": loopsubdiv: levels " + std::to_string(levels) + " is outside 0..12 or makes more "
+                                    "than 1e8 triangles");
+        std::vector<uint32_t> idx;
+        for (double v : I->numbers) {
+            if (!(v >= 0 && v < (double)nv) || v != std::floor(v))
+                throw SceneError(I->where + ": loopsubdiv: index " + number_text(v) + " out of range (" + std::to_string(nv) +
+                                 " vertices)");
+            idx.push_back((uint32_t)v);
+        }
+        std::vector<Vec3> pts;
+        for (size_t k = 0; k < nv; ++k) pts.emplace_back(P->numbers[3 * k], P->numbers[3 * k + 1], P->numbers[3 * k + 2]);
+        LoopMesh mesh;
+        std::string why;
+        if (!loop_subdivide(idx, pts, levels, &mesh, &why))
+            throw SceneError(here + ": loopsubdiv: the mesh cannot be subdivided by Loop's rules: " + why);
+        if (!m.affine()) throw SceneError(here + ": loopsubdiv: " + PROJECTIVE);
+        Mat4 inv;
+        if (!m.inverse(&inv)) throw SceneError(here + ": loopsubdiv: singular transform");
+        for (Vec3 p : mesh.P) {
+            p = m.point(p);
+            s->P.insert(s->P.end(), {(float)p.x, (float)p.y, (float)p.z});
+        }
+        for (Vec3 n : mesh.N) {  // by the inverse transpose, not normalized: pbrt-v4 interpolates them as they are
+            Vec3 w(inv.m[0][0] * n.x + inv.m[1][0] * n.y + inv.m[2][0] * n.z, inv.m[0][1] * n.x + inv.m[1][1] * n.y + inv.m[2][1] * n.z,
+                   inv.m[0][2] * n.x + inv.m[1][2] * n.y + inv.m[2][2] * n.z);
+            s->N.insert(s->N.end(), {(float)w.x, (float)w.y, (float)w.z});
+        }
+        s->indices = std::move(mesh.indices);
     }
 
     Scene &scene_;
@@ -937,6 +1245,7 @@ private:
     std::set<std::string> ignored_kinds_;
     std::set<std::string> media_;  // MakeNamedMedium names
     std::map<std::string, int> textures_;
+    std::map<std::string, int> textures_by_kind_;  // "kind\nname": the last texture of that kind and name
     std::string dir_;  // the folder of the file being read (relative file names)
 };
 

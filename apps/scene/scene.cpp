@@ -95,7 +95,8 @@ Vec3 ParamSet::get_point(const std::string &name, Vec3 fallback) const
 size_t Scene::triangle_count() const
 {
     size_t n = 0;
-    for (const Shape &s : shapes) n += s.indices.size() / 3;
+    for (const Shape &s : shapes)
+        if (s.kind == Shape::Triangles) n += s.indices.size() / 3;
     return n;
 }
 
@@ -112,9 +113,9 @@ void Scene::bounds(Vec3 *lo, Vec3 *hi) const
     };
     for (const Shape &s : shapes) {
         if (s.kind == Shape::Sphere && !s.ellipsoid) grow(s.center, s.radius);
-        if (s.kind == Shape::Sphere && s.ellipsoid) {
+        if ((s.kind == Shape::Sphere && s.ellipsoid) || s.kind == Shape::Disk || s.kind == Shape::Cylinder) {
             Vec3 a, b;
-            sphere_bounds(s, &a, &b);
+            shape_bounds(s, &a, &b);
             grow(a, 0), grow(b, 0);
         }
         for (size_t i = 0; i + 2 < s.P.size(); i += 3) grow(Vec3(s.P[i], s.P[i + 1], s.P[i + 2]), 0);
@@ -185,6 +186,32 @@ void sphere_bounds(const Shape &s, Vec3 *lo, Vec3 *hi)
     }
 }
 
+bool make_quadric(const Mat4 &world_from_object, Shape *s)
+{
+    Mat4 inverse;
+    if (!world_from_object.affine() || !world_from_object.inverse(&inverse)) return false;
+    s->world_from_object = world_from_object, s->object_from_world = inverse;
+    s->center = world_from_object.point(Vec3(0, 0, 0));
+    return true;
+}
+
+void shape_bounds(const Shape &s, Vec3 *lo, Vec3 *hi)
+{
+    const double inf = std::numeric_limits<double>::infinity();
+    *lo = Vec3(inf, inf, inf), *hi = Vec3(-inf, -inf, -inf);
+    if (s.kind == Shape::Sphere) return sphere_bounds(s, lo, hi);
+    if (s.kind == Shape::Disk || s.kind == Shape::Cylinder) {  // the object-space box's corners
+        double r = s.object_radius, z0 = s.kind == Shape::Disk ? s.height : s.zmin, z1 = s.kind == Shape::Disk ? s.height : s.zmax;
+        for (int c = 0; c < 8; ++c) {
+            Vec3 p = s.world_from_object.point(Vec3(c & 1 ? r : -r, c & 2 ? r : -r, c & 4 ? z1 : z0));
+            for (int a = 0; a < 3; ++a) (*lo)[a] = std::min((*lo)[a], p[a]), (*hi)[a] = std::max((*hi)[a], p[a]);
+        }
+        return;
+    }
+    for (size_t i = 0; i + 2 < s.P.size(); i += 3)
+        for (int a = 0; a < 3; ++a) (*lo)[a] = std::min<double>((*lo)[a], s.P[i + a]), (*hi)[a] = std::max<double>((*hi)[a], s.P[i + a]);
+}
+
 uint64_t Scene::digest() const
 {
     Fnv1a f;
@@ -197,9 +224,15 @@ uint64_t Scene::digest() const
         f.value((int)s.kind), f.vec(s.P), f.vec(s.N), f.vec(s.indices);
         f.value(s.center.x), f.value(s.center.y), f.value(s.center.z), f.value(s.radius);
         f.value(s.material), f.value(s.light), f.value(s.reverse_orientation);
-        if (s.kind == Shape::Sphere && (s.ellipsoid || !object_frame_is_world(s)))  // (its texture coordinates)
+        if ((s.kind == Shape::Sphere && (s.ellipsoid || !object_frame_is_world(s))) || s.kind == Shape::Disk ||
+            s.kind == Shape::Cylinder)  // (its texture coordinates; the other quadrics' placement)
             for (int r = 0; r < 4; ++r)
                 for (int c = 0; c < 4; ++c) f.value(s.world_from_object.m[r][c]);
+        if (s.kind == Shape::Disk || s.kind == Shape::Cylinder)
+            f.value(s.object_radius), f.value(s.inner_radius), f.value(s.height), f.value(s.zmin), f.value(s.zmax),
+                f.value(s.phi_max);
+        if (!s.UV.empty()) f.vec(s.UV);  // (texture coordinates change textured images)
+        if (s.has_alpha()) f.value(s.alpha), f.value(s.alpha_tex);
     }
     for (const Material &m : materials) {
         f.vec(std::vector<char>(m.type.begin(), m.type.end()));
@@ -209,8 +242,17 @@ uint64_t Scene::digest() const
         }
     }
     for (const Texture &t : textures) {
-        for (const std::string *x : {&t.name, &t.kind, &t.type, &t.filename}) f.vec(std::vector<char>(x->begin(), x->end()));
-        f.value(t.srgb), f.value(t.invert), f.value(t.point), f.value(t.scale), f.value(t.tex);
+        for (const std::string *x : {&t.name, &t.kind, &t.type, &t.filename, &t.wrap})
+            f.vec(std::vector<char>(x->begin(), x->end()));
+        f.value(t.srgb), f.value(t.invert), f.value(t.point), f.value(t.scale);
+        for (const TextureInput *in : {&t.tex1, &t.tex2, &t.amount})
+            f.value(in->tex), f.value(in->value), f.value(in->rgb.x), f.value(in->rgb.y), f.value(in->rgb.z);
+        f.value(t.dir.x), f.value(t.dir.y), f.value(t.dir.z), f.value(t.dimension);
+        const TextureMapping &m = t.mapping;
+        f.value((int)m.kind), f.value(m.su), f.value(m.sv), f.value(m.du), f.value(m.dv);
+        f.value(m.v1.x), f.value(m.v1.y), f.value(m.v1.z), f.value(m.v2.x), f.value(m.v2.y), f.value(m.v2.z);
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) f.value(m.texture_from_world.m[r][c]);
     }
     for (const AreaLight &l : lights) f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.scale), f.value(l.twosided);
     for (const LightSource &l : light_sources) {

@@ -46,16 +46,47 @@ struct ParamSet {
     Vec3 get_point(const std::string &name, Vec3 fallback) const;  // "point3 name" [x y z]
 };
 
-// A pbrt-v4 texture of the subset: "imagemap" (an image file, repeated, bilinear or point-sampled at
-// the finest level, 8-bit files decoded from sRGB unless "encoding" says "linear") or "scale" (texture
-// tex times float scale).
+// A texture-valued parameter of a texture: another texture (Scene::textures index), or a constant (a
+// float, or an RGB triple for a spectrum texture: an albedo, as pbrt-v4 reads texture constants).
+struct TextureInput {
+    int tex = -1;
+    double value = 0;
+    Vec3 rgb;
+};
+
+// pbrt-v4's 2D texture mappings: (u, v) scaled and offset ("uv": s = uscale u + udelta, t = vscale v +
+// vdelta), or from the point in the texture's space (texture_from_world, the inverse of the transform at
+// its Texture directive): "spherical" (s = theta / pi, t = phi / 2 pi), "cylindrical" (s = (pi + phi) /
+// 2 pi, t = z), "planar" (s = udelta + p . v1, t = vdelta + p . v2).
+struct TextureMapping {
+    enum Kind { UV, Spherical, Cylindrical, Planar } kind = UV;
+    double su = 1, sv = 1, du = 0, dv = 0;
+    Vec3 v1{1, 0, 0}, v2{0, 1, 0};
+    Mat4 texture_from_world;
+};
+
+// A pbrt-v4 texture of the subset (Textures, textures.h, evaluates them):
+//   "imagemap"     an image file (8-bit files decoded from sRGB unless "encoding" says linear), repeated,
+//                  bilinear or point-sampled at the finest level, through its mapping; "maxanisotropy"
+//                  is read and has no effect (it shapes pbrt-v4's footprint filter; udm1-pt samples the
+//                  finest level)
+//   "constant"     tex1: "value"
+//   "scale"        tex1 ("tex") times tex2 ("scale", a float texture)
+//   "mix"          (1 - amount) tex1 + amount tex2
+//   "directionmix" a tex1 + (1 - a) tex2, a = |n . dir| (n the geometric normal, dir in world space)
+//   "checkerboard" tex1 and tex2 in alternate squares of (s, t) through its mapping (dimension 2), or in
+//                  alternate cubes of the point in texture space (dimension 3)
 struct Texture {
-    std::string name, kind, type;  // kind "float" or "spectrum"; type "imagemap" or "scale"
+    std::string name, kind, type;  // kind "float" or "spectrum"
     std::string filename;          // imagemap: resolved against the scene file's folder
     bool srgb = true, invert = false;
     bool point = false;            // imagemap: "filter" "point" (the nearest texel), else bilinear
-    double scale = 1;              // imagemap "scale", or the scale texture's factor
-    int tex = -1;                  // scale: the texture scaled (Scene::textures index)
+    std::string wrap = "repeat";   // imagemap: "repeat", "clamp" or "black"
+    double scale = 1;              // imagemap "scale"
+    TextureInput tex1, tex2, amount;
+    Vec3 dir{0, 1, 0};             // directionmix: unit, world space
+    int dimension = 2;             // checkerboard
+    TextureMapping mapping;        // imagemap, checkerboard (dimension 2: its mapping; 3: texture_from_world)
     std::string where;
 };
 
@@ -87,27 +118,44 @@ struct LightSource {
     std::string where;
 };
 
-// A triangle mesh, or pbrt-v4's sphere: the sphere of radius object_radius about the origin of its
-// object space, placed by an affine world_from_object. Where that transform is a similarity (a rotation and
-// a uniform scale, maybe mirrored) the sphere is a sphere in world space too, of centre `center` and
-// radius `radius`, and is intersected as one; otherwise (`ellipsoid`) it is intersected in object space.
-// Either way its normals are the object-space normals by the inverse transpose and its texture
-// coordinates pbrt-v4's, from the object-space point (make_sphere sets all of this).
+// A triangle mesh, a mesh of bilinear patches, or one of pbrt-v4's quadrics placed by an affine
+// world_from_object: the sphere of radius object_radius about the origin of its object space, the disk of
+// radii (inner_radius, object_radius] at z = height, the cylinder of radius object_radius from zmin to
+// zmax, the last two swept over phi in [0, phi_max]. Where the transform is a similarity (a rotation and
+// a uniform scale, maybe mirrored) a sphere is a sphere in world space too, of centre `center` and radius
+// `radius`, and is intersected as one; otherwise (`ellipsoid`), and for disks and cylinders always, the
+// quadric is intersected in object space. Normals are the object-space normals by the inverse transpose
+// and texture coordinates pbrt-v4's, from the object-space point (make_sphere and make_quadric set this up).
+// A bilinear patch is pbrt-v4's: four vertices p00 p10 p01 p11 (`indices`, 4 per patch), the points
+// (1-u)(1-v) p00 + u(1-v) p10 + (1-u)v p01 + uv p11, met exactly (not as two triangles).
 struct Shape {
-    enum Kind { Triangles, Sphere } kind = Triangles;
+    enum Kind { Triangles, Sphere, Disk, Cylinder, Bilinear } kind = Triangles;
     std::vector<float> P;            // xyz per vertex, world space
     std::vector<float> N;            // optional per-vertex normals, world space
     std::vector<float> UV;           // optional
-    std::vector<uint32_t> indices;   // 3 per triangle
+    std::vector<uint32_t> indices;   // 3 per triangle, 4 per bilinear patch
     Vec3 center;                     // sphere: world space
     double radius = 0;               // sphere: world space, if not an ellipsoid
-    double object_radius = 0;        // sphere: in object space
-    Mat4 world_from_object, object_from_world;  // sphere
+    double object_radius = 0;        // quadrics: in object space
+    double inner_radius = 0, height = 0;  // disk
+    double zmin = 0, zmax = 0;            // cylinder
+    double phi_max = 6.283185307179586;   // disk, cylinder: radians
+    Mat4 world_from_object, object_from_world;  // quadrics
     bool ellipsoid = false;          // sphere: world_from_object is not a similarity
     int material = -1;               // index into Scene::materials
     int light = -1;                  // index into Scene::lights (an emitter), or -1
     bool reverse_orientation = false;
+    // pbrt-v4's alpha: the shape is not there where alpha is 0, there with probability alpha between 0 and
+    // 1 (a hash of the ray against it), a constant or a float texture (alpha_tex, Scene::textures index)
+    double alpha = 1;
+    int alpha_tex = -1;
     std::string where;               // "file:line" of its Shape directive
+    bool quadric() const { return kind == Sphere || kind == Disk || kind == Cylinder; }
+    bool has_alpha() const { return alpha_tex >= 0 || alpha < 1; }
+    size_t primitive_count() const
+    {
+        return kind == Triangles ? indices.size() / 3 : kind == Bilinear ? indices.size() / 4 : 1;
+    }
 };
 
 struct Camera {
@@ -163,6 +211,11 @@ Vec3 sphere_object_point(const Shape &s, Vec3 p);
 Vec3 sphere_normal(const Shape &s, Vec3 p);
 // The world-space bounds of sphere s.
 void sphere_bounds(const Shape &s, Vec3 *lo, Vec3 *hi);
+// A disk or cylinder (s->kind set, its parameters in object space) placed by world_from_object: false if
+// that transform is not affine and invertible.
+bool make_quadric(const Mat4 &world_from_object, Shape *s);
+// The world-space bounds of any shape (a quadric: its object-space box's image).
+void shape_bounds(const Shape &s, Vec3 *lo, Vec3 *hi);
 
 // The unit geometric normal of triangle `prim` of a triangle shape, oriented as pbrt-v4 orients it:
 // cross(p0 - p2, p1 - p2), towards the shading normals if the mesh has them, else flipped by

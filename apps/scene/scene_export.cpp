@@ -81,6 +81,9 @@ void export_scene(const udm1scene::Scene &scene, int width, int height, int max_
     for (size_t k = 0; k < scene.shapes.size(); ++k) {
         const udm1scene::Shape &s = scene.shapes[k];
         js << "    {";
+        if (s.kind == udm1scene::Shape::Disk || s.kind == udm1scene::Shape::Cylinder || s.kind == udm1scene::Shape::Bilinear)
+            throw Error(s.where + ": export writes triangle meshes and spheres, not a disk, cylinder or bilinear patch", 1);
+        if (s.has_alpha()) throw Error(s.where + ": export does not write alpha cut-outs", 1);
         if (s.kind == udm1scene::Shape::Sphere && s.ellipsoid)  // scene.json has spheres by centre and radius
             throw Error(s.where + ": export writes spheres by centre and radius: this one, under a transform that is "
                                   "not a rotation and a uniform scale, is an ellipsoid",

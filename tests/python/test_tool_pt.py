@@ -310,7 +310,7 @@ PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty f
         (HEAD + 'Material "dielectric" "float eta" [ -1.5 ]\n' + TRI, 4, "eta must be positive"),
         (HEAD + 'Material "dielectric" "float roughness" [ -0.1 ]\n' + TRI, 4, "roughness must not be negative"),
         (HEAD + 'Material "diffuse" "texture reflectance" "checks"\n' + TRI, 4, "reflectance"),
-        (HEAD + 'Material "coateddiffuse" "rgb albedo" [ 0.3 0.3 0.3 ]\n' + TRI, 4, "albedo"),
+        (HEAD + 'Material "coateddiffuse" "rgb albedo" [ 1.3 0.3 0.3 ]\n' + TRI, 4, "albedo and has a component above 1"),
         (HEAD + 'NamedMaterial "nope"\n' + TRI, 4, 'NamedMaterial "nope"'),
         (HEAD + 'AreaLightSource "diffuse" "spectrum L" "spds/none.spd"\n' + TRI, 4, 'nor a spectrum file'),
         (HEAD + 'AreaLightSource "diffuse" "spectrum L" [ 400 1 500 ]\n' + TRI, 4, "(wavelength, value) pairs"),
@@ -500,7 +500,7 @@ def test_textures_and_mix(tmp_path):
         ("", 'Material "diffuse" "texture reflectance" "t"', 'texture "t" was not made'),
         ('Texture "t" "float" "imagemap" "string filename" "half.png"', 'Material "diffuse" "texture reflectance" "t"',
          "needs a spectrum texture"),
-        ('Texture "t" "spectrum" "checkerboard"', 'Material "diffuse"', '"checkerboard" is not supported'),
+        ('Texture "t" "spectrum" "wrinkled"', 'Material "diffuse"', '"wrinkled" is not supported'),
     ):
         scene = tmp_path / "bad.pbrt"
         scene.write_text(TEX_SCENE.format(textures=textures, material=material))
