@@ -42,6 +42,10 @@ UDM1_HIDDEN size_t udm1_noise_eval_fast_f32(const struct udm1_noise *n, uint32_t
 UDM1_HIDDEN double udm1_lattice_f64(const struct udm1_noise *n, uint32_t dims, const double *c, double *grad);
 UDM1_HIDDEN float udm1_lattice_f32(const struct udm1_noise *n, uint32_t dims, const float *c, float *grad);
 
+/* The refusal of a batch whose point i has a coordinate c not finite (lattice.c): INVALID_ARGUMENT, the
+ * message naming fn, the point and the coordinate. The batches find it (core/finite.h) before they write. */
+UDM1_HIDDEN udm1_status udm1_not_finite(const char *fn, size_t i, uint32_t c);
+
 /* Cellular noise (cellular.c): the vector kernels (cellular_simd.c): how many leading points they
  * computed (they stop before a group with a non-finite coordinate); params checked, its metric never
  * MINKOWSKI with exponent 1 or 2. */
