@@ -148,6 +148,9 @@ static int (*run_f32(void))(const float *, size_t) { return run_bad_f32; }
             }                                                                                                            \
     return count;
 
+int udm1_any_nonfinite_f64(const double *p, size_t len) { return run_f64()(p, len); }
+int udm1_any_nonfinite_f32(const float *p, size_t len) { return run_f32()(p, len); }
+
 size_t udm1_first_nonfinite_f64(uint32_t dims, const double *const *axes, size_t stride, size_t count, uint32_t *axis)
 {
     FIRST_NONFINITE(double, run_f64)

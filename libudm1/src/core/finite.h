@@ -15,4 +15,8 @@ UDM1_HIDDEN size_t udm1_first_nonfinite_f64(uint32_t dims, const double *const *
 UDM1_HIDDEN size_t udm1_first_nonfinite_f32(uint32_t dims, const float *const *axes, size_t stride, size_t count,
                                             uint32_t *axis);
 
+/* Whether p[0 .. len) holds a NaN or an infinity (a contiguous run, read as one). */
+UDM1_HIDDEN int udm1_any_nonfinite_f64(const double *p, size_t len);
+UDM1_HIDDEN int udm1_any_nonfinite_f32(const float *p, size_t len);
+
 #endif /* UDM1_FINITE_H */

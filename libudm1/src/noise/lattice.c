@@ -1,7 +1,6 @@
 /* noise/lattice.c - the lattice noises' scalar code in double and in float (noise/lattice_impl.h, one
  * source for both), the per-point functions and the batch evaluations with gradients, which hand what
  * they can to the vector kernels (noise_simd.c, noise_simd_f32.c) and the rest to the scalar code. */
-#include "core/finite.h"
 #include "noise/noise_tables.h"
 
 #include <math.h>
@@ -87,17 +86,7 @@ udm1_status udm1_noise_eval(const udm1_noise *n, uint32_t dims, const double *co
     static const char fn[] = "udm1_noise_eval";
     udm1_status st = eval_args(fn, n, dims, (const void *const *)axes, stride, count, value, gradient);
     if (st != UDM1_OK) return st;
-    uint32_t axis = 0;
-    size_t bad = udm1_first_nonfinite_f64(dims, axes, stride, count, &axis);
-    if (bad < count) return udm1_not_finite(fn, bad, axis);
-    size_t i = udm1_noise_eval_fast_f64(n, dims, axes, stride, count, value, gradient);
-    for (; i < count; ++i) {
-        double c[4];
-        for (uint32_t k = 0; k < dims; ++k) c[k] = axes[k][i * stride];
-        double v = udm1_lattice_f64(n, dims, c, gradient ? gradient + i * dims : NULL);
-        if (value) value[i] = v;
-    }
-    return UDM1_OK;
+    return udm1_noise_batch_f64(fn, n, dims, axes, stride, count, value, gradient);
 }
 
 udm1_status udm1_noise_eval_f32(const udm1_noise *n, uint32_t dims, const float *const axes[], size_t stride,
@@ -106,17 +95,7 @@ udm1_status udm1_noise_eval_f32(const udm1_noise *n, uint32_t dims, const float 
     static const char fn[] = "udm1_noise_eval_f32";
     udm1_status st = eval_args(fn, n, dims, (const void *const *)axes, stride, count, value, gradient);
     if (st != UDM1_OK) return st;
-    uint32_t axis = 0;
-    size_t bad = udm1_first_nonfinite_f32(dims, axes, stride, count, &axis);
-    if (bad < count) return udm1_not_finite(fn, bad, axis);
-    size_t i = udm1_noise_eval_fast_f32(n, dims, axes, stride, count, value, gradient);
-    for (; i < count; ++i) {
-        float c[4];
-        for (uint32_t k = 0; k < dims; ++k) c[k] = axes[k][i * stride];
-        float v = udm1_lattice_f32(n, dims, c, gradient ? gradient + i * dims : NULL);
-        if (value) value[i] = v;
-    }
-    return UDM1_OK;
+    return udm1_noise_batch_f32(fn, n, dims, axes, stride, count, value, gradient);
 }
 
 double udm1_lattice_f64(const udm1_noise *n, uint32_t dims, const double *c, double *grad)

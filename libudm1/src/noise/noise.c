@@ -2,7 +2,6 @@
  * from Perlin's reference permutation, from drand48 (the paper's baseline) or
  * from any udm1 sequence; see udm1.h for the definitions. */
 #define _DEFAULT_SOURCE /* drand48 for the baseline tables */
-#include "core/finite.h"
 #include "core/hash.h"
 #include "noise/noise_tables.h"
 
@@ -246,10 +245,5 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
     if (dims < 1 || dims > 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: dims %u is not 1, 2 or 3", fn, dims);
     if (stride < dims) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < dims %u", fn, stride, dims);
     const double *axes[3] = {xyz, xyz + 1, xyz + 2};
-    uint32_t axis = 0;
-    size_t bad = udm1_first_nonfinite_f64(dims, axes, stride, count, &axis);
-    if (bad < count) return udm1_not_finite(fn, bad, axis);
-    size_t i = dims >= 2 ? udm1_noise_eval_fast_f64(n, dims, axes, stride, count, out, NULL) : 0;
-    for (; i < count; ++i) out[i] = udm1_lattice_f64(n, dims, xyz + i * stride, NULL);
-    return UDM1_OK;
+    return udm1_noise_batch_f64(fn, n, dims, axes, stride, count, out, NULL);
 }

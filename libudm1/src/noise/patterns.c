@@ -278,7 +278,7 @@ static int raw_sums_finite(const udm1_pattern_params *p, double reach, int gradi
     uint32_t octaves = p->pattern == UDM1_PATTERN_NOISE ? 1 : p->octaves;
     double amp = 1.0, s = 1.0, weights = 0.0, slopes = 0.0;
     for (uint32_t i = 0; i < octaves; ++i) {
-        if (!(reach * fabs(s) <= limit)) return 0;
+        if (i > 0 && !(reach * fabs(s) <= limit)) return 0; /* (octave 0: the finite coordinates themselves) */
         weights += fabs(amp);
         slopes += fabs(amp) * fabs(s);
         amp *= p->omega;
@@ -287,12 +287,17 @@ static int raw_sums_finite(const udm1_pattern_params *p, double reach, int gradi
     return p->pattern <= UDM1_PATTERN_RIDGED && weights <= limit && (!gradient || slopes <= limit);
 }
 
-/* The largest coordinate magnitude of n finite 3D points (point i at xyz[i * stride]). */
-static double reach_of(const double *xyz, size_t count, size_t stride)
+/* The largest coordinate magnitude of n finite 3D points (point i at xyz[i * stride]), where p's octaves
+ * beyond the first need it (raw_sums_finite); else 0. */
+static double reach_of(const udm1_pattern_params *p, const double *xyz, size_t count, size_t stride)
 {
+    if (p->pattern > UDM1_PATTERN_RIDGED || p->pattern == UDM1_PATTERN_NOISE || p->octaves < 2) return 0.0;
     double r = 0.0;
     for (size_t i = 0; i < count; ++i)
-        for (int c = 0; c < 3; ++c) r = fmax(r, fabs(xyz[i * stride + c]));
+        for (int c = 0; c < 3; ++c) {
+            double a = fabs(xyz[i * stride + c]);
+            r = a > r ? a : r;
+        }
     return r;
 }
 
@@ -341,7 +346,8 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *ca
     double reach = 0.0;
     for (int c = 0; c < 3; ++c)
         reach = fmax(reach, fabs(origin[c]) + width * fabs(step_x[c]) + (row0 + (double)rows) * fabs(step_y[c]));
-    int direct = raw_sums_finite(p, reach * (1.0 + 0x1p-40), 0);
+    reach *= 1.0 + 0x1p-40;
+    int direct = reach <= DBL_MAX / 256 && raw_sums_finite(p, reach, 0); /* (the coordinates are computed) */
     size_t pixels = (size_t)rows * width;
     float *image = direct ? out : malloc(sizeof(float) * (pixels ? pixels : 1));
     if (!image) {
@@ -410,7 +416,8 @@ udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *
     size_t bad = udm1_first_nonfinite_f64(3, axes, stride, count, NULL);
     if (bad < count) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu is not finite", fn, bad);
     /* straight to out where no value can be NaN, else through a scratch buffer (raw_sums_finite) */
-    double *values = raw_sums_finite(p, reach_of(xyz, count, stride), 0) ? out : malloc(sizeof(double) * (count ? count : 1));
+    int direct = raw_sums_finite(p, reach_of(p, xyz, count, stride), 0);
+    double *values = direct ? out : malloc(sizeof(double) * (count ? count : 1));
     if (!values) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu points", fn, count);
     for (size_t i = 0; i < count; ++i) {
         const double *q = xyz + i * stride;
@@ -493,7 +500,7 @@ udm1_status udm1_pattern_gradient(const udm1_noise *n, const udm1_pattern_params
     /* straight to the outputs where every value and gradient is finite, else through a scratch buffer of
      * both (raw_sums_finite), copied to the outputs once every point is */
     double *scratch = NULL, *v_out = value, *g_out = gradient;
-    if (!raw_sums_finite(p, reach_of(xyz, count, stride), 1)) {
+    if (!raw_sums_finite(p, reach_of(p, xyz, count, stride), 1)) {
         scratch = malloc(sizeof(double) * 4 * (count ? count : 1));
         if (!scratch) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu points", fn, count);
         v_out = value ? scratch : NULL;
