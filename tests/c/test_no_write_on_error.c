@@ -504,6 +504,12 @@ typedef struct row {
       udm1_noise_eval_f32(f->classic, 2, f->axf_nan, 1, NPTS, F32(0), F32(1)))                                          \
     X(eval_f32_nan_periodic, STATUS, udm1_noise_eval_f32, E(INVALID_ARGUMENT), 0,                                       \
       udm1_noise_eval_f32(f->periodic, 3, f->axf_nan, 1, NPTS, F32(0), F32(1)))                                         \
+    /* small batches (all of the kernel's groups into scratch, the last few points checked after) */             \
+    X(eval_f32_small_nan_rest, STATUS, udm1_noise_eval_f32, E(INVALID_ARGUMENT), 0, small_batch(f, 0))              \
+    X(eval_f32_small_ninf_kernel, STATUS, udm1_noise_eval_f32, E(INVALID_ARGUMENT), 0, small_batch(f, 1))           \
+    X(eval_small_nan_rest, STATUS, udm1_noise_eval, E(INVALID_ARGUMENT), 0, small_batch(f, 2))                      \
+    X(eval_small_ninf_kernel, STATUS, udm1_noise_eval, E(INVALID_ARGUMENT), 0, small_batch(f, 3))                   \
+    X(noise_points_small_nan_rest, STATUS, udm1_noise_points, E(INVALID_ARGUMENT), 0, small_batch(f, 4))            \
     /* noise points */                                                                                                  \
     X(noise_points_null, STATUS, udm1_noise_points, E(NULL_ARGUMENT), 0,                                                \
       udm1_noise_points(NULL, 3, f->xyz, NPTS, 3, F64(0)))                                                              \
@@ -731,6 +737,26 @@ static udm1_status eval_packed(fixture *f, uint32_t dims, size_t stride, int f32
     (void)f32;
     const double *axes[3] = {f->xyz_nan_last, f->xyz_nan_last + 1, f->xyz_nan_last + 2};
     return udm1_noise_eval(f->perlin, dims, axes, stride, NPTS, F64(0), F64(1));
+}
+
+/* A batch of 100 points, value only (the small batches' path): 0 float 2D, NaN at the last point (past the
+ * kernel's groups); 1 float 3D, -infinity at point 17 (in them); 2, 3 the same in double, 3D; 4 noise_points
+ * 3D, NaN at the last point. */
+static udm1_status small_batch(fixture *f, int which)
+{
+    enum { M = 100 };
+    size_t at = NPTS - M;
+    if (which == 0) {
+        const float *axes[2] = {f->xf_nan_last + at, f->yf + at};
+        return udm1_noise_eval_f32(f->perlin, 2, axes, 1, M, F32(0), NULL);
+    }
+    if (which == 1) return udm1_noise_eval_f32(f->perlin, 3, f->axf_ninf, 1, M, F32(0), NULL);
+    if (which == 2) {
+        const double *axes[3] = {f->x_nan_last + at, f->y + at, f->z + at};
+        return udm1_noise_eval(f->perlin, 3, axes, 1, M, F64(0), NULL);
+    }
+    if (which == 3) return udm1_noise_eval(f->perlin, 3, f->ax_ninf, 1, M, F64(0), NULL);
+    return udm1_noise_points(f->perlin, 3, f->xyz_nan_last + 3 * at, M, 3, F64(0));
 }
 
 /* pattern_grid over 64 columns: the arguments as given; `bad` 1 NULL out, 2 NULL origin, 3 NaN origin,

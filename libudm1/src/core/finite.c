@@ -126,26 +126,26 @@ static int (*run_f32(void))(const float *, size_t) { return run_bad_f32; }
 
 /* The runs that hold the coordinates: one per layout (see finite.h), or 0 where they are read point by
  * point (strides above 4 per coordinate: a run would read mostly other data). Both types alike. */
-#define FIRST_NONFINITE(T, run)                                                                                          \
-    if (count == 0 || dims == 0) return count;                                                                           \
-    int (*bad_in)(const T *, size_t) = run();                                                                            \
-    size_t span = (count - 1) * stride; /* the last point's offset */                                                    \
-    int packed = stride >= dims;                                                                                         \
-    for (uint32_t c = 1; packed && c < dims; ++c) packed = axes[c] == axes[0] + c;                                       \
-    int found = 1;                                                                                                       \
-    if (packed && stride <= 4 * (size_t)dims) {                                                                          \
-        found = bad_in(axes[0], span + dims);                                                                            \
-    } else if (stride <= 4) {                                                                                            \
-        found = 0;                                                                                                       \
-        for (uint32_t c = 0; !found && c < dims; ++c) found = bad_in(axes[c], span + 1);                                 \
-    }                                                                                                                    \
-    if (!found) return count;                                                                                            \
-    for (size_t i = 0; i < count; ++i) /* (a run may also hold values between the coordinates) */                        \
-        for (uint32_t c = 0; c < dims; ++c)                                                                              \
-            if (!isfinite(axes[c][i * stride])) {                                                                        \
-                if (axis) *axis = c;                                                                                     \
-                return i;                                                                                                \
-            }                                                                                                            \
+#define FIRST_NONFINITE(T, run)                                                                                        \
+    if (count == 0 || dims == 0) return count;                                                                         \
+    int (*bad_in)(const T *, size_t) = run();                                                                          \
+    size_t span = (count - 1) * stride; /* the last point's offset */                                                  \
+    int packed = stride >= dims;                                                                                       \
+    for (uint32_t c = 1; packed && c < dims; ++c) packed = axes[c] == axes[0] + c;                                     \
+    int found = 1;                                                                                                     \
+    if (packed && stride <= 4 * (size_t)dims) {                                                                        \
+        found = bad_in(axes[0], span + dims);                                                                          \
+    } else if (stride <= 4) {                                                                                          \
+        found = 0;                                                                                                     \
+        for (uint32_t c = 0; !found && c < dims; ++c) found = bad_in(axes[c], span + 1);                               \
+    }                                                                                                                  \
+    if (!found) return count;                                                                                          \
+    for (size_t i = 0; i < count; ++i) /* (a run may also hold values between the coordinates) */                      \
+        for (uint32_t c = 0; c < dims; ++c)                                                                            \
+            if (!isfinite(axes[c][i * stride])) {                                                                      \
+                if (axis) *axis = c;                                                                                   \
+                return i;                                                                                              \
+            }                                                                                                          \
     return count;
 
 int udm1_any_nonfinite_f64(const double *p, size_t len) { return run_f64()(p, len); }

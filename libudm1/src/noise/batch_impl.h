@@ -55,33 +55,45 @@ udm1_status R(udm1_noise_batch)(const char *fn, const udm1_noise *n, uint32_t di
                                 size_t stride, size_t count, REAL *value, REAL *gradient)
 {
     size_t group = dims >= 2 ? R(udm1_noise_eval_group)(n, dims, axes, stride, value, gradient) : 0;
-    size_t first = count >= FUSED_MIN_POINTS && group ? count / (FUSED_AHEAD + 1) / group * group : 0;
+    size_t per_point = (value ? 1 : 0) + (gradient ? dims : 0); /* outputs per point */
     udm1_side_check side = {{NULL, NULL, NULL, NULL}, 0, 0, 0, 0};
     const REAL *ends[4];
-    if (first && R(side_runs)(dims, axes, stride, first, count, first / group, &side, ends)) {
-        /* points [0, first) into scratch memory while the kernel checks the others beside them; their own
-         * coordinates it checks as it goes (it stops before a group that is not finite) */
-        size_t per_point = (value ? 1 : 0) + (gradient ? dims : 0);
-        REAL *scratch = malloc(sizeof(REAL) * per_point * first);
-        if (scratch) {
-            REAL *v = value ? scratch : NULL, *g = gradient ? scratch + (value ? first : 0) : NULL;
-            int bad = R(evaluate)(n, dims, axes, stride, 0, first, v, g, &side, 0) < first || side.bad;
-            for (unsigned r = 0; !bad && r < side.runs; ++r) /* what the kernel's steps did not reach */
-                bad = R(udm1_any_nonfinite)((const REAL *)(const void *)side.at[r],
-                                            (size_t)(ends[r] - (const REAL *)(const void *)side.at[r]));
-            if (!bad) { /* every coordinate finite: the first part copied, the rest evaluated in place */
-                if (value) memcpy(value, v, sizeof(REAL) * first);
-                if (gradient) memcpy(gradient, g, sizeof(REAL) * dims * first);
-                R(evaluate)(n, dims, axes, stride, first, count - first, value ? value + first : NULL,
-                            gradient ? gradient + dims * first : NULL, NULL, 1);
-                free(scratch);
-                return UDM1_OK;
-            }
-            free(scratch); /* below: the point named */
-        }
+    size_t first = 0; /* the points evaluated into scratch memory first */
+    if (group && count >= FUSED_MIN_POINTS) { /* a first part, the others checked beside it */
+        first = count / (FUSED_AHEAD + 1) / group * group;
+        if (!R(side_runs)(dims, axes, stride, first, count, first / group, &side, ends)) first = 0;
+    } else if (group && per_point < dims) { /* all of a small batch's groups: copying costs less than a check */
+        first = count / group * group;
     }
-    /* the whole input checked first, then evaluated in place: small batches (their coordinates stay in the
-     * cache for the evaluation), layouts and kinds the kernels do not take, and a batch refused */
+    REAL local[SCRATCH_BYTES / sizeof(REAL)], *scratch = NULL; /* (a small batch's scratch: on the stack) */
+    if (first)
+        scratch = per_point * first <= sizeof local / sizeof(REAL) ? local : malloc(sizeof(REAL) * per_point * first);
+    if (scratch) {
+        /* the kernel checks the points it evaluates as it goes (it stops before a group that is not
+         * finite), and the others beside them, or after it where they are few */
+        REAL *v = value ? scratch : NULL, *g = gradient ? scratch + (value ? first : 0) : NULL;
+        int bad = R(evaluate)(n, dims, axes, stride, 0, first, v, g, &side, 0) < first || side.bad;
+        for (unsigned r = 0; !bad && r < side.runs; ++r) /* what the kernel's steps did not reach */
+            bad = R(udm1_any_nonfinite)((const REAL *)(const void *)side.at[r],
+                                        (size_t)(ends[r] - (const REAL *)(const void *)side.at[r]));
+        if (!bad && !side.runs) {
+            const REAL *rest[4] = {NULL, NULL, NULL, NULL};
+            for (uint32_t c = 0; c < dims; ++c) rest[c] = axes[c] + first * stride;
+            bad = R(udm1_first_nonfinite)(dims, rest, stride, count - first, NULL) < count - first;
+        }
+        if (!bad) { /* every coordinate finite: the first part copied, the rest evaluated in place */
+            if (value) memcpy(value, v, sizeof(REAL) * first);
+            if (gradient) memcpy(gradient, g, sizeof(REAL) * dims * first);
+            R(evaluate)(n, dims, axes, stride, first, count - first, value ? value + first : NULL,
+                        gradient ? gradient + dims * first : NULL, NULL, 1);
+            if (scratch != local) free(scratch);
+            return UDM1_OK;
+        }
+        if (scratch != local) free(scratch); /* below: the point named */
+    }
+    /* the whole input checked first, then evaluated in place: layouts and kinds the kernels do not take,
+     * small batches with more outputs than coordinates (a check costs less than a copy), and a batch
+     * refused (its first point not finite named) */
     uint32_t axis = 0;
     size_t bad = R(udm1_first_nonfinite)(dims, axes, stride, count, &axis);
     if (bad < count) return udm1_not_finite(fn, bad, axis);

@@ -22,7 +22,8 @@ UDM1_SIDE512 static inline __m512 udm1_side_step512_ps(udm1_side_check *s, __m51
         for (unsigned r = 0; r < s->runs; ++r) {
             const char *p = s->at[r];
             for (unsigned v = 0; v < s->vectors; ++v)
-                acc = _mm512_fmadd_ps(_mm512_loadu_ps((const float *)(const void *)(p + 64 * v)), _mm512_setzero_ps(), acc);
+                acc = _mm512_fmadd_ps(_mm512_loadu_ps((const float *)(const void *)(p + 64 * v)), _mm512_setzero_ps(),
+                                      acc);
             s->at[r] = p + 64 * (size_t)s->vectors;
         }
     }
@@ -36,7 +37,8 @@ UDM1_SIDE512 static inline __m512d udm1_side_step512_pd(udm1_side_check *s, __m5
         for (unsigned r = 0; r < s->runs; ++r) {
             const char *p = s->at[r];
             for (unsigned v = 0; v < s->vectors; ++v)
-                acc = _mm512_fmadd_pd(_mm512_loadu_pd((const double *)(const void *)(p + 64 * v)), _mm512_setzero_pd(), acc);
+                acc = _mm512_fmadd_pd(_mm512_loadu_pd((const double *)(const void *)(p + 64 * v)), _mm512_setzero_pd(),
+                                      acc);
             s->at[r] = p + 64 * (size_t)s->vectors;
         }
     }
