@@ -73,8 +73,13 @@ def test_furnace_through_the_tool(scene, tmp_path):
         assert np.all(np.abs(mean_of(r) - 2.0) < 0.02), (strategy, r.stdout)
 
 
-@pytest.mark.parametrize("sampler,randomize,spp", [("wmmr", "default", 12), ("wmmr", "screen", 12),
-                                                  ("wmmr", "screen-fixed", 12), ("sobol-owen", "screen", 16)])
+REPEAT = pytest.mark.release_only("the same code at other parameters, which the first case runs under the sanitizers")
+
+
+@pytest.mark.parametrize("sampler,randomize,spp", [("wmmr", "screen", 12),
+                                                  pytest.param("wmmr", "default", 12, marks=REPEAT),
+                                                  pytest.param("wmmr", "screen-fixed", 12, marks=REPEAT),
+                                                  pytest.param("sobol-owen", "screen", 16, marks=REPEAT)])
 def test_identical_across_runs_threads_and_ranges(tmp_path, sampler, randomize, spp):
     common = ["--sampler", sampler, "--spp", str(spp), "--size", "40x30", "--randomize", randomize]
     outs = []
@@ -162,6 +167,7 @@ def test_merge_refuses_what_does_not_belong_together(tmp_path):
         fails_cleanly(run, ["merge", *inputs, "-o", "out.exr", "--png", "out.png"], words, tmp_path)
 
 
+@pytest.mark.release_only("a statistical check of the estimator over seeds; small renders run its code under the sanitizers")
 def test_strategies_agree_on_the_cornell_box(tmp_path):
     # next-event estimation, BSDF sampling and their MIS combination estimate the same integral;
     # BSDF sampling alone is the noisiest (it finds the light only by chance): 4 seeds, 2 %
@@ -175,6 +181,7 @@ def test_strategies_agree_on_the_cornell_box(tmp_path):
         assert np.all(rel < 0.02), (strategy, means)
 
 
+@pytest.mark.release_only("a statistical check of the estimator over seeds; small renders run its code under the sanitizers")
 def test_cornell_box_mean_matches_mitsuba(tmp_path):
     """The built-in Cornell box, exported by `udm1-pt export` (world-space PLY and scene.json) and
     rendered by Mitsuba 3 scalar_rgb's path integrator (bench/mitsuba_scene.py states how the scenes
@@ -240,6 +247,7 @@ Shape "trianglemesh" "integer indices" [ 0 1 2 ] "point3 P" [ -2 0 -3  2 0 -3  0
 
 
 @pytest.mark.skipif(not SCENES.is_dir(), reason=f"{SCENES} is absent: the shared test scenes are not here")
+@pytest.mark.release_only("a statistical check of the estimator over seeds; small renders run its code under the sanitizers")
 @pytest.mark.parametrize("name", ["cornell-box", "veach-mis"])
 def test_shared_scenes(name, tmp_path):
     scene = str(SCENES / name / f"{name}.pbrt")
@@ -611,7 +619,8 @@ def test_wavefront_loop_renders_every_scene(tmp_path):
              (["--scene", "builtin:furnace", "--size", "16x16", "--spp", "4"], "wavefront-general", False),
              (["--scene", str(ROOT / "tests" / "scenes" / "lights.pbrt"), "--size", "40x30", "--spp", "8"],
               "wavefront-general", False)]
-    if veach.exists():
+    # (the shared scenes load large meshes again: the release suite renders them, the sanitized run the small cases)
+    if veach.exists() and not os.environ.get("UDM1_SANITIZED"):
         cases += [(["--scene", str(veach), "--size", "48x32", "--spp", "4"], "wavefront-general", True),
                   (["--scene", str(crown), "--size", "24x32", "--spp", "2"], "wavefront-general", False),
                   (["--scene", str(cornell), "--size", "24x24", "--spp", "4"], "wavefront", False)]
