@@ -25,25 +25,48 @@ using udm1scene::Hit;
 
 namespace {
 
+// A walking shadow test (the volumetric estimator's), piece by piece: whether its sample arrives.
+bool walk(const Estimator &est, const udm1scene::EmbreeScene &rt, ShadowTest &s, uint64_t *rays)
+{
+    for (;;) {
+        ++*rays;
+        Hit sh;
+        bool hit = rt.intersect(s.o, s.d, 0.0, s.len, &sh) && !(s.sphere && (int)sh.shape == s.shape);
+        Crossing c = est.cross(s, hit ? &sh : nullptr);
+        if (c != Crossing::Onward) return c == Crossing::Arrived;
+    }
+}
+
 // One path, one Embree query at a time, through the estimator of estimator.h.
 Vec3 trace(const Estimator &est, const udm1scene::EmbreeScene &rt, PathState &p, uint64_t *rays)
 {
     ShadowTest shadow;
+    const bool volumetric = est.volumetric();
+    if (volumetric) est.start(p);
     for (;;) {
         Hit h;
         ++*rays;
-        if (!rt.intersect(p.o, p.d, 0.0, 1e300, &h)) {
-            est.miss(p);
-            break;
+        bool hit = rt.intersect(p.o, p.d, 0.0, 1e300, &h);
+        bool more;
+        if (volumetric) {
+            more = est.step(p, hit ? &h : nullptr, &shadow);
+        } else {
+            if (!hit) {
+                est.miss(p);
+                break;
+            }
+            more = est.scatter(p, h, &shadow);
         }
-        bool more = est.scatter(p, h, &shadow);
         if (shadow.active) {
-            ++*rays;
             bool free;
-            if (shadow.sphere) {
+            if (shadow.walk) {
+                free = walk(est, rt, shadow, rays);
+            } else if (shadow.sphere) {
+                ++*rays;
                 Hit sh;
                 free = !rt.intersect(shadow.o, shadow.d, 0.0, shadow.len, &sh) || (int)sh.shape == shadow.shape;
             } else {
+                ++*rays;
                 free = !rt.occluded(shadow.o, shadow.d, 0.0, shadow.len);
             }
             if (free) est.arrive(p, shadow);

@@ -13,6 +13,12 @@
 //                        next-event estimation (0 picks the light by power and, rescaled, gives with 1 the
 //                        point on it), 2, 3 the BSDF direction
 //   child(that, 0)       2 values: the BSDF lobe or layer, Russian roulette
+// and, where a path meets participating media (estimator.h, the volumetric estimator):
+//   child(root, 0)       1 value: the path's hero channel (media sample distances by its coefficients)
+//   child(next(root, 1 + d), 1 + k)   2 values: the distance to an interaction and its kind (absorption or
+//                        scattering) along the k-th piece (k = 0, 1, ... : the interface surfaces passed
+//                        before it) of the ray that finds vertex d; a vertex in a medium takes the vertex's
+//                        four values as a surface does (light, then the phase function's direction)
 // The chain of next() is one jointly low-discrepancy pattern: the sequence's dimensions 0 .. 4 + 4 d + 3
 // at the sample's index, as a cursor would hand them out (a Kronecker sequence's point of the whole
 // path); the lobe and roulette values are decorrelated children, which draw the sequence's first two
@@ -64,6 +70,14 @@ inline void vertex_values(const udm1_stream *pixel, uint64_t index, int depth, d
     udm1_domain_draw_f64(vertex, 4, a);                        // light (a[0], a[1]), BSDF direction (a[2], a[3])
     udm1_domain_draw_f64(udm1_domain_child(vertex, 0), 2, b);  // lobe, roulette
     u[0] = a[0], u[1] = a[1], u[2] = b[0], u[3] = b[1], u[4] = a[2], u[5] = a[3];
+}
+
+// The two values of the k-th piece of the ray that finds vertex `depth` in a medium (layout above): the
+// distance, the kind of interaction.
+inline void segment_values(const udm1_stream *pixel, uint64_t index, int depth, int piece, double u[2])
+{
+    udm1_domain vertex = udm1_domain_next(udm1_domain_root(pixel, index), 1 + (uint32_t)depth);
+    udm1_domain_draw_f64(udm1_domain_child(vertex, 1 + (uint32_t)piece), 2, u);
 }
 
 // How light is found: both (MIS), light sampling only, BSDF sampling only (which cannot find point, spot

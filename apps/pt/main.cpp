@@ -13,6 +13,7 @@
 #include "udm1app/renderer.h"
 #include "embree_scene.h"
 #include "integrator.h"
+#include "media.h"
 #include "scene_export.h"
 #include "scene.h"
 
@@ -110,10 +111,6 @@ public:
             scene_ = udm1scene::load_scene(s.scene);
             materials_ = std::make_unique<udm1pt::Materials>(scene_);  // bad materials and textures fail here
             udm1pt::Lights lights(scene_);                              // and zero-area lights
-            if (!scene_.media_where.empty() && scene_.integrator == "volpath")
-                throw Error(scene_.media_where +
-                                ": participating media need Integrator \"volpath\", which udm1-pt does not model",
-                            1);
             if (s.command == "render" && !s.spp_given && !scene_.sampler_where.empty()) {  // the scene's sample count
                 s.spp = (uint32_t)scene_.pixel_samples;
                 udm1app::check_sample_range(s);  // before the notes: a bad range is the one line
@@ -121,9 +118,10 @@ public:
                                        " samples per pixel, the Sampler's pixelsamples (--spp overrides); sampler " +
                                        s.sampler + " in place of \"" + scene_.sampler + "\" (--sampler chooses)");
             }
-            if (!scene_.media_where.empty())  // pbrt-v4's PathIntegrator ignores media too
+            if (!scene_.media_where.empty() && scene_.integrator != "volpath")  // pbrt-v4's PathIntegrator ignores media too
                 scene_.notes.push_back(scene_.media_where + ": media are left out, as Integrator \"path\" leaves them out");
-            if (lights.empty()) scene_.notes.push_back(s.scene + " has no lights: the image is black");
+            if (lights.empty() && !udm1pt::emissive_media(scene_))
+                scene_.notes.push_back(s.scene + " has no lights: the image is black");
             if (s.command != "export")
                 for (const std::string &n : scene_.notes) std::fprintf(stderr, "udm1-pt: note: %s\n", n.c_str());
         } catch (const udm1scene::SceneError &e) {

@@ -182,6 +182,12 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             mm.roughness_tex = texture_param(scene, ps, "roughness", "float");
             if (mm.roughness_tex < 0) *mf = roughness_param(ps, what);
         };
+        if (m.type == "interface" || m.type.empty() || m.type == "none") {  // pbrt-v4: no BSDF (media.h)
+            only(ps, {}, "Material \"" + m.type + "\"");
+            mm.interface = true;
+            models_.push_back(mm);
+            continue;
+        }
         if (m.type == "diffuse") {
             only(ps, {"reflectance", "displacement"}, "diffuse");
             b.kind = Bsdf::Diffuse;
@@ -240,12 +246,16 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
                 for (size_t i = 0; i < scene.materials.size(); ++i)
                     if (scene.materials[i].name == mp->strings[k]) mm.parts[k] = (int)i;
                 if (mm.parts[k] < 0) throw SceneError(mp->where + ": mix: material \"" + mp->strings[k] + "\" was not made");
+                const std::string &type = scene.materials[mm.parts[k]].type;
+                if (type == "interface" || type.empty() || type == "none")
+                    throw SceneError(mp->where + ": mix: a mix of the \"interface\" material (\"" + mp->strings[k] +
+                                     "\") is not modelled");
             }
             mm.amount_tex = texture_param(scene, ps, "amount", "float");
             if (mm.amount_tex < 0) mm.amount = ps.get_float("amount", 0.5);
         } else {
             throw SceneError(ps.where + ": Material \"" + m.type +
-                             "\" is not supported (diffuse, coateddiffuse, conductor, dielectric, mix)");
+                             "\" is not supported (diffuse, coateddiffuse, conductor, dielectric, mix, interface)");
         }
         if (!mm.mix) {
             mm.displacement_tex = texture_param(scene, ps, "displacement", "float");

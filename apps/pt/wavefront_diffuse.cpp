@@ -1,6 +1,8 @@
 // wavefront_diffuse.cpp - see wavefront_diffuse.h.
 #include "wavefront_diffuse.h"
 
+#include "media.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,6 +18,7 @@ std::string diffuse_wavefront_unsupported(const Scene &scene, const Options &opt
 {
     if (opt.strategy != Strategy::Mis) return "only MIS (--strategy mis) has a wavefront loop";
     if (scene.camera.lens_radius > 0) return "the camera has a thin lens";
+    if (uses_media(scene)) return "participating media";
     bool light = false;
     for (const Shape &s : scene.shapes) {
         if (s.kind != Shape::Triangles) return s.where + ": a sphere";

@@ -46,6 +46,7 @@ struct Buffers {
     std::vector<ShadowTest> shadows;
     std::vector<int> pixel;       // each path's pixel in the tile
     std::vector<uint8_t> alive;   // the path goes on after this vertex
+    std::vector<uint32_t> walking;  // the walking shadow tests still on their way (their paths)
     Rays hits, occlusion, spheres;  // closest hits; shadow rays (occlusion), shadow rays to sphere lights (hits)
 };
 
@@ -54,6 +55,7 @@ Buffers &buffers()  // one set per thread, reused from batch to batch
     thread_local Buffers b;
     if (b.paths.size() < BATCH) {
         b.paths.resize(BATCH), b.shadows.resize(BATCH), b.pixel.resize(BATCH), b.alive.resize(BATCH);
+        b.walking.resize(BATCH);
         b.hits.resize(BATCH), b.occlusion.resize(BATCH), b.spheres.resize(BATCH);
     }
     return b;
@@ -95,6 +97,7 @@ private:
     LoopCounts *counts_;
     Buffers &b_;
     std::vector<udm1_stream> streams_;
+    const bool volumetric_ = w_.estimator_.volumetric();
     size_t n_ = 0;
     bool first_bounce_ = true;
     RTCIntersectContext ctx_;
@@ -130,6 +133,7 @@ void GeneralWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64
         double uv[4];
         udm1_domain_draw_f64(udm1_domain_root(path.pixel, path.index), camera.has_lens() ? 4 : 2, uv);
         camera.ray(x0_ + p % W_ + uv[0], y0_ + p / W_ + uv[1], uv[2], uv[3], &path.o, &path.d);
+        if (volumetric_) w_.estimator_.start(path);
         if (++s == count_) s = 0, ++p;  // the next pixel
     }
 }
@@ -148,6 +152,13 @@ void GeneralWavefront::Batch::trace()
     const Estimator &est = w_.estimator_;
     for (size_t j = 0; j < n; ++j) {
         PathState &path = b_.paths[j];
+        if (volumetric_) {
+            Hit h;
+            bool hit = R.geom[j] != RTC_INVALID_GEOMETRY_ID;
+            if (hit) h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j]);
+            b_.alive[j] = est.step(path, hit ? &h : nullptr, &b_.shadows[j]);
+            continue;
+        }
         if (R.geom[j] == RTC_INVALID_GEOMETRY_ID) {
             est.miss(path);
             b_.shadows[j].active = false;
@@ -164,9 +175,14 @@ void GeneralWavefront::Batch::shadows()
     Rays &O = b_.occlusion, &S = b_.spheres;
     const size_t n = n_;
     size_t no = 0, ns = 0;
+    size_t nw = 0;  // walking tests (the volumetric estimator's), piece by piece below
     for (size_t j = 0; j < n; ++j) {
         const ShadowTest &s = b_.shadows[j];
         if (!s.active) continue;
+        if (s.walk) {
+            b_.walking[nw++] = (uint32_t)j;
+            continue;
+        }
         Rays &R = s.sphere ? S : O;
         size_t &k = s.sphere ? ns : no;
         R.set(k, s.o, s.d, s.len);
@@ -191,6 +207,32 @@ void GeneralWavefront::Batch::shadows()
         }
     }
     counts_->rays += no + ns;
+    while (nw) {  // one closest-hit stream per piece: each test's first surface, then cross()
+        Rays &W = b_.hits;  // (free: the bounce's hits are consumed)
+        for (size_t k = 0; k < nw; ++k) {
+            const ShadowTest &s = b_.shadows[b_.walking[k]];
+            W.set(k, s.o, s.d, s.len);
+        }
+        RTCRayHitNp q = W.ray_hits();
+        rtcInitIntersectContext(&ctx_);
+        rtcIntersectNp(w_.rt_.handle(), &ctx_, &q, (unsigned)nw);
+        counts_->rays += nw;
+        size_t next = 0;
+        for (size_t k = 0; k < nw; ++k) {
+            uint32_t j = b_.walking[k];
+            ShadowTest &s = b_.shadows[j];
+            Hit h;
+            bool hit = W.geom[k] != RTC_INVALID_GEOMETRY_ID;
+            if (hit) {
+                h = w_.rt_.hit_of(s.o, s.d, W.tfar[k], W.geom[k], W.prim[k], W.u[k], W.v[k]);
+                hit = !(s.sphere && (int)h.shape == s.shape);
+            }
+            Crossing c = est.cross(s, hit ? &h : nullptr);
+            if (c == Crossing::Arrived) est.arrive(b_.paths[j], s);
+            else if (c == Crossing::Onward) b_.walking[next++] = j;
+        }
+        nw = next;
+    }
     size_t keep = 0;  // the paths that ended at this vertex retired, the others compacted
     for (size_t j = 0; j < n; ++j) {
         if (!b_.alive[j]) {

@@ -6,10 +6,12 @@
 
 #include "file_read.h"
 
+#include "medium_presets.h"
 #include "mesh_io.h"
 #include "spectrum.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cctype>
 #include <cerrno>
@@ -118,6 +120,8 @@ struct State {
     int material = -1;
     int light_template = -1;  // an AreaLightSource of this block (copied per shape)
     bool reverse = false;
+    std::string inside, outside;  // the current MediumInterface's media ("" none), and its file:line
+    std::string media_where;
 };
 
 class Parser {
@@ -146,6 +150,7 @@ public:
         if (!camera_set_) { /* pbrt's default camera: at the origin looking down +z */
             scene_.camera.world_from_camera = Mat4();
         }
+        if (!geometry_only_) resolve_media(), interface_lights();
         if (!scene_.light_sampling) {  // lights that only light sampling finds
             std::vector<LightSource> &ls = scene_.light_sources;
             size_t before = ls.size();
@@ -462,6 +467,7 @@ private:
         if (!st_.ctm.affine()) throw SceneError(here + ": Camera: " + PROJECTIVE);
         if (!st_.ctm.inverse(&scene_.camera.world_from_camera)) throw SceneError(here + ": Camera: singular transform");
         camera_set_ = true;
+        camera_media_ = {st_.outside, st_.media_where, here};  // pbrt-v4: the camera is in the outside medium
     }
 
     void on_Film(const Call &c)
@@ -519,10 +525,10 @@ private:
         ParamSet ps = params(lex, t.line);
         if (geometry_only_) {
             ignore(here, "Integrator");
-        } else {  // udm1-pt is a unidirectional path tracer; volpath without media is the same
+        } else {  // udm1-pt is a unidirectional path tracer, with media for volpath
             const std::string &in = scene_.integrator;
             if (in != "path" && in != "volpath" && in != "simplepath" && in != "randomwalk")
-                throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath without media; "
+                throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath; "
                                         "simplepath and randomwalk render as path)");
             // each integrator's own parameters (pbrt-v4 refuses the others as unused)
             if (in == "path" || in == "volpath") only(ps, {"maxdepth", "lightsampler", "regularize"}, "Integrator \"" + in + "\"");
@@ -564,7 +570,9 @@ private:
 
     void on_WorldBegin(const Call &)
     {
-        st_ = State();
+        State s;  // pbrt-v4 keeps the MediumInterface across WorldBegin
+        s.inside = st_.inside, s.outside = st_.outside, s.media_where = st_.media_where;
+        st_ = s;
         in_world_ = true;
     }
 
@@ -719,6 +727,9 @@ private:
         textures_[tx.name] = (int)scene_.textures.size() - 1;
     }
 
+    // MakeNamedMedium: a "homogeneous" medium with pbrt-v4's parameters and defaults (sigma_a and sigma_s 1,
+    // scale 1, g 0, no emission; a preset in place of sigma_a and sigma_s), in linear sRGB. pbrt-v4's grid
+    // media are recorded by name: refused where Integrator "volpath" renders a shape or the camera in one.
     void on_MakeNamedMedium(const Call &c)
     {
         Lexer &lex = c.lex;
@@ -727,23 +738,141 @@ private:
         const std::string &here = c.here;
         std::string name = string_arg(lex, d);
         ParamSet ps = params(lex, t.line);
+        if (media_.count(name)) throw SceneError(here + ": MakeNamedMedium \"" + name + "\" is made twice (pbrt-v4 refuses it)");
         std::string type = ps.get_string("type", "");
-        if (type != "homogeneous")
-            throw SceneError(here + ": MakeNamedMedium \"" + name + "\": type \"" + type + "\" is not supported (homogeneous)");
-        only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "preset"}, "MakeNamedMedium");
-        media_.insert(name);
+        if (type.empty()) throw SceneError(here + ": MakeNamedMedium \"" + name + "\" has no \"string type\"");
         if (scene_.media_where.empty()) scene_.media_where = here;
+        if (type == "uniformgrid" || type == "rgbgrid" || type == "cloud" || type == "nanovdb") {
+            media_[name] = {-1, type, here};
+            return;
+        }
+        if (type != "homogeneous")
+            throw SceneError(here + ": MakeNamedMedium \"" + name + "\": type \"" + type +
+                             "\" is not supported (homogeneous; pbrt-v4's grid media uniformgrid, rgbgrid, cloud and "
+                             "nanovdb are not modelled)");
+        only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "preset"}, "MakeNamedMedium");
+        Medium m;
+        m.name = name, m.where = here;
+        m.sigma_a = m.sigma_s = Vec3(1, 1, 1);
+        bool preset = false;
+        if (const Param *p = ps.find("preset", "string")) {
+            std::string which = ps.get_string("preset", "");
+            preset = medium_preset(which, &m.sigma_a, &m.sigma_s);
+            if (!preset)  // pbrt-v4 warns and takes sigma_a and sigma_s from the parameters
+                scene_.notes.push_back(p->where + ": MakeNamedMedium \"" + name + "\": preset \"" + which +
+                                       "\" is not one of pbrt-v4's (" + medium_preset_names() +
+                                       "): sigma_a and sigma_s are the parameters' (default 1), as pbrt-v4 takes them");
+        }
+        for (const char *k : {"sigma_a", "sigma_s"}) {
+            const Param *p = ps.find(k);
+            if (!p) continue;
+            if (preset)
+                throw SceneError(p->where + ": MakeNamedMedium \"" + name + "\": '" + k +
+                                 "' with a preset: pbrt-v4 takes the preset's and refuses '" + k + "' as unused");
+            (k[6] == 'a' ? m.sigma_a : m.sigma_s) = coefficient(*p, "MakeNamedMedium");
+        }
+        double scale = ps.get_float("scale", 1.0);
+        if (!(scale >= 0)) throw SceneError(ps.find("scale")->where + ": MakeNamedMedium: scale must not be negative");
+        m.sigma_a = m.sigma_a * scale, m.sigma_s = m.sigma_s * scale;
+        m.g = ps.get_float("g", 0.0);
+        double le_scale = ps.get_float("Lescale", 1.0);
+        if (ps.find("Le")) m.Le = emission(ps, "Le", "MakeNamedMedium") * le_scale;
+        if (!(le_scale >= 0)) throw SceneError(ps.find("Lescale")->where + ": MakeNamedMedium: Lescale must not be negative");
+        media_[name] = {(int)scene_.media.size(), type, here};
+        scene_.media.push_back(m);
+    }
+
+    // An absorption or scattering coefficient as linear sRGB: an rgb triple as it is (pbrt-v4's unbounded RGB
+    // spectrum of it), a spectrum (pairs, a file, a named one) or a blackbody (normalized to 1 at its peak, as
+    // pbrt-v4 normalizes it) as its RGB under D65 without clamping: the RGB that the round trip of an rgb
+    // coefficient through pbrt-v4's spectrum gives back, as udm1-pt reduces reflectances, unclamped.
+    Vec3 coefficient(const Param &p, const std::string &what)
+    {
+        Vec3 rgb;
+        if (p.type == "rgb" && p.numbers.size() == 3) {
+            rgb = Vec3(p.numbers[0], p.numbers[1], p.numbers[2]);
+        } else if (p.type == "spectrum" || p.type == "blackbody") {
+            Spectrum s;
+            if (p.type == "blackbody") {
+                if (p.numbers.size() != 1 || !(p.numbers[0] >= 1000 && p.numbers[0] <= 40000))
+                    throw SceneError(p.where + ": " + what + ": \"blackbody " + p.name + "\" needs one temperature in 1000..40000 K");
+                s = Spectrum::blackbody(p.numbers[0]);
+            } else {
+                const Spectrum *named = p.strings.size() == 1 ? named_spectrum(p.strings[0]) : nullptr;
+                s = named ? *named : spectrum_from_pairs(p.numbers, p.where);
+            }
+            double peak = p.type == "blackbody" ? s.at(2.8977721e6 / p.numbers[0]) : 1;  // Wien's displacement law
+            double v[WAVELENGTHS];
+            for (int l = 0; l < WAVELENGTHS; ++l) {
+                v[l] = s.at(360 + l) / peak;
+                if (!(v[l] >= 0))
+                    throw SceneError(p.where + ": " + what + ": '" + p.name + "' is negative at " + std::to_string(360 + l) + " nm");
+            }
+            rgb = albedo_rgb(v);
+            rgb = Vec3(std::max(0.0, rgb.x), std::max(0.0, rgb.y), std::max(0.0, rgb.z));  // (outside the gamut)
+        } else {
+            throw SceneError(p.where + ": " + what + ": '" + p.name +
+                             "' must be \"rgb\", \"spectrum\" or \"blackbody\" (pbrt-v4 reads no other type for it)");
+        }
+        if (!(rgb.x >= 0 && rgb.y >= 0 && rgb.z >= 0))
+            throw SceneError(p.where + ": " + what + ": '" + p.name + "' must not be negative");
+        return rgb;
     }
 
     void on_MediumInterface(const Call &c)
     {
         Lexer &lex = c.lex;
         const std::string &d = c.t.text;
-        const std::string &here = c.here;
         std::string inside = string_arg(lex, d), outside = inside;
         if (lex.peek().kind == Token::String) outside = string_arg(lex, d);
-        for (const std::string &m : {inside, outside})
-            if (!m.empty() && !media_.count(m)) throw SceneError(here + ": MediumInterface: medium \"" + m + "\" was not made");
+        st_.inside = inside, st_.outside = outside, st_.media_where = c.here;  // (looked up where used, as pbrt-v4)
+    }
+
+    // pbrt-v4 gives a shape whose material is "interface" (or "" or "none", its deprecated names) no area light:
+    // it only bounds media. Left out here too, with a note.
+    void interface_lights()
+    {
+        size_t n = 0;
+        std::string first;
+        for (Shape &s : scene_.shapes) {
+            if (s.light < 0 || s.material < 0) continue;
+            const std::string &type = scene_.materials[s.material].type;
+            if (type != "interface" && type != "" && type != "none") continue;
+            if (n++ == 0) first = s.where;
+            s.light = -1;
+        }
+        if (n)
+            scene_.notes.push_back(first + ": the AreaLightSource of a shape with the \"interface\" material is left out, as "
+                                           "pbrt-v4 leaves it out (" + std::to_string(n) + (n == 1 ? " shape)" : " shapes)"));
+    }
+
+    // The media of the shapes and the camera, by name, as pbrt-v4 finds them once the file is read: a name no
+    // MakeNamedMedium made is refused where something uses it; so is a grid medium that Integrator "volpath"
+    // would render (under "path" media are left out: main.cpp notes it).
+    void resolve_media()
+    {
+        const bool volpath = scene_.integrator == "volpath";
+        auto find = [&](const std::string &name, const std::string &mi_where, const std::string &user,
+                        bool rendered) -> int {
+            if (name.empty()) return -1;
+            auto it = media_.find(name);
+            if (it == media_.end())
+                throw SceneError(mi_where + ": MediumInterface: medium \"" + name + "\" was not made (used by " + user + ")");
+            if (it->second.index < 0 && volpath && rendered)
+                throw SceneError(it->second.where + ": MakeNamedMedium \"" + name + "\": type \"" + it->second.type +
+                                 "\" (a grid medium) is not modelled, and " + user +
+                                 " is in it under Integrator \"volpath\" (homogeneous media only)");
+            return it->second.index;
+        };
+        scene_.camera.medium = find(camera_media_[0], camera_media_[1], "the Camera at " + camera_media_[2], true);
+        for (size_t i = 0; i < scene_.shapes.size(); ++i) {
+            const std::array<std::string, 3> &m = shape_media_[i];
+            const std::string user = "the Shape at " + scene_.shapes[i].where;
+            // the same medium on both sides is no transition: pbrt-v4 looks it up and then ignores it
+            const bool transition = m[0] != m[1];
+            int inside = find(m[0], m[2], user, transition), outside = find(m[1], m[2], user, transition);
+            if (transition) scene_.shapes[i].inside = inside, scene_.shapes[i].outside = outside;
+        }
     }
 
     // An emitting sphere under transform m: refused where pbrt-v4's image of it is not consistent. pbrt-v4
@@ -925,6 +1054,7 @@ private:
                 for (float &x : s.N) x = -x;
         }
         scene_.shapes.push_back(std::move(s));
+        shape_media_.push_back({st_.inside, st_.outside, st_.media_where});
     }
 
     Scene &scene_;
@@ -935,7 +1065,13 @@ private:
     bool camera_set_ = false, in_world_ = false;
     bool geometry_only_ = false;
     std::set<std::string> ignored_kinds_;
-    std::set<std::string> media_;  // MakeNamedMedium names
+    struct NamedMedium {
+        int index;  // Scene::media, or -1 for a grid medium (not modelled)
+        std::string type, where;
+    };
+    std::map<std::string, NamedMedium> media_;           // MakeNamedMedium's, by name
+    std::vector<std::array<std::string, 3>> shape_media_;  // each shape's inside and outside media, MediumInterface's file:line
+    std::array<std::string, 3> camera_media_;            // the camera's medium, MediumInterface's and Camera's file:line
     std::map<std::string, int> textures_;
     std::string dir_;  // the folder of the file being read (relative file names)
 };

@@ -197,6 +197,7 @@ uint64_t Scene::digest() const
         f.value((int)s.kind), f.vec(s.P), f.vec(s.N), f.vec(s.indices);
         f.value(s.center.x), f.value(s.center.y), f.value(s.center.z), f.value(s.radius);
         f.value(s.material), f.value(s.light), f.value(s.reverse_orientation);
+        if (!media.empty()) f.value(s.inside), f.value(s.outside);  // (scenes without media keep their digests)
         if (s.kind == Shape::Sphere && (s.ellipsoid || !object_frame_is_world(s)))  // (its texture coordinates)
             for (int r = 0; r < 4; ++r)
                 for (int c = 0; c < 4; ++c) f.value(s.world_from_object.m[r][c]);
@@ -212,6 +213,10 @@ uint64_t Scene::digest() const
         for (const std::string *x : {&t.name, &t.kind, &t.type, &t.filename}) f.vec(std::vector<char>(x->begin(), x->end()));
         f.value(t.srgb), f.value(t.invert), f.value(t.point), f.value(t.scale), f.value(t.tex);
     }
+    if (!media.empty()) f.value(camera.medium), f.vec(std::vector<char>(integrator.begin(), integrator.end()));
+    for (const Medium &m : media)
+        for (double x : {m.sigma_a.x, m.sigma_a.y, m.sigma_a.z, m.sigma_s.x, m.sigma_s.y, m.sigma_s.z, m.Le.x, m.Le.y, m.Le.z, m.g})
+            f.value(x);
     for (const AreaLight &l : lights) f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.scale), f.value(l.twosided);
     for (const LightSource &l : light_sources) {
         f.value((int)l.kind), f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.position.x), f.value(l.position.y),

@@ -65,6 +65,17 @@ struct Material {
     ParamSet params;
 };
 
+// A pbrt-v4 "homogeneous" medium in linear sRGB (the parser reduces its spectra, pbrt_parser.h): absorption and
+// scattering coefficients per unit length with "scale" applied, the Henyey-Greenstein asymmetry g (clamped to
+// [-0.99, 0.99] where it is evaluated, as pbrt-v4 clamps it), the emitted radiance Le with "Lescale" applied
+// (a medium emits sigma_a Le per unit length).
+struct Medium {
+    std::string name;
+    Vec3 sigma_a, sigma_s, Le;
+    double g = 0;
+    std::string where;  // its MakeNamedMedium's file:line
+};
+
 struct AreaLight {
     Vec3 L{1, 1, 1};
     double scale = 1;
@@ -107,6 +118,7 @@ struct Shape {
     int material = -1;               // index into Scene::materials
     int light = -1;                  // index into Scene::lights (an emitter), or -1
     bool reverse_orientation = false;
+    int inside = -1, outside = -1;   // its MediumInterface: Scene::media indices, -1 for none (vacuum)
     std::string where;               // "file:line" of its Shape directive
 };
 
@@ -114,6 +126,7 @@ struct Camera {
     Mat4 world_from_camera;  // pbrt camera space: +z forward, +y up
     double fov = 90;         // degrees, along the shorter image axis (pbrt)
     double lens_radius = 0, focal_distance = 1e6;
+    int medium = -1;         // the medium the camera is in (Scene::media index; pbrt-v4's outside medium at Camera)
 };
 
 struct Scene {
@@ -123,6 +136,7 @@ struct Scene {
     double film_scale = 1;              // pbrt-v4's imaging ratio: exposuretime * iso / 100
     std::string film_sensor = "cie1931";  // named in the file; udm1-pt renders plain RGB whatever it is
     std::string media_where;              // file:line of the first MakeNamedMedium, if any
+    std::vector<Medium> media;            // the homogeneous ones (grid media are refused under "volpath")
     std::string sampler;        // the scene's Sampler directive (udm1's renderers use their own samplers)
     std::string sampler_where;  // its file:line ("" without one)
     int pixel_samples = 16;     // its "pixelsamples" (pbrt-v4's default 16)

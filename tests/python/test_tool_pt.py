@@ -319,8 +319,6 @@ PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty f
         ('Integrator "bdpt"\n' + HEAD + TRI, 1, 'Integrator "bdpt" is not supported'),
         (HEAD + 'MakeNamedMedium "fog" "string type" "heterogeneous"\n' + TRI, 4, '"heterogeneous" is not supported'),
         (HEAD + 'MediumInterface "" "glass"\n' + TRI, 4, 'medium "glass" was not made'),
-        ('Integrator "volpath"\n' + HEAD + 'MakeNamedMedium "m" "string type" "homogeneous"\n' + TRI, 5,
-         'need Integrator "volpath"'),
         (HEAD + 'AreaLightSource "diffuse" "blackbody L" [ 20 ]\n' + TRI, 4, "one temperature in 1000..40000 K"),
         ('Film "rgb" "float iso" [ -100 ]\n' + HEAD + TRI, 1, "iso"),
         ('Film "gbuffer"\n' + HEAD + TRI, 1, 'Film "gbuffer"'),

@@ -1,0 +1,208 @@
+"""udm1-pt's participating media through the whole tool (Integrator "volpath"): every medium parameter
+changes the image as pbrt-v4 defines it (linear ones by their ratio exactly), MediumInterface and the camera's
+medium put media where pbrt-v4 puts them, what pbrt-v4 refuses or udm1-pt does not model refused with file and
+line (grid media named), what pbrt-v4 renders with a warning rendered with a note, the test scenes and the
+Crown as distributed rendering (tests/cpp/test_pt_media.cpp checks the closed forms)."""
+
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cli_checks import fails_cleanly
+
+TOOL = os.environ.get("UDM1_PT_TOOL", "")
+pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
+ROOT = Path(__file__).resolve().parents[2]
+CROWN = ROOT.parent / "shared" / "scenes" / "crown" / "crown-volpath.pbrt"
+
+
+def run(*args, cwd=None):
+    return subprocess.run([TOOL, *args], capture_output=True, text=True, cwd=cwd, timeout=600)
+
+
+def ok(*args, cwd=None):
+    r = run(*args, cwd=cwd)
+    assert r.returncode == 0, r.stderr
+    return r
+
+
+def read_exr(path):
+    import mitsuba as mi
+
+    mi.set_variant("scalar_rgb")
+    return np.array(mi.Bitmap(str(path)), dtype=np.float64)[..., :3]
+
+
+def render(tmp_path, text, *args, name="s"):
+    """The scene text rendered to an EXR: (image, stderr)."""
+    scene = tmp_path / f"{name}.pbrt"
+    scene.write_text(text)
+    out = tmp_path / f"{name}.exr"
+    r = ok("--scene", str(scene), "-o", str(out), "--size", "8x8", *args, cwd=tmp_path)
+    return read_exr(out), r.stderr
+
+
+# A narrow view along +z through a box of medium (or around the camera) at an emitter of radiance 1.
+VIEW = """{before}LookAt 0 0 -5  0 0 0  0 1 0
+Camera "perspective" "float fov" [ 1 ]
+Integrator "{integrator}" "integer maxdepth" [ 5 ]
+WorldBegin
+AttributeBegin
+AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]
+Shape "trianglemesh" "point3 P" [ -9 -9 5  9 -9 5  9 9 5  -9 9 5 ] "integer indices" [ 0 2 1 0 3 2 ]
+AttributeEnd
+{medium}
+AttributeBegin
+Material "{material}"
+MediumInterface {interface}
+Shape "trianglemesh" "point3 P" [ -1 -1 -0.5  1 -1 -0.5  1 1 -0.5  -1 1 -0.5  -1 -1 0.5  1 -1 0.5  1 1 0.5  -1 1 0.5 ]
+    "integer indices" [ 0 2 1 0 3 2  4 5 6 4 6 7  0 5 4 0 1 5  3 6 2 3 7 6  0 7 3 0 4 7  1 6 5 1 2 6 ]
+AttributeEnd
+"""
+MEDIUM = 'MakeNamedMedium "m" "string type" "homogeneous" {params}'
+BASE = dict(before="", integrator="volpath", material="interface", interface='"m" ""',
+            medium=MEDIUM.format(params='"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ]'))
+
+
+def mean_rgb(tmp_path, fields, *args):
+    img, err = render(tmp_path, VIEW.format(**{**BASE, **fields}), "--spp", "8", *args)
+    return img.reshape(-1, 3).mean(axis=0), err
+
+
+def test_transmittance_and_interfaces(tmp_path):
+    # the unit slab of ink: exp(-sigma_a); with the medium outside the box (its normals face out): 4.5 of it on
+    # the way to the emitter; with the camera in it (MediumInterface before Camera) and no box: 10
+    sig = np.array([0.5, 1, 2])
+    inside, err = mean_rgb(tmp_path, {})
+    assert err == "" and np.allclose(inside, np.exp(-sig), rtol=2e-4), (inside, err)
+    outside, _ = mean_rgb(tmp_path, {"interface": '"" "m"'})
+    assert np.allclose(outside, np.exp(-4.5 * sig), rtol=1e-3), outside
+    thin = MEDIUM.format(params='"rgb sigma_a" [ 0.05 0.1 0.2 ] "rgb sigma_s" [ 0 0 0 ]')
+    camera, _ = mean_rgb(tmp_path, {"before": thin + '\nMediumInterface "" "m"\n', "medium": "", "interface": '""'})
+    assert np.allclose(camera, np.exp(-sig), rtol=1e-3), camera  # (10 x sigma / 10)
+    # a medium on both sides is no transition: pbrt-v4 ignores it (the ray keeps the medium it is in)
+    same, _ = mean_rgb(tmp_path, {"interface": '"m" "m"'})
+    assert np.allclose(same, 1, rtol=1e-6), same
+    # Integrator "path" leaves media out (a note says so), as pbrt-v4's PathIntegrator; the box is still invisible
+    path, err = mean_rgb(tmp_path, {"integrator": "path"})
+    assert np.allclose(path, 1, rtol=1e-6), path
+    assert re.fullmatch(r'udm1-pt: note: \S+:9: media are left out, as Integrator "path" leaves them out\n', err), err
+
+
+GLOW = '"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ] "rgb Le" [ 1 2 3 ]'
+# (parameter, the medium's parameters for the base image, changed, expected ratio of the means or None: differs)
+PARAMETERS = [
+    ("sigma_a", '"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ]', '"rgb sigma_a" [ 1 1 1 ] "rgb sigma_s" [ 0 0 0 ]', None),
+    ("sigma_s", '"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ]', '"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 1 1 1 ]', None),
+    ("scale", '"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ]',
+     '"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ] "float scale" [ 2 ]', None),
+    ("g", '"rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 3 3 3 ]', '"rgb sigma_a" [ 0.1 0.1 0.1 ] "rgb sigma_s" [ 3 3 3 ] '
+     '"float g" [ 0.9 ]', None),
+    ("preset", '"rgb sigma_a" [ 0.5 1 2 ] "rgb sigma_s" [ 0 0 0 ]', '"string preset" "Wholemilk"', None),
+    ("sigma_a default 1", '"rgb sigma_a" [ 1 1 1 ] "rgb sigma_s" [ 0 0 0 ]', '"rgb sigma_s" [ 0 0 0 ]', 1.0),
+    ("Le", GLOW, GLOW.replace("[ 1 2 3 ]", "[ 2 4 6 ]"), 2.0),
+    ("Lescale", GLOW, GLOW + ' "float Lescale" [ 3 ]', 3.0),
+]
+
+
+@pytest.mark.parametrize("name,base,changed,ratio", PARAMETERS, ids=[p[0] for p in PARAMETERS])
+def test_each_medium_parameter_changes_the_image(name, base, changed, ratio, tmp_path):
+    glow = "Le" in name
+    a, _ = mean_rgb(tmp_path, {"medium": MEDIUM.format(params=base)})
+    b, _ = mean_rgb(tmp_path, {"medium": MEDIUM.format(params=changed)})
+    if ratio is None:
+        assert np.abs(a - b).max() > 0.01 * a.max(), (name, a, b)
+    elif glow:  # (the emitter behind adds exp(-sigma_a) to both)
+        t = np.exp(-np.array([0.5, 1, 2]))
+        assert np.allclose((b - t) / (a - t), ratio, rtol=1e-4), (name, a, b)
+    else:
+        assert np.allclose(b / a, ratio, rtol=1e-6), (name, a, b)
+
+
+HEAD = ('Integrator "volpath"\nLookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective"\nWorldBegin\n'
+        'LightSource "point" "point3 from" [ 0 0 -5 ]\n')
+TRI = 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
+HOMOGENEOUS = 'MakeNamedMedium "m" "string type" "homogeneous"'
+
+
+@pytest.mark.parametrize("text,line,words", [
+    (HEAD + HOMOGENEOUS + '\n' + HOMOGENEOUS + '\n' + TRI, 7, 'MakeNamedMedium "m" is made twice'),
+    (HEAD + 'MakeNamedMedium "m" "rgb sigma_a" [ 1 1 1 ]\n' + TRI, 6, 'has no "string type"'),
+    (HEAD + 'MakeNamedMedium "m" "string type" "fog"\n' + TRI, 6, '"fog" is not supported'),
+    (HEAD + HOMOGENEOUS + ' "rgb sigma_a" [ 1 -1 1 ]\n' + TRI, 6, "'sigma_a' must not be negative"),
+    (HEAD + HOMOGENEOUS + ' "float sigma_s" [ 1 ]\n' + TRI, 6, "'sigma_s' must be \"rgb\", \"spectrum\" or \"blackbody\""),
+    (HEAD + HOMOGENEOUS + ' "spectrum sigma_a" [ 400 1 500 -1 ]\n' + TRI, 6, "'sigma_a' is negative at"),
+    (HEAD + HOMOGENEOUS + ' "string preset" "Ketchup" "rgb sigma_a" [ 1 1 1 ]\n' + TRI, 6, "'sigma_a' with a preset"),
+    (HEAD + HOMOGENEOUS + ' "float scale" [ -1 ]\n' + TRI, 6, "scale must not be negative"),
+    (HEAD + HOMOGENEOUS + ' "rgb Le" [ 1 1 1 ] "float Lescale" [ -1 ]\n' + TRI, 6, "Lescale must not be negative"),
+    (HEAD + HOMOGENEOUS + ' "float density" [ 1 ]\n' + TRI, 6, "unsupported parameter 'density'"),
+    (HEAD + 'MediumInterface "" "nope"\n' + TRI, 6, 'medium "nope" was not made (used by the Shape at'),
+    ('MediumInterface "nope"\n' + HEAD + TRI, 1, 'medium "nope" was not made (used by the Camera at'),
+    (HEAD + 'Material "interface" "rgb reflectance" [ 1 1 1 ]\n' + TRI, 6, "unsupported parameter 'reflectance'"),
+    (HEAD + 'MakeNamedMaterial "i" "string type" "interface"\nMakeNamedMaterial "d" "string type" "diffuse"\n'
+     'Material "mix" "string materials" [ "d" "i" ]\n' + TRI, 8, 'a mix of the "interface" material ("i")'),
+])
+def test_refused_with_file_and_line(text, line, words, tmp_path):
+    scene = tmp_path / "bad.pbrt"
+    scene.write_text(text)
+    fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "--size", "8x8", "-o", "bad.exr"], f"{scene}:{line}: ",
+                  tmp_path, code=1)
+    r = run("--scene", str(scene), "--spp", "1", "--size", "8x8", "-o", "bad.exr", cwd=tmp_path)
+    assert words in r.stderr, (words, r.stderr)
+
+
+@pytest.mark.parametrize("grid", ["uniformgrid", "rgbgrid", "cloud", "nanovdb"])
+def test_grid_media_refused_where_rendered(grid, tmp_path):
+    # pbrt-v4's grid media are not modelled: refused, named, where Integrator "volpath" renders something in one
+    grid_medium = f'MakeNamedMedium "smoke" "string type" "{grid}" "string filename" "smoke.nvdb"\n'
+    text = HEAD + grid_medium + 'MediumInterface "smoke" ""\n' + TRI
+    scene = tmp_path / "grid.pbrt"
+    scene.write_text(text)
+    r = fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "--size", "8x8", "-o", "g.exr"], f"{scene}:6: ",
+                      tmp_path, code=1)
+    assert f'type "{grid}" (a grid medium) is not modelled' in r.stderr, r.stderr
+    if grid != "nanovdb":
+        return
+    # unused, or under Integrator "path" (media left out, with a note): rendered
+    render(tmp_path, HEAD + grid_medium + TRI, "--spp", "1", name="unused")
+    _, err = render(tmp_path, text.replace('"volpath"', '"path"'), "--spp", "1", name="path")
+    assert "media are left out" in err, err
+
+
+def test_notes_for_what_pbrt_renders_with_a_warning(tmp_path):
+    # an unknown preset: pbrt-v4 warns and takes sigma_a and sigma_s from the parameters (default 1)
+    a, err = mean_rgb(tmp_path, {"medium": MEDIUM.format(params='"string preset" "Tomato soup"')})
+    assert re.fullmatch(r'udm1-pt: note: \S+:9: MakeNamedMedium "m": preset "Tomato soup" is not one of pbrt-v4\'s '
+                        r'\(Apple, .*\): sigma_a and sigma_s are the parameters\' \(default 1\), as pbrt-v4 takes them\n',
+                        err), err
+    b, _ = mean_rgb(tmp_path, {"medium": MEDIUM.format(params='"rgb sigma_a" [ 1 1 1 ] "rgb sigma_s" [ 1 1 1 ]')})
+    assert np.allclose(a, b), (a, b)
+    # an area light on a shape with the interface material: pbrt-v4 leaves it out (the image black), so does udm1-pt
+    text = ('Integrator "volpath"\nLookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective"\nWorldBegin\n'
+            'AreaLightSource "diffuse" "rgb L" [ 1 1 1 ]\nMaterial "interface"\n'
+            'Shape "trianglemesh" "point3 P" [ -9 -9 5  9 -9 5  9 9 5  -9 9 5 ] "integer indices" [ 0 2 1 0 3 2 ]\n')
+    img, err = render(tmp_path, text, "--spp", "1")
+    assert img.max() == 0, img.max()
+    assert re.search(r'note: \S+:7: the AreaLightSource of a shape with the "interface" material is left out, as '
+                     r'pbrt-v4 leaves it out \(1 shape\)\n', err), err
+
+
+@pytest.mark.parametrize("name", ["media", "ruby", "fog"])
+def test_test_scenes_render(name, tmp_path):
+    scene = ROOT / "tests" / "scenes" / f"{name}.pbrt"
+    r = ok("--scene", str(scene), "--spp", "2", "--size", "16x12", "-o", str(tmp_path / "x.exr"))
+    assert r.stderr == "" and " loop wavefront-general " in r.stdout, (r.stderr, r.stdout)
+    assert read_exr(tmp_path / "x.exr").mean() > 0.01
+
+
+@pytest.mark.skipif(not CROWN.exists(), reason=f"{CROWN} is absent: the shared scenes are not here")
+def test_crown_as_distributed_renders(tmp_path):
+    # Integrator "volpath" with maximum depth 100 and its gems' media, as distributed: no note, red and blue gems
+    out = tmp_path / "crown.exr"
+    r = ok("--scene", str(CROWN), "--spp", "2", "--size", "40x56", "-o", str(out))
+    assert r.stderr == "", r.stderr
+    img = read_exr(out)
+    assert img.shape == (56, 40, 3) and 0.1 < img.mean() < 0.9, img.mean()
