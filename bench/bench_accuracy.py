@@ -125,6 +125,12 @@ def cases() -> list[Case]:
                    "sigma varies across a channel's wavelengths); with grey media the two agree",
              variants=[Variant("grey media", grey_media=True)]),
         Case("fog", TEST_SCENES / "fog.pbrt", (80, 60), 256),
+        Case("format", TEST_SCENES / "format.pbrt", (160, 120), 1024),
+        Case("clamp", TEST_SCENES / "clamp.pbrt", (160, 120), 1024,
+             cause="the film's maxcomponentvalue acts on each sample's sensor values: pbrt-v4's are a spectral "
+                   "sample's (four wavelengths, whose XYZ vary from sample to sample), udm1-pt's an RGB sample's, so the "
+                   "clamp takes more from pbrt-v4's bright samples; without the clamp the two agree",
+             variants=[Variant("without maxcomponentvalue", [(r' "float maxcomponentvalue" \[ 1 \]', "")])]),
     ]
     return out
 

@@ -25,7 +25,7 @@ Vec3 shading_normal(const udm1scene::Shape &s, const Hit &h)
     if (s.kind != udm1scene::Shape::Triangles || s.N.empty()) return h.ng;
     const uint32_t *i = &s.indices[3 * (size_t)h.prim];
     auto N = [&](uint32_t k) { return Vec3(s.N[3 * k], s.N[3 * k + 1], s.N[3 * k + 2]); };
-    Vec3 n = N(i[0]) * (1 - h.u - h.v) + N(i[1]) * h.u + N(i[2]) * h.v;
+    Vec3 n = udm1scene::world_normal(h, N(i[0]) * (1 - h.u - h.v) + N(i[1]) * h.u + N(i[2]) * h.v);
     double len = udm1scene::length(n);
     return len > 0 ? n * (1 / len) : h.ng;
 }

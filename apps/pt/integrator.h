@@ -37,6 +37,7 @@
 
 #include <udm1/udm1.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -99,13 +100,34 @@ struct Options {
     int bounds[4] = {0, 0, 0, 0};  // the pixels rendered: [x0, x1) x [y0, y1); all zero: every pixel
     uint64_t seed = 1;
     uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
-    int width = 0, height = 0;  // 0: the scene's film
+    int width = 0, height = 0;  // the image (0: the scene's film)
+    // A crop of a film: the film's size and the image's place in it (0: the image is the whole film)
+    int film_width = 0, film_height = 0, film_x0 = 0, film_y0 = 0;
     int max_depth = -1;         // -1: the scene's Integrator maxdepth (pbrt's default 5)
     Strategy strategy = Strategy::Mis;
     bool roulette = true;
     int rr_depth = 3;           // roulette from this vertex on (0 = the first hit; pbrt-v4 starts at 1)
     double near_light = Lights::NEAR_DEFAULT;  // see Lights; `bench/bench_pt.py --estimators` measures both
     Loop loop = Loop::Auto;
+};
+
+// What the film makes of a path's radiance L before it is summed, as pbrt-v4's RGB film adds a sample: the
+// imaging ratio (Scene::film_scale), then Film "maxcomponentvalue" m: the sample scaled so that the largest
+// of its sensor values - CIE X, Y and Z for the default cie1931 sensor - is at most m.
+struct FilmResponse {
+    explicit FilmResponse(const udm1scene::Scene &scene);
+    Vec3 operator()(Vec3 L) const
+    {
+        L = L * scale;
+        if (clamp) {
+            double m = std::max({udm1scene::dot(xyz[0], L), udm1scene::dot(xyz[1], L), udm1scene::dot(xyz[2], L)});
+            if (m > max_component) L = L * (max_component / m);
+        }
+        return L;
+    }
+    double scale, max_component;
+    bool clamp;
+    Vec3 xyz[3];  // the rows of XYZ from linear sRGB
 };
 
 // Per-pixel sums of the samples in fixed point (2^-24 units, int64, channels R, G, B), so that sums

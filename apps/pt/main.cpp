@@ -129,6 +129,21 @@ public:
         }
         if (!s.size_given && scene_.source.rfind("builtin:", 0) == 0) s.width = s.height = 256;
         if (s.width == 0) s.width = scene_.width, s.height = scene_.height;
+        if (scene_.has_crop || scene_.has_pixel_bounds) {  // the image is the Film's window of the film (--size's)
+            int w[4];
+            try {
+                scene_.film_window(s.width, s.height, w);
+            } catch (const udm1scene::SceneError &e) {
+                throw Error(e.what(), 1);
+            }
+            pt_.film_width = s.width, pt_.film_height = s.height, pt_.film_x0 = w[0], pt_.film_y0 = w[1];
+            if (s.command != "export")
+                std::fprintf(stderr, "udm1-pt: note: %s: the image is the Film's %s, pixels [%d, %d) x [%d, %d) of the %dx%d film, "
+                                     "as pbrt-v4 renders it\n",
+                             scene_.source.c_str(), scene_.has_crop ? "cropwindow" : "pixelbounds", w[0], w[2], w[1], w[3],
+                             s.width, s.height);
+            s.width = w[2] - w[0], s.height = w[3] - w[1];
+        }
         load_seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
     }
 
@@ -144,6 +159,9 @@ public:
                       p.roulette ? p.rr_depth : -1, p.near_light,
                       p.loop == udm1pt::Loop::Auto ? "auto" : p.loop == udm1pt::Loop::Scalar ? "scalar" : "wavefront",
                       udm1pt::LAYOUT_VERSION);
+        if (p.film_width > 0)  // a crop: which window of which film
+            return buf + (" film " + std::to_string(p.film_width) + "x" + std::to_string(p.film_height) + " at " +
+                          std::to_string(p.film_x0) + "," + std::to_string(p.film_y0));
         return buf;
     }
 
@@ -157,6 +175,7 @@ public:
         udm1pt::Accumulator acc;
         try {
             acc = udm1pt::render(scene_, *rt_, *materials_, options(s), &stats_);
+            rt_->check("rendering");
         } catch (const udm1scene::SceneError &e) {
             throw Error(e.what(), 1);
         } catch (const std::runtime_error &e) {
@@ -218,6 +237,7 @@ public:
     int run_command(const udm1app::RenderSettings &s) override  // export
     {
         if (s.positional.size() != 1) throw Error("export needs one folder");
+        if (pt_.film_width > 0) throw Error(scene_.source + ": export writes whole films, not a Film's cropwindow or pixelbounds", 1);
         udm1pt::export_scene(scene_, s.width, s.height, max_depth(), s.positional[0]);
         std::printf("wrote %s/scene.json\n", s.positional[0].c_str());
         return 0;

@@ -69,9 +69,9 @@ Buffers &buffers()  // one set per thread, reused from batch to batch
 class GeneralWavefront::Batch {
 public:
     Batch(const GeneralWavefront &w, const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth, int x0,
-          int x1, int y0, int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc,
+          int x1, int y0, int y1, uint64_t first, uint64_t count, const FilmResponse &film, Accumulator *acc,
           LoopCounts *counts)
-        : w_(w), order_(order), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count), film_scale_(film_scale), acc_(acc),
+        : w_(w), order_(order), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count), film_(film), acc_(acc),
           counts_(counts), b_(buffers())
     {
         streams_.resize((size_t)W_ * (size_t)(y1 - y0));  // the tile's pixels' streams, once
@@ -92,7 +92,7 @@ private:
     const udm1app::PixelOrder &order_;
     int x0_, y0_, W_;
     uint64_t first_, count_;
-    double film_scale_;
+    const FilmResponse &film_;
     Accumulator *acc_;
     LoopCounts *counts_;
     Buffers &b_;
@@ -107,7 +107,7 @@ void GeneralWavefront::Batch::finish(size_t j)  // path j ends: its radiance int
 {
     int p = b_.pixel[j];
     int64_t *px = &acc_->sum[3 * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
-    Vec3 L = b_.paths[j].L * film_scale_;
+    Vec3 L = film_(b_.paths[j].L);
     for (int k = 0; k < 3; ++k) {
         double v = L[k];
         if (!std::isfinite(v)) {
@@ -165,7 +165,7 @@ void GeneralWavefront::Batch::trace()
             b_.alive[j] = 0;
             continue;
         }
-        Hit h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j]);
+        Hit h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j], R.inst[j]);
         b_.alive[j] = est.scatter(path, h, &b_.shadows[j]);
     }
 }
@@ -202,7 +202,7 @@ void GeneralWavefront::Batch::shadows()
         rtcIntersectNp(w_.rt_.handle(), &ctx_, &q, (unsigned)ns);
         for (size_t k = 0; k < ns; ++k) {
             uint32_t j = S.path[k];
-            if (S.geom[k] == RTC_INVALID_GEOMETRY_ID || (int)w_.rt_.shape_of_geometry(S.geom[k]) == b_.shadows[j].shape)
+            if (S.geom[k] == RTC_INVALID_GEOMETRY_ID || (int)w_.rt_.shape_of_hit(S.inst[k], S.geom[k]) == b_.shadows[j].shape)
                 est.arrive(b_.paths[j], b_.shadows[j]);
         }
     }
@@ -247,9 +247,9 @@ void GeneralWavefront::Batch::shadows()
 
 void GeneralWavefront::render(const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth,
                               const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1, uint64_t first,
-                              uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts) const
+                              uint64_t count, const FilmResponse &film, Accumulator *acc, LoopCounts *counts) const
 {
-    Batch batch(*this, seq, order, max_depth, x0, x1, y0, y1, first, count, film_scale, acc, counts);
+    Batch batch(*this, seq, order, max_depth, x0, x1, y0, y1, first, count, film, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
         batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));
