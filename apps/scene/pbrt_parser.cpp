@@ -195,7 +195,6 @@ public:
         if (!camera_set_) { /* pbrt's default camera: at the origin looking down +z */
             scene_.camera.world_from_camera = Mat4();
         }
-        if (!geometry_only_) resolve_media(), interface_lights();
         if (!scene_.light_sampling) {  // lights that only light sampling finds
             std::vector<LightSource> &ls = scene_.light_sources;
             size_t before = ls.size();
@@ -224,6 +223,8 @@ public:
         }
         resolve_textures();
         resolve_instances();
+        // (after the named materials: a shape's NamedMaterial "interface" may be made after the shape)
+        if (!geometry_only_) resolve_media(), interface_lights();
     }
 
 private:
@@ -1152,6 +1153,7 @@ private:
         for (const char *k : {"sigma_a", "sigma_s"}) {
             const Param *p = ps.find(k);
             if (!p) continue;
+            if (preset && p->attribute) continue;  // (an Attribute default: pbrt-v4 never calls it unused)
             if (preset)
                 throw SceneError(p->where + ": MakeNamedMedium \"" + name + "\": '" + k +
                                  "' with a preset: pbrt-v4 takes the preset's and refuses '" + k + "' as unused");
