@@ -155,7 +155,7 @@ void GeneralWavefront::Batch::trace()
         if (volumetric_) {
             Hit h;
             bool hit = R.geom[j] != RTC_INVALID_GEOMETRY_ID;
-            if (hit) h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j]);
+            if (hit) h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j], R.inst[j]);
             b_.alive[j] = est.step(path, hit ? &h : nullptr, &b_.shadows[j]);
             continue;
         }
@@ -224,7 +224,7 @@ void GeneralWavefront::Batch::shadows()
             Hit h;
             bool hit = W.geom[k] != RTC_INVALID_GEOMETRY_ID;
             if (hit) {
-                h = w_.rt_.hit_of(s.o, s.d, W.tfar[k], W.geom[k], W.prim[k], W.u[k], W.v[k]);
+                h = w_.rt_.hit_of(s.o, s.d, W.tfar[k], W.geom[k], W.prim[k], W.u[k], W.v[k], W.inst[k]);
                 hit = !(s.sphere && (int)h.shape == s.shape);
             }
             Crossing c = est.cross(s, hit ? &h : nullptr);

@@ -92,9 +92,9 @@ public:
     bool occluded(Vec3 o, Vec3 d, double tnear, double tfar) const;
     // The hit that Embree reported for the ray o + t d (given to it in float) as intersect() makes it: for
     // loops that hand Embree many rays at once (rtcIntersectNp) and must find what intersect() finds. inst_id:
-    // Embree's instID[0] (RTC_INVALID_GEOMETRY_ID for a shape of the world).
-    Hit hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v,
-               unsigned inst_id = RTC_INVALID_GEOMETRY_ID) const;
+    // Embree's instID[0] (RTC_INVALID_GEOMETRY_ID for a shape of the world); no default, so that no loop
+    // leaves it out and takes an instanced shape's hit for a world shape's.
+    Hit hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v, unsigned inst_id) const;
     // The origin for rays leaving hit h on side n (the side `incoming` came from): offset along n and
     // back along the incoming ray, so that a hit on an edge or in a concave corner starts strictly on
     // the visible side of both faces (offsetting along n alone leaves it on the other face's plane).

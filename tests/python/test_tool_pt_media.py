@@ -196,6 +196,24 @@ SCATTER = MEDIUM.format(params='"rgb sigma_a" [ 0.2 0.3 0.4 ] "rgb sigma_s" [ 1 
 SIDE_LIGHT = 'LightSource "point" "point3 from" [ 0 3 0 ] "rgb I" [ 2 2 2 ]\n'
 
 
+@pytest.mark.parametrize("loop", ["scalar", "wavefront"])
+def test_media_through_object_instances(loop, tmp_path):
+    # a shape's MediumInterface inside ObjectBegin goes with every instance of it (pbrt-v4 keeps it per shape):
+    # the box scaled to 2 units of ink by its instance absorbs exp(-2 sigma_a), in both loops
+    sig = np.array([0.5, 1, 2])
+    view = VIEW.format(**{**BASE, "medium": BASE["medium"] + '\nObjectBegin "box"'})
+    place = 'AttributeBegin\nTranslate 0 0 1\nScale 1 1 2\nObjectInstance "box"\nAttributeEnd\n'
+    img, err = render(tmp_path, view + 'ObjectEnd\n' + place, "--spp", "8", "--loop", loop, name="ink")
+    assert np.allclose(img.reshape(-1, 3).mean(axis=0), np.exp(-2 * sig), rtol=1e-3), img.reshape(-1, 3).mean(axis=0)
+    # a scattering medium lit from the side: paths scatter in the instance and its shadow rays cross its faces;
+    # the image of the same box written out under the instance's transform, within float rounding
+    view = VIEW.format(**{**BASE, "medium": SIDE_LIGHT + SCATTER + '\nObjectBegin "box"'})
+    a, _ = render(tmp_path, view + 'ObjectEnd\n' + place, "--spp", "16", "--loop", loop, name="inst")
+    flat = VIEW.format(**{**BASE, "medium": SIDE_LIGHT + SCATTER + '\nTranslate 0 0 1\nScale 1 1 2'})
+    b, _ = render(tmp_path, flat, "--spp", "16", "--loop", loop, name="flat")
+    assert a.mean() > 0.05 and abs(a.mean() / b.mean() - 1) < 2e-4, (a.mean(), b.mean())
+
+
 def test_media_and_interfaces_named_anywhere(tmp_path):
     # names are resolved when the scene is complete, as pbrt-v4 resolves them: a medium made in an Import after the
     # shape that names it, an "interface" material named before its MakeNamedMaterial; pbrt-v4 leaves out the area
@@ -217,6 +235,26 @@ def test_media_and_interfaces_named_anywhere(tmp_path):
     for name, text in [("before", head + make + light), ("after", head + light + make)]:
         img, err = render(tmp_path, text, "--spp", "1", name=name)
         assert img.max() == 0 and "is left out, as pbrt-v4 leaves it out (1 shape)" in err, (name, img.max(), err)
+
+
+def test_medium_state_in_blocks_and_imports(tmp_path):
+    # MediumInterface is graphics state: an Import's shapes take the interface current in it, and AttributeEnd,
+    # ObjectEnd and the end of an Import restore it: an interface quad after each, in front of the box, is no
+    # transition (were "m" "" still current, the camera ray would cross 4 more units of ink behind it)
+    sig = np.array([0.5, 1, 2])
+    box = VIEW.format(**BASE).split("AttributeEnd\n", 1)[1]  # (the medium and the box, outside any block)
+    box = box.replace("AttributeBegin\n", "").replace("AttributeEnd\n", "")
+    (tmp_path / "box.pbrt").write_text(box)
+    head = VIEW.format(**{**BASE, "medium": ""}).split("AttributeBegin\nMaterial", 1)[0]
+    front = ('Material "interface"\n'
+             'Shape "trianglemesh" "point3 P" [ -9 -9 -4  9 -9 -4  9 9 -4  -9 9 -4 ]\n'
+             '  "integer indices" [ 0 2 1 0 3 2 ]\n')
+    for name, text in [("import", head + 'Import "box.pbrt"\n'),
+                       ("attribute", head + "AttributeBegin\n" + box + "AttributeEnd\n"),
+                       ("object", head + 'ObjectBegin "b"\n' + box + 'ObjectEnd\nObjectInstance "b"\n')]:
+        img, err = render(tmp_path, text + front, "--spp", "8", name=name)
+        got = img.reshape(-1, 3).mean(axis=0)
+        assert err == "" and np.allclose(got, np.exp(-sig), rtol=2e-4), (name, got, err)
 
 
 def test_attribute_defaults_of_media(tmp_path):
