@@ -785,7 +785,7 @@ private:
             const std::string &in = scene_.integrator;
             if (in != "path" && in != "volpath" && in != "simplepath" && in != "randomwalk" && in != "bdpt" && in != "sppm")
                 throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath; simplepath, "
-                                        "randomwalk, bdpt and sppm render as path)");
+                                        "randomwalk and sppm render as path, bdpt as volpath)");
             if (const Param *p = ps.find("rrthreshold"))
                 throw SceneError(p->where + ": Integrator: 'rrthreshold' is pbrt-v3's; pbrt-v4 refuses it as an unused "
                                             "parameter");
@@ -816,10 +816,12 @@ private:
             scene_.bsdf_sampling = in == "randomwalk" ? false : ps.get_bool("samplebsdf", true);
             scene_.integrator_where = here;
             if (in == "simplepath" || in == "randomwalk" || in == "bdpt" || in == "sppm") {  // the same image in the
-                                                                                          // limit, found another way
-                scene_.notes.push_back(here + ": Integrator \"" + in + "\" renders as \"path\" (the unbiased image " +
+                                                                                          // limit, found another way:
+                // pbrt-v4's bdpt samples media as its volpath does; the others leave them out as its path does
+                const std::string as = in == "bdpt" ? "volpath" : "path";
+                scene_.notes.push_back(here + ": Integrator \"" + in + "\" renders as \"" + as + "\" (the unbiased image " +
                                        (in == "sppm" ? "sppm converges to" : "it converges to") + "; noise differs)");
-                scene_.integrator = "path";
+                scene_.integrator = as;
             }
             if (ps.find("lightsampler"))
                 scene_.notes.push_back(here + ": Integrator: lightsampler ignored (it changes the noise, not the image; "

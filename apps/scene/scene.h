@@ -166,7 +166,7 @@ struct Scene {
     std::string sampler;        // the scene's Sampler directive (udm1's renderers use their own samplers)
     std::string sampler_where;  // its file:line ("" without one)
     int pixel_samples = 16;     // its "pixelsamples" (pbrt-v4's default 16)
-    std::string integrator = "path";
+    std::string integrator = "volpath";  // pbrt-v4's default (without media the same image as "path")
     int max_depth = 5;
     // pbrt-v4's integrators without light sampling (simplepath "samplelights" false, randomwalk) find
     // lights only where paths hit them: point, spot and distant lights are left out of the scene. Without

@@ -427,12 +427,13 @@ def test_film_light_and_media_settings(tmp_path):
     means = {}
     for iso in (100, 250):
         scene = tmp_path / f"iso{iso}.pbrt"
-        scene.write_text(f'Film "rgb" "float iso" [ {iso} ] "string sensor" "canon_eos_5d_mkiv"\n' + HEAD + light
+        scene.write_text('Integrator "path"\n'
+                         f'Film "rgb" "float iso" [ {iso} ] "string sensor" "canon_eos_5d_mkiv"\n' + HEAD + light
                          + 'MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [ 1 2 3 ]\n'
                          + 'MediumInterface "ink" ""\n')
         r = ok("--scene", str(scene), "--spp", "4", "--size", "16x16", "-o", str(tmp_path / "x.exr"))
         # media are left out as pbrt-v4's path integrator leaves them out, and said so in one line
-        assert re.fullmatch(r'udm1-pt: note: \S+:9: media are left out, as Integrator "path" leaves them out\n',
+        assert re.fullmatch(r'udm1-pt: note: \S+:10: media are left out, as Integrator "path" leaves them out\n',
                             r.stderr), r.stderr
         means[iso] = mean_of(r)
     # a view straight into a 3000 K light of scale 4: luminance 4, warm; ISO 250 is 2.5 times brighter

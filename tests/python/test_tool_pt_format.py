@@ -503,7 +503,7 @@ _PLAIN = {}
 
 
 @pytest.mark.parametrize("change,note", [
-    (("Camera", 'Integrator "bdpt" "integer maxdepth" 5\nCamera'), 'Integrator "bdpt" renders as "path"'),
+    (("Camera", 'Integrator "bdpt" "integer maxdepth" 5\nCamera'), 'Integrator "bdpt" renders as "volpath"'),
     (("Camera", 'Integrator "sppm" "float radius" 0.1\nCamera'), 'Integrator "sppm" renders as "path"'),
     (("Camera", 'Integrator "path" "bool regularize" true\nCamera'), "regularize ignored: udm1-pt renders the unbiased"),
     (('Film "rgb"', 'Film "gbuffer"'), 'Film "gbuffer" renders as "rgb"'),

@@ -257,6 +257,20 @@ def test_medium_state_in_blocks_and_imports(tmp_path):
         assert err == "" and np.allclose(got, np.exp(-sig), rtol=2e-4), (name, got, err)
 
 
+def test_integrators_and_defaults_with_media(tmp_path):
+    # pbrt-v4's default integrator is "volpath", and its bdpt samples media as volpath does: both render the ink;
+    # its sppm leaves media out as path does (a note says so)
+    sig = np.array([0.5, 1, 2])
+    text = VIEW.format(**BASE)
+    img, err = render(tmp_path, text.replace('Integrator "volpath" "integer maxdepth" [ 5 ]\n', ""), "--spp", "8",
+                      name="default")
+    assert err == "" and np.allclose(img.reshape(-1, 3).mean(axis=0), np.exp(-sig), rtol=2e-4), err
+    bdpt, err = mean_rgb(tmp_path, {"integrator": "bdpt"})
+    assert np.allclose(bdpt, np.exp(-sig), rtol=2e-4) and 'Integrator "bdpt" renders as "volpath"' in err, (bdpt, err)
+    sppm, err = mean_rgb(tmp_path, {"integrator": "sppm"})
+    assert np.allclose(sppm, 1, rtol=1e-6) and "media are left out" in err, (sppm, err)
+
+
 def test_attribute_defaults_of_media(tmp_path):
     # Attribute "medium" gives defaults to later MakeNamedMedium: the medium's own parameters win, and a preset
     # takes its coefficients over a default sigma_a (pbrt-v4 never calls an Attribute default unused)
