@@ -238,6 +238,8 @@ public:
     {
         if (s.positional.size() != 1) throw Error("export needs one folder");
         if (pt_.film_width > 0) throw Error(scene_.source + ": export writes whole films, not a Film's cropwindow or pixelbounds", 1);
+        if (udm1pt::uses_media(scene_))  // (scene.json has surfaces only: the other renderer would leave the media out)
+            throw Error(scene_.media_where + ": export writes no participating media (Integrator \"volpath\" renders them)", 1);
         udm1pt::export_scene(scene_, s.width, s.height, max_depth(), s.positional[0]);
         std::printf("wrote %s/scene.json\n", s.positional[0].c_str());
         return 0;

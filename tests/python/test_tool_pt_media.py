@@ -283,6 +283,14 @@ def test_attribute_defaults_of_media(tmp_path):
     assert err == "" and np.allclose(with_default, preset, rtol=1e-6), (with_default, preset, err)
 
 
+def test_export_refuses_media(tmp_path):
+    # scene.json has surfaces only: a scene whose media volpath renders is refused, not written without them
+    scene = tmp_path / "m.pbrt"
+    scene.write_text(VIEW.format(**BASE))
+    r = fails_cleanly(run, ["export", str(tmp_path / "out"), "--scene", str(scene)], f"{scene}:9: ", tmp_path, code=1)
+    assert "export writes no participating media" in r.stderr, r.stderr
+
+
 @pytest.mark.parametrize("name", ["media", "ruby", "fog"])
 def test_test_scenes_render(name, tmp_path):
     scene = ROOT / "tests" / "scenes" / f"{name}.pbrt"
