@@ -1,8 +1,11 @@
 """udm1-pt's participating media through the whole tool (Integrator "volpath"): every medium parameter
 changes the image as pbrt-v4 defines it (linear ones by their ratio exactly), MediumInterface and the camera's
 medium put media where pbrt-v4 puts them, what pbrt-v4 refuses or udm1-pt does not model refused with file and
-line (grid media named), what pbrt-v4 renders with a warning rendered with a note, the test scenes and the
-Crown as distributed rendering (tests/cpp/test_pt_media.cpp checks the closed forms)."""
+line (grid media named), what pbrt-v4 renders with a warning rendered with a note, media through the format's
+rules (names resolved when the scene is complete, object instances in both loops, graphics state restored by
+blocks and Imports, Attribute defaults, the default integrator and bdpt), the film's clamp and crop under
+volpath, the test scenes and the Crown as distributed rendering (tests/cpp/test_pt_media.cpp checks the closed
+forms)."""
 
 import os
 import re
@@ -281,6 +284,23 @@ def test_attribute_defaults_of_media(tmp_path):
     preset, _ = mean_rgb(tmp_path, {"medium": milk})
     with_default, err = mean_rgb(tmp_path, {"medium": 'Attribute "medium" "rgb sigma_a" [ 9 9 9 ]\n' + milk})
     assert err == "" and np.allclose(with_default, preset, rtol=1e-6), (with_default, preset, err)
+
+
+def test_volpath_film_clamp_and_crop(tmp_path):
+    # the film's maxcomponentvalue and cropwindow act on volpath's samples as on path's: every sample of a glowing
+    # medium scaled so that its largest CIE XYZ value is at most 1 (so is their mean), and a crop that is the
+    # window of the whole render, bit for bit
+    xyz = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722], [0.0193, 0.1192, 0.9505]])
+    glow = MEDIUM.format(params='"rgb sigma_a" [ 1 1 1 ] "rgb sigma_s" [ 0.5 0.5 0.5 ] "rgb Le" [ 40 20 10 ]')
+    free, _ = mean_rgb(tmp_path, {"medium": SIDE_LIGHT + glow})
+    film = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ] "float maxcomponentvalue" [ 1 ]\n'
+    clamped, _ = mean_rgb(tmp_path, {"medium": SIDE_LIGHT + glow, "before": film})
+    assert (xyz @ free).max() > 4 and (xyz @ clamped).max() < 1 + 1e-3, (free, clamped)
+    text = VIEW.format(**{**BASE, "medium": SIDE_LIGHT + SCATTER})
+    crop = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ] "float cropwindow" [ 0.25 0.75 0 0.5 ]\n'
+    whole, _ = render(tmp_path, text, "--spp", "4", name="whole")
+    part, err = render(tmp_path, crop + text, "--spp", "4", name="crop")
+    assert whole.mean() > 0.05 and part.shape == (4, 4, 3) and np.array_equal(part, whole[0:4, 2:6]), err
 
 
 def test_export_refuses_media(tmp_path):
