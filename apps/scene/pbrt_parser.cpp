@@ -35,6 +35,11 @@ namespace {
 // directions and normals.
 const char *const PROJECTIVE = "a projective transform (its bottom row is not 0 0 0 1) is not modelled";
 
+// How far a light's transform may be from a rotation and a uniform scale (relative, in its Gram matrix) and
+// still be taken as one: scene files write matrices with about six significant digits, which leaves a
+// rotation's columns unit and orthogonal to about 1e-6; what pbrt-v4 renders inconsistently differs by far more.
+const double RIGID_TOLERANCE = 1e-5;
+
 // Raw scene text as an error message quotes it: one line, control characters escaped, cut when long.
 std::string quote(const std::string &raw) { return udm1app::quote_raw(raw); }
 
@@ -1273,7 +1278,7 @@ private:
     void sphere_light_transform(const std::string &here, const Mat4 &m, bool twosided)
     {
         double scale;
-        if (!m.similarity(1e-9, &scale) || std::fabs(scale - 1) > 1e-9)
+        if (!m.similarity(RIGID_TOLERANCE, &scale) || std::fabs(scale - 1) > RIGID_TOLERANCE)
             throw SceneError(here + ": an emitting sphere under a transform that scales or shears it is not modelled: "
                                     "pbrt-v4 samples a sphere light as the sphere of its \"float radius\" about its "
                                     "centre, not as the shape it intersects, so its image is not consistent (give the "
@@ -1305,7 +1310,7 @@ private:
         bool directions_only = type == "infinite" && m.m[0][3] == 0 && m.m[1][3] == 0 && m.m[2][3] == 0;
         if (!m.affine() && !directions_only) throw SceneError(here + ": LightSource \"" + type + "\": " + PROJECTIVE);
         double similar_scale;
-        const bool similar = m.similarity(1e-9, &similar_scale);
+        const bool similar = m.similarity(RIGID_TOLERANCE, &similar_scale);
         auto emitted = [&](const char *name) { return ps.find(name) ? emission(ps, name, "LightSource") : Vec3(1, 1, 1); };
         double scale = ps.get_float("scale", 1.0), power = ps.get_float("power", -1), lux = ps.get_float("illuminance", -1);
         if (!(scale >= 0) || !std::isfinite(scale)) throw SceneError(here + ": LightSource: scale must not be negative");

@@ -825,10 +825,12 @@ def test_directives_that_change_nothing_are_rendered_with_a_note(tmp_path):
             assert ('renders as "path"' if name != "accel" else 'Accelerator "kdtree" ignored') in notes[0], r.stderr
         images[name] = out.read_bytes()
     assert images["simplepath"] == images["path"] == images["randomwalk"] == images["accel"]
-    # a biased variant is refused
-    bad = tmp_path / "reg.pbrt"
-    bad.write_text('Integrator "path" "bool regularize" true\n' + body)
-    fails_cleanly(run, ["--scene", str(bad), "--spp", "1", "-o", "reg.exr"], "regularize", tmp_path, code=1)
+    # a biased variant renders as the unbiased image, with a note saying so
+    reg = tmp_path / "reg.pbrt"
+    reg.write_text('Integrator "path" "bool regularize" true\n' + body)
+    r = ok("--scene", str(reg), "--spp", "8", "-o", str(tmp_path / "reg.exr"))
+    assert "regularize ignored: udm1-pt renders the unbiased image" in r.stderr, r.stderr
+    assert (tmp_path / "reg.exr").read_bytes() == images["path"]
 
 
 def test_the_scenes_pixelsamples_without_spp(tmp_path):
