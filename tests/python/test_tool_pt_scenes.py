@@ -390,7 +390,7 @@ PARAMETERS = [
     ("Camera lensradius, focaldistance", {}, {"camera": '"float fov" [ 50 ] "float lensradius" 0.3 "float focaldistance" 2'},
      None),
     ("Film iso", {}, {"film": '"float iso" [ 400 ]'}, 4.0),
-    ("Film maxcomponentvalue", {}, {"film": '"float maxcomponentvalue" [ 1 ]'}, None),
+    ("Film maxcomponentvalue", {}, {"film": '"float maxcomponentvalue" [ 0.1 ]'}, None),
     ("Camera shutteropen, shutterclose", {}, {"camera": '"float fov" [ 50 ] "float shutteropen" 0.25 "float shutterclose" 0.75'},
      0.5),
     ("Integrator maxdepth", {}, {"integrator": '"integer maxdepth" [ 1 ]'}, None),
