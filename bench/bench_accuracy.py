@@ -78,7 +78,9 @@ def cases() -> list[Case]:
                         Variant("+ CIE 1931 sensor", [SENSOR], NO_FILTER),
                         Variant("+ white lights", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')], NO_FILTER),
                         Variant("+ grey media", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')], NO_FILTER,
-                                grey_media=True)]
+                                grey_media=True),
+                        Variant("+ every material grey", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')],
+                                NO_FILTER, grey=True, grey_media=True)]
         out += [
             Case("cornell-box", SHARED / "cornell-box" / "cornell-box.pbrt", (144, 144), 1024),
             Case("veach-mis", SHARED / "veach-mis" / "veach-mis.pbrt", (144, 108), 1024),
@@ -94,7 +96,9 @@ def cases() -> list[Case]:
                                    NO_FILTER, grey=True)]),
             Case("crown-volpath", SHARED / "crown" / "crown-volpath.pbrt", (100, 140), 256,
                  cause="the causes of the shared copy's difference (crown, above: pbrt-v4's filtered textures, its "
-                       "camera sensor, spectral lights on gold) and spectral absorption: pbrt-v4 attenuates each "
+                       "camera sensor, spectral products with gold's reflectance, here over maxdepth 100, not the "
+                       "copy's 5: gold multiplies with itself over many more bounces, spectrally in pbrt-v4 and as RGB "
+                       "in udm1-pt) and spectral absorption: pbrt-v4 attenuates each "
                        "wavelength by exp(-sigma(lambda) d) of the gems' media upsampled from RGB, udm1-pt each "
                        "channel by exp(-sigma_rgb d), and as distributed the media are outside the gems "
                        "(MediumInterface \"\" \"ruby-medium\", the gems' normals facing out), so light that "
