@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "spectrum.h"
 
@@ -53,12 +54,24 @@ Vec3 albedo_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 f
     return v;
 }
 
+// Every parameter a material of the subset takes (an Attribute "material" default that a material does not
+// take is ignored if another takes it, as pbrt-v4 ignores it; else refused: pbrt-v4 might read it there).
+const std::set<std::string> &material_parameters()
+{
+    static const std::set<std::string> all = {"reflectance", "displacement", "roughness", "uroughness", "vroughness",
+                                              "remaproughness", "thickness", "eta", "maxdepth", "nsamples", "albedo",
+                                              "g", "k", "materials", "amount"};
+    return all;
+}
+
 void only(const udm1scene::ParamSet &ps, std::initializer_list<const char *> allowed, const std::string &what)
 {
     for (const udm1scene::Param &p : ps.params) {
         bool ok = p.name == "type";  // MakeNamedMaterial's own parameter
         for (const char *a : allowed) ok |= p.name == a;
-        if (!ok) throw SceneError(p.where + ": " + what + ": unsupported parameter '" + p.name + "'");
+        if (ok || (p.attribute && material_parameters().count(p.name))) continue;
+        if (p.attribute) throw SceneError(p.where + ": Attribute: parameter '" + p.name + "' is not modelled (" + what + ")");
+        throw SceneError(p.where + ": " + what + ": unsupported parameter '" + p.name + "'");
     }
 }
 
@@ -131,13 +144,15 @@ int texture_param(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, 
     const udm1scene::Param *p = ps.find(name);
     if (!p || p->type != "texture") return -1;
     if (p->strings.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one texture name");
+    int other = -1;  // (float and spectrum textures have names of their own, as in pbrt-v4)
     for (size_t i = 0; i < scene.textures.size(); ++i)
         if (scene.textures[i].name == p->strings[0]) {
-            if (scene.textures[i].kind != kind)
-                throw SceneError(p->where + ": '" + name + "' needs a " + kind + " texture, \"" + p->strings[0] +
-                                 "\" is a " + scene.textures[i].kind + " texture");
-            return (int)i;
+            if (scene.textures[i].kind == kind) return (int)i;
+            other = (int)i;
         }
+    if (other >= 0)
+        throw SceneError(p->where + ": '" + name + "' needs a " + kind + " texture, \"" + p->strings[0] + "\" is a " +
+                         scene.textures[other].kind + " texture");
     throw SceneError(p->where + ": '" + name + "': texture \"" + p->strings[0] + "\" was not made");
 }
 
@@ -182,6 +197,12 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             mm.roughness_tex = texture_param(scene, ps, "roughness", "float");
             if (mm.roughness_tex < 0) *mf = roughness_param(ps, what);
         };
+        if (m.type == "interface" || m.type.empty() || m.type == "none") {  // pbrt-v4: no BSDF (media.h)
+            only(ps, {}, "Material \"" + m.type + "\"");
+            mm.interface = true;
+            models_.push_back(mm);
+            continue;
+        }
         if (m.type == "diffuse") {
             only(ps, {"reflectance", "displacement"}, "diffuse");
             b.kind = Bsdf::Diffuse;
@@ -240,12 +261,21 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
                 for (size_t i = 0; i < scene.materials.size(); ++i)
                     if (scene.materials[i].name == mp->strings[k]) mm.parts[k] = (int)i;
                 if (mm.parts[k] < 0) throw SceneError(mp->where + ": mix: material \"" + mp->strings[k] + "\" was not made");
+                const std::string &type = scene.materials[mm.parts[k]].type;
+                if (type == "interface" || type.empty() || type == "none")
+                    throw SceneError(mp->where + ": mix: a mix of the \"interface\" material (\"" + mp->strings[k] +
+                                     "\") is not modelled");
+                // pbrt-v4 makes the named materials in order, then the others: a named mix takes only named
+                // materials made before it
+                if (!m.name.empty() && mm.parts[k] > (int)(&m - scene.materials.data()))
+                    throw SceneError(mp->where + ": mix: material \"" + mp->strings[k] + "\" is made after this named mix (at " +
+                                     scene.materials[mm.parts[k]].params.where + "), which pbrt-v4 refuses");
             }
             mm.amount_tex = texture_param(scene, ps, "amount", "float");
             if (mm.amount_tex < 0) mm.amount = ps.get_float("amount", 0.5);
         } else {
             throw SceneError(ps.where + ": Material \"" + m.type +
-                             "\" is not supported (diffuse, coateddiffuse, conductor, dielectric, mix)");
+                             "\" is not supported (diffuse, coateddiffuse, conductor, dielectric, mix, interface)");
         }
         if (!mm.mix) {
             mm.displacement_tex = texture_param(scene, ps, "displacement", "float");
@@ -298,12 +328,13 @@ void surface_derivatives(const udm1scene::Shape &s, const udm1scene::Hit &h, Vec
 {
     const double PI = 3.14159265358979323846;
     if (s.kind == udm1scene::Shape::Sphere) {  // in object space (pbrt-v4's Sphere), then to world space
-        Vec3 d = udm1scene::sphere_object_point(s, h.p);
+        Vec3 d = udm1scene::sphere_object_point(s, udm1scene::shape_point(h));
         double phi_max = 2 * PI, r = s.object_radius, rho = std::sqrt(d.x * d.x + d.y * d.y);
         *dpdu = Vec3(-phi_max * d.y, phi_max * d.x, 0);
         double cos_phi = rho > 0 ? d.x / rho : 1, sin_phi = rho > 0 ? d.y / rho : 0, theta = std::acos(std::clamp(d.z / r, -1.0, 1.0));
         *dpdv = Vec3(d.z * cos_phi, d.z * sin_phi, -r * std::sin(theta)) * (-PI);  // v = 1 - theta / pi
-        *dpdu = s.world_from_object.vector(*dpdu), *dpdv = s.world_from_object.vector(*dpdv);
+        *dpdu = udm1scene::world_vector(h, s.world_from_object.vector(*dpdu));
+        *dpdv = udm1scene::world_vector(h, s.world_from_object.vector(*dpdv));
         return;
     }
     const uint32_t *i = &s.indices[3 * (size_t)h.prim];
@@ -316,8 +347,8 @@ void surface_derivatives(const udm1scene::Shape &s, const udm1scene::Hit &h, Vec
     double det = du02 * dv12 - dv02 * du12;
     bool ok = std::fabs(det) >= 1e-12;
     if (ok) {
-        *dpdu = (dp02 * dv12 - dp12 * dv02) * (1 / det);
-        *dpdv = (dp12 * du02 - dp02 * du12) * (1 / det);
+        *dpdu = udm1scene::world_vector(h, (dp02 * dv12 - dp12 * dv02) * (1 / det));
+        *dpdv = udm1scene::world_vector(h, (dp12 * du02 - dp02 * du12) * (1 / det));
         ok = udm1scene::dot(udm1scene::cross(*dpdu, *dpdv), udm1scene::cross(*dpdu, *dpdv)) > 0;
     }
     if (!ok) {
@@ -383,7 +414,7 @@ const Bsdf &Materials::at(int material, const udm1scene::Shape &shape, const udm
 void hit_uv(const udm1scene::Shape &s, const udm1scene::Hit &h, double *u, double *v)
 {
     if (s.kind == udm1scene::Shape::Sphere) {  // pbrt-v4's, of the point in object space
-        Vec3 d = udm1scene::sphere_object_point(s, h.p) * (1 / s.object_radius);
+        Vec3 d = udm1scene::sphere_object_point(s, udm1scene::shape_point(h)) * (1 / s.object_radius);
         double phi = std::atan2(d.y, d.x);
         if (phi < 0) phi += 2 * 3.14159265358979323846;
         *u = phi / (2 * 3.14159265358979323846);

@@ -1,5 +1,5 @@
 // material.h - the scene's materials for the path tracer. Each Material / MakeNamedMaterial of the
-// subset (diffuse, coateddiffuse, conductor, dielectric, mix) becomes a BSDF template plus the
+// subset (diffuse, coateddiffuse, conductor, dielectric, mix; interface, which only bounds media) becomes a BSDF template plus the
 // textures that vary it over the surface (reflectance, roughness, a mix's amount); at a hit, at()
 // evaluates them and resolves a mix as pbrt-v4 does: the second material where a hash of the point and
 // the outgoing direction falls below the amount. Spectra become RGB as pbrt-v4's film would record
@@ -24,6 +24,7 @@ struct MaterialModel {
     int roughness_tex = -1;    // conductor, dielectric, coated: a float texture in place of "roughness"
     bool remap = true;         // pbrt's remaproughness: alpha = sqrt(roughness)
     bool mix = false;
+    bool interface = false;    // "interface" (pbrt-v4's deprecated "" and "none" too): no BSDF, bounds media only
     int parts[2] = {-1, -1};   // mix: the two materials
     double amount = 0.5;
     int amount_tex = -1;
@@ -41,9 +42,11 @@ public:
     // material has a displacement texture (finite differences of 0.0005 in u and v: udm1-pt has no ray
     // differentials, pbrt-v4's own fallback; the normal's change dn/du is taken as 0).
     // An untextured material's BSDF is returned as it is; a textured one is written to *scratch.
+    // Not for the interface material, which has no BSDF (interface()).
     const Bsdf &at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns,
                    Bsdf *scratch) const;
     size_t size() const { return models_.size(); }
+    bool interface(int material) const { return models_[material].interface; }
 
 private:
     void refuse_specular(const udm1scene::Scene &scene) const;

@@ -144,6 +144,61 @@ EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
     }
 }
 
+RTCScene EmbreeScene::new_scene(bool robust)
+{
+    RTCScene sc = rtcNewScene(device_);
+    if (!sc) {
+        std::string why = errors_->text();
+        throw SceneError(src_.source + ": Embree could not create a scene" + (why.empty() ? "" : ": " + why));
+    }
+    rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
+    if (robust) rtcSetSceneFlags(sc, RTC_SCENE_FLAG_ROBUST);
+    return sc;
+}
+
+RTCGeometry EmbreeScene::geometry(const Shape &s)
+{
+    auto failed = [&](const char *doing) {
+        std::string why = errors_->text();
+        return SceneError(src_.source + ": Embree could not " + doing + (why.empty() ? "" : ": " + why));
+    };
+    RTCGeometry g = rtcNewGeometry(device_, s.kind == Shape::Triangles ? RTC_GEOMETRY_TYPE_TRIANGLE
+                                            : s.ellipsoid                 ? RTC_GEOMETRY_TYPE_USER
+                                                                          : RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    if (!g) throw failed("create a geometry");
+    bool filled = false;
+    if (s.kind == Shape::Triangles) {
+        size_t nv = s.P.size() / 3, nt = s.indices.size() / 3;
+        float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv);
+        unsigned *i = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                          3 * sizeof(unsigned), nt);
+        if (v && i) {
+            std::copy(s.P.begin(), s.P.end(), v);
+            std::copy(s.indices.begin(), s.indices.end(), i);
+            filled = true;
+        }
+    } else if (s.ellipsoid) {
+        rtcSetGeometryUserPrimitiveCount(g, 1);
+        rtcSetGeometryUserData(g, (void *)&s);
+        rtcSetGeometryBoundsFunction(g, ellipsoid_bounds, nullptr);
+        rtcSetGeometryIntersectFunction(g, ellipsoid_intersect);
+        rtcSetGeometryOccludedFunction(g, ellipsoid_occluded);
+        filled = true;
+    } else {
+        float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1);
+        if (v) {
+            v[0] = (float)s.center.x, v[1] = (float)s.center.y, v[2] = (float)s.center.z, v[3] = (float)s.radius;
+            filled = true;
+        }
+    }
+    if (!filled) {
+        rtcReleaseGeometry(g);
+        throw failed(s.kind == Shape::Triangles ? "allocate a mesh" : "allocate a sphere");
+    }
+    rtcCommitGeometry(g);
+    return g;
+}
+
 void EmbreeScene::build(const Scene &scene, bool robust)
 {
     device_ = rtcNewDevice("verbose=0");  // errors come to errors_, never printed by Embree
@@ -155,52 +210,43 @@ void EmbreeScene::build(const Scene &scene, bool robust)
         std::string why = errors_->text();
         return SceneError(scene.source + ": Embree could not " + doing + (why.empty() ? "" : ": " + why));
     };
-    scene_ = rtcNewScene(device_);
-    if (!scene_) throw failed("create a scene");
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    scene_ = new_scene(robust);
+    objects_.assign(scene.objects.size(), nullptr);
+    object_shapes_.resize(scene.objects.size());
     for (unsigned k = 0; k < scene.shapes.size(); ++k) {
         const Shape &s = scene.shapes[k];
-        RTCGeometry g = rtcNewGeometry(device_, s.kind == Shape::Triangles ? RTC_GEOMETRY_TYPE_TRIANGLE
-                                                : s.ellipsoid                 ? RTC_GEOMETRY_TYPE_USER
-                                                                              : RTC_GEOMETRY_TYPE_SPHERE_POINT);
-        if (!g) throw failed("create a geometry");
-        bool filled = false;
-        if (s.kind == Shape::Triangles) {
-            size_t nv = s.P.size() / 3, nt = s.indices.size() / 3;
-            float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), nv);
-            unsigned *i = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), nt);
-            if (v && i) {
-                std::copy(s.P.begin(), s.P.end(), v);
-                std::copy(s.indices.begin(), s.indices.end(), i);
-                filled = true;
-            }
-        } else if (s.ellipsoid) {
-            rtcSetGeometryUserPrimitiveCount(g, 1);
-            rtcSetGeometryUserData(g, (void *)&s);
-            rtcSetGeometryBoundsFunction(g, ellipsoid_bounds, nullptr);
-            rtcSetGeometryIntersectFunction(g, ellipsoid_intersect);
-            rtcSetGeometryOccludedFunction(g, ellipsoid_occluded);
-            filled = true;
-        } else {
-            float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                        4 * sizeof(float), 1);
-            if (v) {
-                v[0] = (float)s.center.x, v[1] = (float)s.center.y, v[2] = (float)s.center.z, v[3] = (float)s.radius;
-                filled = true;
-            }
+        RTCScene target = scene_;
+        std::vector<unsigned> *shape_of = &shape_of_geom_;
+        if (s.object >= 0) {  // an object's shape: in the object's own scene, which its instances place
+            if (!objects_[s.object]) objects_[s.object] = new_scene(robust);
+            target = objects_[s.object], shape_of = &object_shapes_[s.object];
         }
-        if (!filled) {
-            rtcReleaseGeometry(g);
-            throw failed(s.kind == Shape::Triangles ? "allocate a mesh" : "allocate a sphere");
-        }
+        RTCGeometry g = geometry(s);
+        unsigned id = rtcAttachGeometry(target, g);
+        rtcReleaseGeometry(g);
+        if (id == RTC_INVALID_GEOMETRY_ID) throw failed("attach a geometry");
+        if (shape_of->size() <= id) shape_of->resize(id + 1);
+        (*shape_of)[id] = k;
+    }
+    for (RTCScene o : objects_)
+        if (o) rtcCommitScene(o);
+    for (unsigned k = 0; k < scene.instances.size(); ++k) {  // Embree instances, their transforms in float
+        const Instance &in = scene.instances[k];
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        if (!g) throw failed("create an instance");
+        rtcSetGeometryInstancedScene(g, objects_[in.object]);
+        rtcSetGeometryTimeStepCount(g, 1);
+        float xfm[12];  // 3x4, column major
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 3; ++r) xfm[3 * c + r] = (float)in.world_from_object.m[r][c];
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
         rtcCommitGeometry(g);
         unsigned id = rtcAttachGeometry(scene_, g);
         rtcReleaseGeometry(g);
+        if (id == RTC_INVALID_GEOMETRY_ID) throw failed("attach an instance");
         if (shape_of_geom_.size() <= id) shape_of_geom_.resize(id + 1);
-        shape_of_geom_[id] = k;
+        if (instance_of_geom_.size() <= id) instance_of_geom_.resize(id + 1);
+        shape_of_geom_[id] = ~0u, instance_of_geom_[id] = k;
     }
     // every triangle's unit geometric normal, once (24 bytes a triangle): a hit reads it instead of
     // recomputing it from the vertices (udm1-pt: 8-11 % of a Cornell box render)
@@ -226,6 +272,8 @@ void EmbreeScene::build(const Scene &scene, bool robust)
 void EmbreeScene::release()
 {
     if (scene_) rtcReleaseScene(scene_);
+    for (RTCScene &o : objects_)
+        if (o) rtcReleaseScene(o), o = nullptr;
     if (device_) rtcReleaseDevice(device_);
     scene_ = nullptr;
     device_ = nullptr;
@@ -258,26 +306,33 @@ bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit)
                          rh.ray.tnear, rh.ray.tfar, false});
     rtcIntersect1(scene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    *hit = hit_of(o, d, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v);
+    *hit = hit_of(o, d, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.hit.instID[0]);
     return true;
 }
 
-Hit EmbreeScene::hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v) const
+Hit EmbreeScene::hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v,
+                        unsigned inst_id) const
 {
     Hit hit;
     hit.t = tfar;
-    hit.shape = shape_of_geom_[geom_id];
     hit.prim = prim_id;
     hit.u = u;
     hit.v = v;
-    hit.p = o + d * hit.t;
+    hit.p = o + d * hit.t;  // (Embree's instances keep the ray's parameter t)
+    if (inst_id != RTC_INVALID_GEOMETRY_ID) {
+        hit.instance = &src_.instances[instance_of_geom_[inst_id]];
+        hit.shape = object_shapes_[hit.instance->object][geom_id];
+    } else {
+        hit.shape = shape_of_geom_[geom_id];
+    }
     const Shape &s = src_.shapes[hit.shape];
     if (s.kind == Shape::Sphere) {
-        hit.ng = sphere_normal(s, hit.p);
+        hit.ng = sphere_normal(s, shape_point(hit));
         if (s.reverse_orientation) hit.ng = -hit.ng;
     } else {
         hit.ng = normals_[first_normal_[hit.shape] + hit.prim];
     }
+    if (hit.instance) hit.ng = normalize(world_normal(hit, hit.ng));  // by the inverse transpose, as pbrt-v4's instances
     return hit;
 }
 

@@ -104,7 +104,7 @@ private:
 
 std::string read_all(const std::string &path)
 {
-    return read_regular_file(path, "mesh file");
+    return read_scene_file(path, "mesh file");  // (a .gz name inflated, as pbrt-v4 reads PLY files)
 }
 
 // A list's length as read (any number type): a whole number below 2^31, else the file is refused (a huge

@@ -112,12 +112,14 @@ def library_inputs(tmp_path_factory):
         "type.pbrt": SCENE_HEAD + 'Shape "trianglemesh" "poi\x1bnt3 P" [ 0 0 0 ]\n',
         "long.pbrt": SCENE_HEAD + "x" * 100000 + "\n",
         "nul.pbrt": SCENE_HEAD + "Frob\0nicate 1\n",
-        "gz.pbrt": SCENE_HEAD + 'Include "inc.pbrt.gz"\n',
+        "gz.pbrt": SCENE_HEAD + 'Include "inc.pbrt"\n',
+        "badgz.pbrt": SCENE_HEAD + 'Include "bad.pbrt.gz"\n',
         "spd.pbrt": SCENE_HEAD + 'AreaLightSource "diffuse" "spectrum L" "spd.txt"\n' + SCENE_TRI,
     }
     for name, text in scenes.items():
         (d / name).write_bytes(text.encode("latin-1"))
-    (d / "inc.pbrt.gz").write_bytes(gzip.compress((SCENE_HEAD + SCENE_TRI).encode()))
+    (d / "inc.pbrt").write_bytes(gzip.compress((SCENE_HEAD + SCENE_TRI).encode()))  # gzip bytes, not named .gz
+    (d / "bad.pbrt.gz").write_bytes(b"not \x1b[2J gzip\r\n")
     (d / "spd.txt").write_text("400 1\nabc\ndef\n")
     return d
 
@@ -160,13 +162,14 @@ LIBRARY_BAD = [
     ("pt", ["--scene", "{in}/plymesh.pbrt", "-o", "{out}.exr"], ["plymesh.pbrt:4", "noend.ply"], None),
     ("ao", ["--scene", "{in}/ctl.obj", "-o", "{out}.exr"], ["ctl.obj:2"], None),
     # scene text quoted in the message: CR, tab, escape sequences, DEL, C1 controls, NUL, a line of 100000
-    # bytes, a gzip file where text is expected, a spectrum file's bad word
+    # bytes, a gzip file where text is expected, a file named .gz that is not gzip, a spectrum file's bad word
     ("pt", ["--scene", "{in}/cr.pbrt", "-o", "{out}.exr"], ["cr.pbrt:4"], None),
     ("ao", ["--scene", "{in}/ctl.pbrt", "-o", "{out}.exr"], ["ctl.pbrt:4"], None),
     ("pt", ["--scene", "{in}/type.pbrt", "-o", "{out}.exr"], ["type.pbrt:4"], None),
     ("pt", ["--scene", "{in}/long.pbrt", "-o", "{out}.exr"], ["long.pbrt:4"], None),
     ("ao", ["--scene", "{in}/nul.pbrt", "-o", "{out}.exr"], ["nul.pbrt:4"], None),
-    ("pt", ["--scene", "{in}/gz.pbrt", "-o", "{out}.exr"], ["inc.pbrt.gz:1"], None),
+    ("pt", ["--scene", "{in}/gz.pbrt", "-o", "{out}.exr"], ["inc.pbrt:1"], None),
+    ("pt", ["--scene", "{in}/badgz.pbrt", "-o", "{out}.exr"], ["badgz.pbrt:4", "bad.pbrt.gz", "not valid gzip data"], None),
     ("pt", ["--scene", "{in}/spd.pbrt", "-o", "{out}.exr"], ["spd.pbrt:4", "spd.txt"], None),
 ]
 
