@@ -54,26 +54,27 @@ test)
     (cd tests/python && LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" \
         ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
-        "$PY" -m pytest -q -p no:cacheprovider $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba)'))
+        "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --dist loadfile \
+        $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study)'))
     udm1_log "the tools' tests again and the report tests, against the sanitized tools and benchmarks of build-asan"
     udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library; two pytest runs side by side)"
     asan_tools_pytest() { # asan_tools_pytest <log> <test files...>: one pytest run, its own temporary folder
         local log="$1"
         shift
-        (cd tests/python && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        (cd tests/python && UDM1_SANITIZED=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
             UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
             UDM1_SEQ_TOOL="$ROOT/build-asan/bin/udm1-seq" UDM1_NOISE_TOOL="$ROOT/build-asan/bin/udm1-noise" \
             UDM1_AO_TOOL="$ROOT/build-asan/bin/udm1-ao" UDM1_PT_TOOL="$ROOT/build-asan/bin/udm1-pt" \
             UDM1_BENCH_SAMPLERS="$ROOT/build-asan/bin/udm1_bench_samplers" \
             UDM1_BENCH_NOISE="$ROOT/build-asan/bin/udm1_bench_noise" UDM1_BUILD_DIR="$ROOT/build-asan" \
-            "$PY" -m pytest -q -p no:cacheprovider --basetemp="$(mktemp -d)" "$@") >"$log" 2>&1
+            "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --basetemp="$(mktemp -d)" "$@") >"$log" 2>&1
     }
     logs="$(mktemp -d)"
     asan_tools_pytest "$logs/reports" test_reports.py test_main_report.py &
     reports_pid=$!
     tools_status=0 reports_status=0
     asan_tools_pytest "$logs/tools" test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py \
-        test_hardening.py test_distributed.py || tools_status=$?
+        test_hardening.py || tools_status=$?
     wait "$reports_pid" || reports_status=$?
     cat "$logs/tools" "$logs/reports"
     rm -rf "$logs"

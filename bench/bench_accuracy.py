@@ -12,19 +12,24 @@ of coloured or spectral ones, all materials grey), each rendered by both, the di
 cause is removed.
 
 Writes DIR/accuracy.json, DIR/accuracy.md (the table), DIR/accuracy.png (the differences with their
-errors) and DIR/<scene>/compare.png (pbrt-v4, udm1-pt and their difference, side by side).
+errors) and DIR/<scene>/compare.png (pbrt-v4, udm1-pt and their difference, side by side). pbrt-v4's images
+are kept in DIR/pbrt-cache, named by a hash of the scene file's text, the arguments and the pbrt-v4 binary,
+and reused (--no-cache renders them again); scenes with media render with one pbrt-v4 thread (the snapshot
+crashes at start-up on them with more).
 
     python bench/bench_accuracy.py [--tool build/bin/udm1-pt] [--pbrt PATH] [--seeds 4] [--scale 1]
-                                   [--only crown,lights] [--out build/accuracy]
+                                   [--only crown,lights] [--out build/accuracy] [--shared ../shared/scenes]
 """
 
 from __future__ import annotations
 
 import argparse
+import hashlib
 import json
 import os
 import platform
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -49,6 +54,7 @@ class Variant:
     subs: list = field(default_factory=list)
     pbrt_args: list = field(default_factory=list)
     grey: bool = False  # every material a grey diffuse one
+    grey_media: bool = False  # every medium's rgb coefficients their mean (no colour: RGB and spectral agree)
 
 
 @dataclass
@@ -68,6 +74,13 @@ NO_FILTER = ["--disable-texture-filtering"]
 def cases() -> list[Case]:
     out = []
     if SHARED.is_dir():
+        crown_ladder = [Variant("pbrt-v4 textures point-sampled", pbrt_args=NO_FILTER),
+                        Variant("+ CIE 1931 sensor", [SENSOR], NO_FILTER),
+                        Variant("+ white lights", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')], NO_FILTER),
+                        Variant("+ grey media", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')], NO_FILTER,
+                                grey_media=True),
+                        Variant("+ every material grey", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')],
+                                NO_FILTER, grey=True, grey_media=True)]
         out += [
             Case("cornell-box", SHARED / "cornell-box" / "cornell-box.pbrt", (144, 144), 1024),
             Case("veach-mis", SHARED / "veach-mis" / "veach-mis.pbrt", (144, 108), 1024),
@@ -81,6 +94,16 @@ def cases() -> list[Case]:
                            Variant("+ white lights", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')], NO_FILTER),
                            Variant("+ every material grey", [SENSOR, (r'"blackbody L" \[ 5500 \]', '"rgb L" [ 1 1 1 ]')],
                                    NO_FILTER, grey=True)]),
+            Case("crown-volpath", SHARED / "crown" / "crown-volpath.pbrt", (100, 140), 256,
+                 cause="the causes of the shared copy's difference (crown, above: pbrt-v4's filtered textures, its "
+                       "camera sensor, spectral products with gold's reflectance, here over maxdepth 100, not the "
+                       "copy's 5: gold multiplies with itself over many more bounces, spectrally in pbrt-v4 and as RGB "
+                       "in udm1-pt) and spectral absorption: pbrt-v4 attenuates each "
+                       "wavelength by exp(-sigma(lambda) d) of the gems' media upsampled from RGB, udm1-pt each "
+                       "channel by exp(-sigma_rgb d), and as distributed the media are outside the gems "
+                       "(MediumInterface \"\" \"ruby-medium\", the gems' normals facing out), so light that "
+                       "leaves a gem crosses the scene in them; each step below removes one cause",
+                 variants=crown_ladder),
         ]
     else:
         log(f"skipped the shared scenes: {SHARED} is absent")
@@ -99,6 +122,19 @@ def cases() -> list[Case]:
              variants=[Variant("white lights", [(r'"spectrum L" "spds/sodium-ish.spd"', '"rgb L" [ 1 1 1 ]'),
                                                 (r'"blackbody L" \[ 9000 \]', '"rgb L" [ 1 1 1 ]')])]),
         Case("transforms", TEST_SCENES / "transforms.pbrt", (160, 120), 1024),
+        Case("media", TEST_SCENES / "media.pbrt", (128, 128), 256),
+        Case("ruby", TEST_SCENES / "ruby.pbrt", (160, 120), 256,
+             cause="spectral absorption: pbrt-v4 attenuates each wavelength by exp(-sigma(lambda) d) of the media "
+                   "upsampled from RGB, udm1-pt each channel by exp(-sigma_rgb d) (not the same RGB where "
+                   "sigma varies across a channel's wavelengths); with grey media the two agree",
+             variants=[Variant("grey media", grey_media=True)]),
+        Case("fog", TEST_SCENES / "fog.pbrt", (80, 60), 256),
+        Case("format", TEST_SCENES / "format.pbrt", (160, 120), 1024),
+        Case("clamp", TEST_SCENES / "clamp.pbrt", (160, 120), 1024,
+             cause="the film's maxcomponentvalue acts on each sample's sensor values: pbrt-v4's are a spectral "
+                   "sample's (four wavelengths, whose XYZ vary from sample to sample), udm1-pt's an RGB sample's, so the "
+                   "clamp takes more from pbrt-v4's bright samples; without the clamp the two agree",
+             variants=[Variant("without maxcomponentvalue", [(r' "float maxcomponentvalue" \[ 1 \]', "")])]),
     ]
     return out
 
@@ -123,6 +159,18 @@ def grey_materials(text: str) -> str:
     return "\n".join(out)
 
 
+def grey_media(text: str) -> str:
+    """Every medium's "rgb sigma_a" and "rgb sigma_s" the mean of its three values."""
+    def grey(m: re.Match) -> str:
+        v = [float(x) for x in m.group(2).split()]
+        g = sum(v) / len(v)
+        return f'{m.group(1)}[ {g:.6g} {g:.6g} {g:.6g} ]'
+    out, n = re.subn(r'("rgb sigma_[as]"\s*)\[\s*([-+0-9.eE\s]+?)\s*\]', grey, text)
+    if n == 0:
+        raise RuntimeError("grey media: no rgb sigma_a or sigma_s in the scene")
+    return out
+
+
 def prepare(case: Case, variant: Variant | None, work: Path) -> Path:
     """The scene's file as both renderers read it: a box pixel filter, the case's film size, the variant's
     changes; in a folder of its own whose other entries link to the scene's folder (meshes, textures)."""
@@ -144,6 +192,8 @@ def prepare(case: Case, variant: Variant | None, work: Path) -> Path:
                 raise RuntimeError(f"{case.name}, variant '{variant.name}': '{pattern}' matches nothing")
         if variant.grey:
             text = grey_materials(text)
+        if variant.grey_media:
+            text = grey_media(text)
     name = case.name if variant is None else f"{case.name}-{re.sub(r'[^a-z0-9]+', '-', variant.name.lower()).strip('-')}"
     path = folder / f"{name}.pbrt"
     path.write_text(text)
@@ -164,20 +214,32 @@ def render_both(scene: Path, case: Case, variant: Variant | None, args, seeds: i
     images = {}
     extra = variant.pbrt_args if variant else []
     spp = max(1, int(round(case.spp * args.scale)))
+    # (the pbrt-v4 snapshot crashes at start-up on scenes with media with more than one thread)
+    pbrt_threads = 1 if "MakeNamedMedium" in scene.read_text() else args.threads
     for seed in range(1, seeds + 1):
         for who in ("pbrt", "udm1"):
             out = scene.with_name(f"{scene.stem}-{who}-{seed}.exr")
+            cached = None
             if who == "pbrt":
-                cmd = [args.pbrt, "--spp", str(spp), "--seed", str(seed), "--nthreads", str(args.threads), "--quiet",
+                cmd = [args.pbrt, "--spp", str(spp), "--seed", str(seed), "--nthreads", str(pbrt_threads), "--quiet",
                        "--outfile", str(out), *extra, str(scene)]
+                cached = pbrt_cache(args, scene, [str(spp), str(seed), *extra])
             else:
                 cmd = [args.tool, "--scene", str(scene), "--spp", str(spp), "--seed", str(seed), "--threads",
                        str(args.threads), "-o", str(out)]
             t0 = time.perf_counter()
-            r = subprocess.run(cmd, capture_output=True, text=True, cwd=scene.parent)
-            seconds[who] += time.perf_counter() - t0
-            if r.returncode != 0:
-                raise RuntimeError(f"{' '.join(cmd)}: {r.stderr.strip()[-400:]}")
+            if cached and cached.exists():
+                shutil.copyfile(cached, out)
+                seconds[who] += json.loads(cached.with_suffix(".json").read_text())["seconds"]
+            else:
+                r = subprocess.run(cmd, capture_output=True, text=True, cwd=scene.parent)
+                if r.returncode != 0:
+                    raise RuntimeError(f"{' '.join(cmd)}: {r.stderr.strip()[-400:]}")
+                seconds[who] += time.perf_counter() - t0
+                if cached:
+                    shutil.copyfile(out, cached)
+                    cached.with_suffix(".json").write_text(json.dumps({"seconds": time.perf_counter() - t0,
+                                                                        "command": cmd}))
             img = read_exr(out)
             means[who].append(img.reshape(-1, 3).mean(axis=0))
             images[who] = img
@@ -194,6 +256,19 @@ def render_both(scene: Path, case: Case, variant: Variant | None, args, seeds: i
     row["difference"] = (u / p - 1).tolist()
     row["difference_stderr"] = ((u / p) * np.sqrt((sp / p) ** 2 + (su / u) ** 2)).tolist()
     return row, images
+
+
+def pbrt_cache(args, scene: Path, key: list) -> Path | None:
+    """Where pbrt-v4's render of this scene text with these arguments (spp, seed, options) by this binary is
+    kept, or None with --no-cache."""
+    if args.no_cache:
+        return None
+    st = Path(args.pbrt).stat()
+    h = hashlib.sha256("\n".join([scene.read_text(), *key, str(Path(args.pbrt).resolve()), str(st.st_size),
+                                   str(st.st_mtime_ns)]).encode()).hexdigest()[:24]
+    folder = Path(args.out) / "pbrt-cache"
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder / f"{h}.exr"
 
 
 def compare_png(images: dict, path: Path) -> None:
@@ -276,6 +351,7 @@ def find_pbrt(given: str) -> str | None:
 
 
 def main() -> int:
+    global SHARED
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--tool", default=str(ROOT / "build" / "bin" / "udm1-pt"))
     ap.add_argument("--pbrt", default="", help="a pbrt-v4 binary (default: built by scripts/anchors.sh pbrt-v4)")
@@ -284,7 +360,10 @@ def main() -> int:
     ap.add_argument("--threads", type=int, default=os.cpu_count() or 2)
     ap.add_argument("--only", default="", help="comma-separated scene names")
     ap.add_argument("--out", default=str(ROOT / "build" / "accuracy"))
+    ap.add_argument("--shared", default=str(SHARED), help="the shared scenes (cornell-box, veach-mis, crown)")
+    ap.add_argument("--no-cache", action="store_true", help="render pbrt-v4's images again (see the cache above)")
     args = ap.parse_args()
+    SHARED = Path(args.shared).resolve()
     args.tool = str(Path(args.tool).resolve())
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)

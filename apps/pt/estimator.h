@@ -10,6 +10,18 @@
 // included). The loop answers the ShadowTest (is its segment free?) and calls arrive() for a free one
 // before it traces the next ray: the light sample's MIS weight is computed only for a sample that
 // arrives, as the scalar loop always did.
+//
+// Scenes with participating media (Integrator "volpath") or interface surfaces take the volumetric
+// estimator (volumetric() true), pbrt-v4's VolPathIntegrator in RGB: its loop
+// calls start() once per path, then step() for each ray it traces (with the hit, or nullptr for a miss),
+// and answers a ShadowTest whose `walk` is set segment by segment: it finds the first surface on the
+// segment (closest hit) and calls cross(), until cross() says the sample arrived (then arrive()) or is
+// blocked. In a homogeneous medium a path samples the distance to its next interaction by one channel, the
+// path's hero channel, chosen once per path; every channel's estimate is weighted by the average of the
+// channels' densities (one-sample MIS across channels, the RGB counterpart of pbrt-v4's hero wavelength).
+// Light sampling and BSDF or phase sampling are combined by the balance heuristic through pbrt-v4's
+// rescaled path probabilities r_u and r_l; shadow rays take the exact transmittance exp(-sigma_t d), so
+// do paths through media that only absorb, and a medium's emission along a segment is integrated exactly.
 #pragma once
 
 #include "integrator.h"
@@ -28,6 +40,11 @@ struct PathState {
     double eta_scale = 1;                // the product of eta^2 over transmissions: roulette sees beta without it (pbrt)
     bool specular_bounce = false;
     int depth = 0;                       // the vertex the next ray finds
+    // the volumetric estimator's own (pbrt-v4's VolPathIntegrator state, in RGB)
+    Vec3 r_u{1, 1, 1}, r_l{1, 1, 1};     // rescaled path probabilities: of the path as sampled, of light sampling
+    int medium = -1;                     // the medium the next ray starts in (Scene::media), or -1
+    int hero = 0;                        // the channel that samples distances in media
+    int crossings = 0;                   // interface surfaces the ray from the last vertex has passed
 };
 
 // A light sample's shadow ray and what it adds to L if the segment is free.
@@ -43,16 +60,31 @@ struct ShadowTest {
     bool weighted = false;  // MIS against the BSDF's density (else weight 1)
     Bsdf bsdf;              // the vertex's BSDF and directions, for that density
     Vec3 wo_l, wi_l;
+    // the volumetric estimator's: the segment is walked through interface surfaces (Estimator::cross)
+    bool walk = false;
+    int medium = -1;        // the medium of the piece from o
+    int crossings = 0;
+    Vec3 end;               // the segment's far end
+    Vec3 T{1, 1, 1};        // the transmittance of the pieces walked
+    // its part in scattering media, where paths sample distances (their density has it; a path through a
+    // medium that only absorbs takes its transmittance exactly, as shadow rays take it everywhere). Both
+    // strategies' densities in the balance heuristic over channels and strategies carry it, as pbrt-v4's
+    // ratio-tracked shadow rays carry their transmittance: the light sample's weight is
+    // T_u[hero] / average over channels j of r_p[j] T_u[j] (light pdf + BSDF or phase pdf).
+    Vec3 T_u{1, 1, 1};
+    Vec3 r_p;               // the path's r_u at the vertex
+    double scatter_pdf = -1;  // the phase function's density of the direction (-1: the BSDF's, from bsdf)
 };
+
+// What a shadow ray's piece found (Estimator::cross).
+enum class Crossing { Blocked, Arrived, Onward };
 
 class Estimator {
 public:
     Estimator(const udm1scene::Scene &scene, const Lights &lights, const Materials &materials, int max_depth,
-              Strategy strategy, bool roulette, int rr_depth)
-        : scene_(scene), lights_(lights), materials_(materials), default_bsdf_(default_material()),
-          max_depth_(max_depth), strategy_(strategy), roulette_(roulette), rr_depth_(rr_depth)
-    {
-    }
+              Strategy strategy, bool roulette, int rr_depth);
+    // Whether paths take the volumetric estimator (media or interface surfaces; above).
+    bool volumetric() const { return volumetric_; }
     // The ray p.o + t p.d left the scene: the environment's light, if any. The path ends.
     void miss(PathState &p) const;
     // The ray hit h. Fills *shadow (inactive if there is no light sample to test). Returns whether the path
@@ -61,7 +93,27 @@ public:
     // The shadow test's segment is free: its light sample's contribution into p.L.
     void arrive(PathState &p, const ShadowTest &s) const;
 
+    // The volumetric estimator. A path begins: its medium (the camera's) and hero
+    // channel. Then each ray p.o + t p.d it traces, with h its first hit (nullptr: none): the medium up to
+    // it (emission; absorption or scattering, a vertex in the medium), else h (an interface surface is
+    // passed: the ray goes on from its far side) or the environment. Returns whether the path goes on.
+    void start(PathState &p) const;
+    bool step(PathState &p, const udm1scene::Hit *h, ShadowTest *shadow) const;
+    // A walking shadow test's piece from s.o along s.d, h its first surface before s.len (nullptr: none; a
+    // sphere light's own shape counts as none): its transmittance taken; blocked by a surface that is not
+    // an interface; onward (s.o, s.len, s.medium the next piece's) past an interface.
+    Crossing cross(ShadowTest &s, const udm1scene::Hit *h) const;
+
 private:
+    // the volumetric estimator's parts
+    bool medium_step(PathState &p, double t_end, ShadowTest *shadow, bool *scattered) const;
+    bool surface_step(PathState &p, const udm1scene::Hit &h, ShadowTest *shadow) const;
+    void volumetric_miss(PathState &p) const;
+    int medium_after(int medium, const udm1scene::Hit &h, Vec3 w) const;  // of a ray leaving h along w
+    // light sampling's shadow test from x towards ls (the rest of it the caller's)
+    void walking_shadow(const PathState &p, const LightSample &ls, const udm1scene::Segment &sg, int medium,
+                        Vec3 f, ShadowTest *s) const;
+
     const udm1scene::Scene &scene_;
     const Lights &lights_;
     const Materials &materials_;
@@ -70,6 +122,9 @@ private:
     Strategy strategy_;
     bool roulette_;
     int rr_depth_;
+    bool volumetric_ = false, media_ = false;  // the volumetric estimator; media rendered (Integrator "volpath")
+    std::vector<char> interface_;              // per shape: the interface material
+    double scene_radius_ = 0;                  // of the scene's bounding sphere
 };
 
 }  // namespace udm1pt

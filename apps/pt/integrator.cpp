@@ -8,6 +8,8 @@
 #include "wavefront_diffuse.h"
 #include "wavefront_general.h"
 
+#include "spectrum.h"
+
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
 
@@ -25,25 +27,48 @@ using udm1scene::Hit;
 
 namespace {
 
+// A walking shadow test (the volumetric estimator's), piece by piece: whether its sample arrives.
+bool walk(const Estimator &est, const udm1scene::EmbreeScene &rt, ShadowTest &s, uint64_t *rays)
+{
+    for (;;) {
+        ++*rays;
+        Hit sh;
+        bool hit = rt.intersect(s.o, s.d, 0.0, s.len, &sh) && !(s.sphere && (int)sh.shape == s.shape);
+        Crossing c = est.cross(s, hit ? &sh : nullptr);
+        if (c != Crossing::Onward) return c == Crossing::Arrived;
+    }
+}
+
 // One path, one Embree query at a time, through the estimator of estimator.h.
 Vec3 trace(const Estimator &est, const udm1scene::EmbreeScene &rt, PathState &p, uint64_t *rays)
 {
     ShadowTest shadow;
+    const bool volumetric = est.volumetric();
+    if (volumetric) est.start(p);
     for (;;) {
         Hit h;
         ++*rays;
-        if (!rt.intersect(p.o, p.d, 0.0, 1e300, &h)) {
-            est.miss(p);
-            break;
+        bool hit = rt.intersect(p.o, p.d, 0.0, 1e300, &h);
+        bool more;
+        if (volumetric) {
+            more = est.step(p, hit ? &h : nullptr, &shadow);
+        } else {
+            if (!hit) {
+                est.miss(p);
+                break;
+            }
+            more = est.scatter(p, h, &shadow);
         }
-        bool more = est.scatter(p, h, &shadow);
         if (shadow.active) {
-            ++*rays;
             bool free;
-            if (shadow.sphere) {
+            if (shadow.walk) {
+                free = walk(est, rt, shadow, rays);
+            } else if (shadow.sphere) {
+                ++*rays;
                 Hit sh;
                 free = !rt.intersect(shadow.o, shadow.d, 0.0, shadow.len, &sh) || (int)sh.shape == shadow.shape;
             } else {
+                ++*rays;
                 free = !rt.occluded(shadow.o, shadow.d, 0.0, shadow.len);
             }
             if (free) est.arrive(p, shadow);
@@ -54,6 +79,17 @@ Vec3 trace(const Estimator &est, const udm1scene::EmbreeScene &rt, PathState &p,
 }
 
 }  // namespace
+
+FilmResponse::FilmResponse(const udm1scene::Scene &scene)
+    : scale(scene.film_scale), max_component(scene.max_component), clamp(std::isfinite(scene.max_component))
+{
+    for (int c = 0; c < 3; ++c) {  // (column c of XYZ from RGB: the XYZ of the primary c)
+        Vec3 e;
+        e[c] = 1;
+        Vec3 col = udm1scene::rgb_to_xyz(e);
+        for (int r = 0; r < 3; ++r) xyz[r][c] = col[r];
+    }
+}
 
 Sequence make_sequence(const Options &opt, uint32_t dims)
 {
@@ -81,10 +117,16 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     if (max_depth < 0 || max_depth > 1000) throw std::runtime_error("maxdepth must be in 0..1000");
     Lights lights(scene, opt.near_light);
 
+    // The film, and the image: the whole film or, cropped, a window of it. The loops render the window's pixels
+    // in the film's coordinates (their samples those of the whole film's render), and the image is re-based.
     udm1scene::Scene view = scene;
     if (opt.width > 0) view.width = opt.width, view.height = opt.height;
+    const int image_width = view.width, image_height = view.height;
+    int ox = 0, oy = 0;  // the image's corner on the film
+    if (opt.film_width > 0) view.width = opt.film_width, view.height = opt.film_height, ox = opt.film_x0, oy = opt.film_y0;
     int bounds[4] = {opt.bounds[0], opt.bounds[1], opt.bounds[2], opt.bounds[3]};
-    udm1app::check_pixel_bounds(bounds, view.width, view.height);  // before anything is allocated
+    udm1app::check_pixel_bounds(bounds, image_width, image_height);  // before anything is allocated
+    bounds[0] += ox, bounds[2] += ox, bounds[1] += oy, bounds[3] += oy;
     const udm1app::PixelOrder order = udm1app::make_pixel_order(opt.sampler, opt.randomize, opt.spp, opt.seed,
                                                                 view.width, view.height);
     Sequence seq_owner = make_sequence(opt, path_dims(max_depth));  // freed on every path
@@ -94,6 +136,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
               SAMPLE_SCALE);
     acc.spp = opt.spp, acc.first = opt.first, acc.count = count;
     const udm1scene::CameraRays camera(view);
+    const FilmResponse film(scene);
     const Estimator estimator(scene, lights, materials, max_depth, opt.strategy, opt.roulette, opt.rr_depth);
     std::unique_ptr<DiffuseWavefront> diffuse;
     std::unique_ptr<GeneralWavefront> general;
@@ -110,10 +153,10 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
             LoopCounts n;
             if (diffuse)
                 diffuse->render(seq, order, camera, r.cols().begin(), r.cols().end(), r.rows().begin(), r.rows().end(), opt.first,
-                                count, scene.film_scale, &acc, &n);
+                                count, film, &acc, &n);
             else
                 general->render(seq, order, max_depth, camera, r.cols().begin(), r.cols().end(), r.rows().begin(),
-                                r.rows().end(), opt.first, count, scene.film_scale, &acc, &n);
+                                r.rows().end(), opt.first, count, film, &acc, &n);
             rays += n.rays, nonfinite += n.nonfinite, clamped += n.clamped;
             return;
         }
@@ -131,7 +174,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                     PathState path;
                     path.pixel = &pixel, path.index = i;
                     camera.ray(x + uv[0], y + uv[1], uv[2], uv[3], &path.o, &path.d);
-                    Vec3 L = trace(estimator, rt, path, &local_rays) * scene.film_scale;
+                    Vec3 L = film(trace(estimator, rt, path, &local_rays));
                     for (int k = 0; k < 3; ++k) {
                         double v = L[k];
                         if (!std::isfinite(v)) {
@@ -146,6 +189,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
         rays += local_rays, nonfinite += local_nonfinite, clamped += local_clamped;
     });
     acc.nonfinite = nonfinite, acc.clamped = clamped;
+    acc.full_width = image_width, acc.full_height = image_height, acc.x0 -= ox, acc.y0 -= oy;  // (the image's own)
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     stats->paths = (uint64_t)acc.width * acc.height * count;
     stats->rays = rays;

@@ -13,6 +13,12 @@
 //                        next-event estimation (0 picks the light by power and, rescaled, gives with 1 the
 //                        point on it), 2, 3 the BSDF direction
 //   child(that, 0)       2 values: the BSDF lobe or layer, Russian roulette
+// and, where a path meets participating media (estimator.h, the volumetric estimator):
+//   child(root, 0)       1 value: the path's hero channel (media sample distances by its coefficients)
+//   child(next(root, 1 + d), 1 + k)   2 values: the distance to an interaction and its kind (absorption or
+//                        scattering) along the k-th piece (k = 0, 1, ... : the interface surfaces passed
+//                        before it) of the ray that finds vertex d; a vertex in a medium takes the vertex's
+//                        four values as a surface does (light, then the phase function's direction)
 // The chain of next() is one jointly low-discrepancy pattern: the sequence's dimensions 0 .. 4 + 4 d + 3
 // at the sample's index, as a cursor would hand them out (a Kronecker sequence's point of the whole
 // path); the lobe and roulette values are decorrelated children, which draw the sequence's first two
@@ -31,6 +37,7 @@
 
 #include <udm1/udm1.h>
 
+#include <algorithm>
 #include <memory>
 #include <string>
 #include <vector>
@@ -66,6 +73,14 @@ inline void vertex_values(const udm1_stream *pixel, uint64_t index, int depth, d
     u[0] = a[0], u[1] = a[1], u[2] = b[0], u[3] = b[1], u[4] = a[2], u[5] = a[3];
 }
 
+// The two values of the k-th piece of the ray that finds vertex `depth` in a medium (layout above): the
+// distance, the kind of interaction.
+inline void segment_values(const udm1_stream *pixel, uint64_t index, int depth, int piece, double u[2])
+{
+    udm1_domain vertex = udm1_domain_next(udm1_domain_root(pixel, index), 1 + (uint32_t)depth);
+    udm1_domain_draw_f64(udm1_domain_child(vertex, 1 + (uint32_t)piece), 2, u);
+}
+
 // How light is found: both (MIS), light sampling only, BSDF sampling only (which cannot find point, spot
 // and distant lights: with Bsdf they are left out).
 enum class Strategy { Mis, Nee, Bsdf };
@@ -85,13 +100,34 @@ struct Options {
     int bounds[4] = {0, 0, 0, 0};  // the pixels rendered: [x0, x1) x [y0, y1); all zero: every pixel
     uint64_t seed = 1;
     uint32_t randomize = UDM1_RANDOMIZE_DEFAULT;
-    int width = 0, height = 0;  // 0: the scene's film
+    int width = 0, height = 0;  // the image (0: the scene's film)
+    // A crop of a film: the film's size and the image's place in it (0: the image is the whole film)
+    int film_width = 0, film_height = 0, film_x0 = 0, film_y0 = 0;
     int max_depth = -1;         // -1: the scene's Integrator maxdepth (pbrt's default 5)
     Strategy strategy = Strategy::Mis;
     bool roulette = true;
     int rr_depth = 3;           // roulette from this vertex on (0 = the first hit; pbrt-v4 starts at 1)
     double near_light = Lights::NEAR_DEFAULT;  // see Lights; `bench/bench_pt.py --estimators` measures both
     Loop loop = Loop::Auto;
+};
+
+// What the film makes of a path's radiance L before it is summed, as pbrt-v4's RGB film adds a sample: the
+// imaging ratio (Scene::film_scale), then Film "maxcomponentvalue" m: the sample scaled so that the largest
+// of its sensor values - CIE X, Y and Z for the default cie1931 sensor - is at most m.
+struct FilmResponse {
+    explicit FilmResponse(const udm1scene::Scene &scene);
+    Vec3 operator()(Vec3 L) const
+    {
+        L = L * scale;
+        if (clamp) {
+            double m = std::max({udm1scene::dot(xyz[0], L), udm1scene::dot(xyz[1], L), udm1scene::dot(xyz[2], L)});
+            if (m > max_component) L = L * (max_component / m);
+        }
+        return L;
+    }
+    double scale, max_component;
+    bool clamp;
+    Vec3 xyz[3];  // the rows of XYZ from linear sRGB
 };
 
 // Per-pixel sums of the samples in fixed point (2^-24 units, int64, channels R, G, B), so that sums

@@ -615,6 +615,22 @@ double Lights::environment_pdf(Vec3 d) const
     return pdf;
 }
 
+Vec3 Lights::environment_maps(Vec3 d) const
+{
+    Vec3 L;
+    for (int i : environments_)
+        if (lights_[i].map >= 0) L = L + environment_of(lights_[i], d);
+    return L;
+}
+
+double Lights::environment_map_pdf(Vec3 d) const
+{
+    double pdf = 0;
+    for (int i : environments_)
+        if (lights_[i].map >= 0) pdf += (by_importance_ ? infinite_probability() : prob_[i]) * environment_pdf_of(lights_[i], d);
+    return pdf;
+}
+
 // The lights that are not shapes: point and spot lights (a delta in position), distant lights (a delta
 // in direction), environments (uniform: by uniform directions; a map: by its pixels' luminance).
 bool Lights::sample_source(const Light &l, double prob, Vec3 p, double u1, double u2, LightSample *s) const
@@ -637,7 +653,7 @@ bool Lights::sample_source(const Light &l, double prob, Vec3 p, double u1, doubl
     if (l.map < 0) {  // a uniform environment: uniform directions
         double z = 1 - 2 * u1, r = std::sqrt(std::max(0.0, 1 - z * z)), sn, cs;
         udm1scene::sincos_2pi(u2, &sn, &cs);
-        s->wi = Vec3(r * cs, r * sn, z), s->L = l.L, s->pdf = prob / (4 * PI);
+        s->wi = Vec3(r * cs, r * sn, z), s->L = l.L, s->pdf = prob / (4 * PI), s->uniform = true;
         return true;
     }
     const EnvironmentMap &m = maps_[l.map];  // a row by u1, a pixel of it by u2, the point in it by both rescaled
@@ -755,7 +771,7 @@ bool Lights::sample(Vec3 p, Vec3 n, double u1, double u2, LightSample *s) const
     if (lights_.empty() || !choose(u1, p, n, &i, &u1, &prob, &s->importance_sum)) return false;
     const Light &l = lights_[i];
     s->shape = l.shape, s->sphere = l.kind == Light::Sphere;
-    s->delta = s->infinite = false;
+    s->delta = s->infinite = s->uniform = false;
     if (l.kind == Light::Disk || l.kind == Light::Cylinder || l.kind == Light::Patch) {
         Vec3 q, nq;
         double pdf;

@@ -44,6 +44,7 @@ struct LightSample {
     bool sphere = false;
     bool delta = false;     // point, spot, distant: only light sampling finds it (no MIS)
     bool infinite = false;  // distant or environment: the shadow ray goes to infinity
+    bool uniform = false;   // a uniform environment
 };
 
 // An environment map as pbrt-v4's ImageInfiniteLight reads it: a square image in pbrt-v4's equal-area
@@ -150,6 +151,10 @@ public:
     // (solid angle, including the choice) with which sample() would have chosen that direction.
     Vec3 environment(Vec3 d) const;
     double environment_pdf(Vec3 d) const;
+    // The same radiance and density without the uniform environments (which pbrt-v4's volumetric path tracer
+    // does not light-sample: estimator.h).
+    Vec3 environment_maps(Vec3 d) const;
+    double environment_map_pdf(Vec3 d) const;
 
     // The density (solid angle, including the choice) with which sample() at (p, n) would give the
     // direction from p to the light point h. importance_sum: a sample's at (p, n) if there was one (the

@@ -13,6 +13,7 @@
 #include "udm1app/renderer.h"
 #include "embree_scene.h"
 #include "integrator.h"
+#include "media.h"
 #include "scene_export.h"
 #include "scene.h"
 
@@ -110,10 +111,6 @@ public:
             scene_ = udm1scene::load_scene(s.scene);
             materials_ = std::make_unique<udm1pt::Materials>(scene_);  // bad materials and textures fail here
             udm1pt::Lights lights(scene_);                              // and zero-area lights
-            if (!scene_.media_where.empty() && scene_.integrator == "volpath")
-                throw Error(scene_.media_where +
-                                ": participating media need Integrator \"volpath\", which udm1-pt does not model",
-                            1);
             if (s.command == "render" && !s.spp_given && !scene_.sampler_where.empty()) {  // the scene's sample count
                 s.spp = (uint32_t)scene_.pixel_samples;
                 udm1app::check_sample_range(s);  // before the notes: a bad range is the one line
@@ -121,9 +118,10 @@ public:
                                        " samples per pixel, the Sampler's pixelsamples (--spp overrides); sampler " +
                                        s.sampler + " in place of \"" + scene_.sampler + "\" (--sampler chooses)");
             }
-            if (!scene_.media_where.empty())  // pbrt-v4's PathIntegrator ignores media too
+            if (!scene_.media_where.empty() && scene_.integrator != "volpath")  // pbrt-v4's PathIntegrator ignores media too
                 scene_.notes.push_back(scene_.media_where + ": media are left out, as Integrator \"path\" leaves them out");
-            if (lights.empty()) scene_.notes.push_back(s.scene + " has no lights: the image is black");
+            if (lights.empty() && !udm1pt::emissive_media(scene_))
+                scene_.notes.push_back(s.scene + " has no lights: the image is black");
             if (s.command != "export")
                 for (const std::string &n : scene_.notes) std::fprintf(stderr, "udm1-pt: note: %s\n", n.c_str());
         } catch (const udm1scene::SceneError &e) {
@@ -131,6 +129,21 @@ public:
         }
         if (!s.size_given && scene_.source.rfind("builtin:", 0) == 0) s.width = s.height = 256;
         if (s.width == 0) s.width = scene_.width, s.height = scene_.height;
+        if (scene_.has_crop || scene_.has_pixel_bounds) {  // the image is the Film's window of the film (--size's)
+            int w[4];
+            try {
+                scene_.film_window(s.width, s.height, w);
+            } catch (const udm1scene::SceneError &e) {
+                throw Error(e.what(), 1);
+            }
+            pt_.film_width = s.width, pt_.film_height = s.height, pt_.film_x0 = w[0], pt_.film_y0 = w[1];
+            if (s.command != "export")
+                std::fprintf(stderr, "udm1-pt: note: %s: the image is the Film's %s, pixels [%d, %d) x [%d, %d) of the %dx%d film, "
+                                     "as pbrt-v4 renders it\n",
+                             scene_.source.c_str(), scene_.has_crop ? "cropwindow" : "pixelbounds", w[0], w[2], w[1], w[3],
+                             s.width, s.height);
+            s.width = w[2] - w[0], s.height = w[3] - w[1];
+        }
         load_seconds_ = std::chrono::duration<double>(Clock::now() - start).count();
     }
 
@@ -146,6 +159,9 @@ public:
                       p.roulette ? p.rr_depth : -1, p.near_light,
                       p.loop == udm1pt::Loop::Auto ? "auto" : p.loop == udm1pt::Loop::Scalar ? "scalar" : "wavefront",
                       udm1pt::LAYOUT_VERSION);
+        if (p.film_width > 0)  // a crop: which window of which film
+            return buf + (" film " + std::to_string(p.film_width) + "x" + std::to_string(p.film_height) + " at " +
+                          std::to_string(p.film_x0) + "," + std::to_string(p.film_y0));
         return buf;
     }
 
@@ -159,6 +175,7 @@ public:
         udm1pt::Accumulator acc;
         try {
             acc = udm1pt::render(scene_, *rt_, *materials_, options(s), &stats_);
+            rt_->check("rendering");
         } catch (const udm1scene::SceneError &e) {
             throw Error(e.what(), 1);
         } catch (const std::runtime_error &e) {
@@ -220,6 +237,9 @@ public:
     int run_command(const udm1app::RenderSettings &s) override  // export
     {
         if (s.positional.size() != 1) throw Error("export needs one folder");
+        if (pt_.film_width > 0) throw Error(scene_.source + ": export writes whole films, not a Film's cropwindow or pixelbounds", 1);
+        if (udm1pt::uses_media(scene_))  // (scene.json has surfaces only: the other renderer would leave the media out)
+            throw Error(scene_.media_where + ": export writes no participating media (Integrator \"volpath\" renders them)", 1);
         udm1pt::export_scene(scene_, s.width, s.height, max_depth(), s.positional[0]);
         std::printf("wrote %s/scene.json\n", s.positional[0].c_str());
         return 0;

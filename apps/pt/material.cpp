@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "spectrum.h"
 #include "surface.h"
@@ -54,12 +55,24 @@ Vec3 albedo_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3 f
     return v;
 }
 
+// Every parameter a material of the subset takes (an Attribute "material" default that a material does not
+// take is ignored if another takes it, as pbrt-v4 ignores it; else refused: pbrt-v4 might read it there).
+const std::set<std::string> &material_parameters()
+{
+    static const std::set<std::string> all = {"reflectance", "displacement", "roughness", "uroughness", "vroughness",
+                                              "remaproughness", "thickness", "eta", "maxdepth", "nsamples", "albedo",
+                                              "g", "k", "materials", "amount"};
+    return all;
+}
+
 void only(const udm1scene::ParamSet &ps, std::initializer_list<const char *> allowed, const std::string &what)
 {
     for (const udm1scene::Param &p : ps.params) {
         bool ok = p.name == "type";  // MakeNamedMaterial's own parameter
         for (const char *a : allowed) ok |= p.name == a;
-        if (!ok) throw SceneError(p.where + ": " + what + ": unsupported parameter '" + p.name + "'");
+        if (ok || (p.attribute && material_parameters().count(p.name))) continue;
+        if (p.attribute) throw SceneError(p.where + ": Attribute: parameter '" + p.name + "' is not modelled (" + what + ")");
+        throw SceneError(p.where + ": " + what + ": unsupported parameter '" + p.name + "'");
     }
 }
 
@@ -123,8 +136,8 @@ int texture_param(const udm1scene::Scene &scene, const udm1scene::ParamSet &ps, 
     const udm1scene::Param *p = ps.find(name);
     if (!p || p->type != "texture") return -1;
     if (p->strings.size() != 1) throw SceneError(p->where + ": '" + name + "' needs one texture name");
-    int other = -1;
-    for (size_t i = scene.textures.size(); i-- > 0;)
+    int other = -1;  // (float and spectrum textures have names of their own, as in pbrt-v4)
+    for (size_t i = 0; i < scene.textures.size(); ++i)
         if (scene.textures[i].name == p->strings[0]) {
             if (scene.textures[i].kind == kind) return (int)i;
             other = (int)i;
@@ -275,6 +288,12 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             if (c.max_depth < 1 || c.max_depth > 100 || c.samples < 1 || c.samples > 100)
                 throw SceneError(ps.where + ": " + what + ": maxdepth and nsamples must be in 1..100");
         };
+        if (m.type == "interface" || m.type.empty() || m.type == "none") {  // pbrt-v4: no BSDF (media.h)
+            only(ps, {}, "Material \"" + m.type + "\"");
+            mm.interface = true;
+            models_.push_back(mm);
+            continue;
+        }
         if (m.type == "diffuse") {
             only(ps, {"reflectance", "displacement", "normalmap"}, "diffuse");
             b.kind = Bsdf::Diffuse;
@@ -353,6 +372,15 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
                 for (size_t i = 0; i < scene.materials.size(); ++i)
                     if (scene.materials[i].name == mp->strings[k]) mm.parts[k] = (int)i;
                 if (mm.parts[k] < 0) throw SceneError(mp->where + ": mix: material \"" + mp->strings[k] + "\" was not made");
+                const std::string &type = scene.materials[mm.parts[k]].type;
+                if (type == "interface" || type.empty() || type == "none")
+                    throw SceneError(mp->where + ": mix: a mix of the \"interface\" material (\"" + mp->strings[k] +
+                                     "\") is not modelled");
+                // pbrt-v4 makes the named materials in order, then the others: a named mix takes only named
+                // materials made before it
+                if (!m.name.empty() && mm.parts[k] > (int)(&m - scene.materials.data()))
+                    throw SceneError(mp->where + ": mix: material \"" + mp->strings[k] + "\" is made after this named mix (at " +
+                                     scene.materials[mm.parts[k]].params.where + "), which pbrt-v4 refuses");
             }
             mm.amount_tex = texture_param(scene, ps, "amount", "float");
             if (mm.amount_tex < 0) mm.amount = ps.get_float("amount", 0.5);
@@ -361,7 +389,7 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
         } else {
             throw SceneError(ps.where + ": Material \"" + m.type +
                              "\" is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, "
-                             "diffusetransmission, mix)");
+                             "diffusetransmission, mix, interface)");
         }
         if (!mm.mix) {
             mm.displacement_tex = texture_param(scene, ps, "displacement", "float");

@@ -1,12 +1,13 @@
 // material.h - the scene's materials for the path tracer. Each Material / MakeNamedMaterial of the
-// subset (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, diffusetransmission, mix)
-// becomes a BSDF template plus the textures that vary it over the surface (any of pbrt-v4's texture-valued
-// parameters of these materials: reflectance, transmittance, the medium's albedo, g and thickness,
-// roughnesses, a conductor's reflectance, a mix's amount), a bump map ("displacement") or a normal map
-// ("normalmap"); at a hit, at() evaluates them and resolves a mix as pbrt-v4 does: the second material
-// where a hash of the point and the outgoing direction falls below the amount. Spectra become RGB as
-// pbrt-v4's film would record them (scene/spectrum.h): reflectances under D65, a spectral metal's Fresnel
-// reflectance by channel and angle (a table), a dielectric's single index at 550 nm.
+// subset (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, diffusetransmission, mix;
+// interface, which only bounds media) becomes a BSDF template plus the textures that vary it over the
+// surface (any of pbrt-v4's texture-valued parameters of these materials: reflectance, transmittance, the
+// medium's albedo, g and thickness, roughnesses, a conductor's reflectance, a mix's amount), a bump map
+// ("displacement") or a normal map ("normalmap"); at a hit, at() evaluates them and resolves a mix as
+// pbrt-v4 does: the second material where a hash of the point and the outgoing direction falls below the
+// amount. Spectra become RGB as pbrt-v4's film would record them (scene/spectrum.h): reflectances under
+// D65, a spectral metal's Fresnel reflectance by channel and angle (a table), a dielectric's single index
+// at 550 nm.
 #pragma once
 
 #include "bsdf.h"
@@ -40,6 +41,7 @@ struct MaterialModel {
     double scale = 1;          // diffusetransmission: scales its (textured) reflectance and transmittance
     double interface_eta = 1;  // coatedconductor: the base's index is relative to the coat's
     bool mix = false;
+    bool interface = false;    // "interface" (pbrt-v4's deprecated "" and "none" too): no BSDF, bounds media only
     int parts[2] = {-1, -1};   // mix: the two materials
     double amount = 0.5;
     int amount_tex = -1;
@@ -58,9 +60,11 @@ public:
     // 0.0005 in u and v: udm1-pt has no ray differentials, pbrt-v4's own fallback; the normal's change
     // dn/du is taken as 0).
     // An untextured material's BSDF is returned as it is; a textured one is written to *scratch.
+    // Not for the interface material, which has no BSDF (interface()).
     const Bsdf &at(int material, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 wo, Vec3 *ns,
                    Bsdf *scratch) const;
     size_t size() const { return models_.size(); }
+    bool interface(int material) const { return models_[material].interface; }
 
 private:
     void refuse_specular(const udm1scene::Scene &scene) const;

@@ -1,6 +1,8 @@
 // wavefront_diffuse.cpp - see wavefront_diffuse.h.
 #include "wavefront_diffuse.h"
 
+#include "media.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,6 +18,8 @@ std::string diffuse_wavefront_unsupported(const Scene &scene, const Options &opt
 {
     if (opt.strategy != Strategy::Mis) return "only MIS (--strategy mis) has a wavefront loop";
     if (scene.camera.lens_radius > 0) return "the camera has a thin lens";
+    if (uses_media(scene)) return "participating media";
+    if (!scene.instances.empty()) return scene.instances[0].where + ": an object instance";
     bool light = false;
     for (const Shape &s : scene.shapes) {
         if (s.kind != Shape::Triangles) return s.where + ": a shape that is not a triangle mesh";
@@ -348,9 +352,9 @@ DiffuseWavefront::DiffuseWavefront(const Scene &scene, const udm1scene::EmbreeSc
 class DiffuseWavefront::Batch {
 public:
     Batch(const DiffuseWavefront &w, const udm1_seq *seq, const udm1app::PixelOrder &order, int x0, int x1, int y0,
-          int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts)
+          int y1, uint64_t first, uint64_t count, const FilmResponse &film, Accumulator *acc, LoopCounts *counts)
         : w_(w), order_(order), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count),
-          film_scale_(film_scale), acc_(acc), counts_(counts), b_(buffers())
+          film_(film), acc_(acc), counts_(counts), b_(buffers())
     {
         b_.paths.normals = !w.choice_.fixed;
         // the tile's pixels' streams, once: every path's domains draw from its pixel's (integrator.h)
@@ -392,7 +396,7 @@ private:
     const udm1app::PixelOrder &order_;
     int x0_, y0_, W_;
     uint64_t first_, count_;
-    double film_scale_;
+    const FilmResponse &film_;
     Accumulator *acc_;
     LoopCounts *counts_;
     Buffers &b_;
@@ -406,9 +410,9 @@ void DiffuseWavefront::Batch::finish(size_t j)  // path j ends: its radiance int
     const Paths &P = b_.paths;
     int p = P.pixel[j];
     int64_t *px = &acc_->sum[3 * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
-    const float L[3] = {P.lr[j], P.lg[j], P.lb[j]};
+    const Vec3 L = film_(Vec3(P.lr[j], P.lg[j], P.lb[j]));
     for (int c = 0; c < 3; ++c) {
-        double v = (double)L[c] * film_scale_;
+        double v = L[c];
         if (!std::isfinite(v)) {
             ++counts_->nonfinite;
             continue;
@@ -610,10 +614,10 @@ void DiffuseWavefront::Batch::shadows()
 }
 
 void DiffuseWavefront::render(const udm1_seq *seq, const udm1app::PixelOrder &order, const udm1scene::CameraRays &camera,
-                              int x0, int x1, int y0, int y1, uint64_t first, uint64_t count, double film_scale,
+                              int x0, int x1, int y0, int y1, uint64_t first, uint64_t count, const FilmResponse &film,
                               Accumulator *acc, LoopCounts *counts) const
 {
-    Batch batch(*this, seq, order, x0, x1, y0, y1, first, count, film_scale, acc, counts);
+    Batch batch(*this, seq, order, x0, x1, y0, y1, first, count, film, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
         batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));

@@ -38,12 +38,12 @@ public:
     DiffuseWavefront(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Materials &materials,
               const Lights &lights, int max_depth, bool roulette, int rr_depth);
 
-    // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them,
-    // scaled by film_scale, to acc's fixed-point sums (as the scalar loop does). Safe from many
+    // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them, as the
+    // film makes them (FilmResponse), to acc's fixed-point sums (as the scalar loop does). Safe from many
     // threads at once for disjoint pixels.
     // order: how the pixels' samples are named to the library (udm1app/pixel_order.h).
     void render(const udm1_seq *seq, const udm1app::PixelOrder &order, const udm1scene::CameraRays &camera, int x0,
-                int x1, int y0, int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc,
+                int x1, int y0, int y1, uint64_t first, uint64_t count, const FilmResponse &film, Accumulator *acc,
                 LoopCounts *counts) const;
 
     // Per triangle (its geometry's first entry + the triangle's index) and per light: what the loop reads.

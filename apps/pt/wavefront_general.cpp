@@ -46,6 +46,7 @@ struct Buffers {
     std::vector<ShadowTest> shadows;
     std::vector<int> pixel;       // each path's pixel in the tile
     std::vector<uint8_t> alive;   // the path goes on after this vertex
+    std::vector<uint32_t> walking;  // the walking shadow tests still on their way (their paths)
     Rays hits, occlusion, spheres;  // closest hits; shadow rays (occlusion), shadow rays to sphere lights (hits)
 };
 
@@ -54,6 +55,7 @@ Buffers &buffers()  // one set per thread, reused from batch to batch
     thread_local Buffers b;
     if (b.paths.size() < BATCH) {
         b.paths.resize(BATCH), b.shadows.resize(BATCH), b.pixel.resize(BATCH), b.alive.resize(BATCH);
+        b.walking.resize(BATCH);
         b.hits.resize(BATCH), b.occlusion.resize(BATCH), b.spheres.resize(BATCH);
     }
     return b;
@@ -67,9 +69,9 @@ Buffers &buffers()  // one set per thread, reused from batch to batch
 class GeneralWavefront::Batch {
 public:
     Batch(const GeneralWavefront &w, const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth, int x0,
-          int x1, int y0, int y1, uint64_t first, uint64_t count, double film_scale, Accumulator *acc,
+          int x1, int y0, int y1, uint64_t first, uint64_t count, const FilmResponse &film, Accumulator *acc,
           LoopCounts *counts)
-        : w_(w), order_(order), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count), film_scale_(film_scale), acc_(acc),
+        : w_(w), order_(order), x0_(x0), y0_(y0), W_(x1 - x0), first_(first), count_(count), film_(film), acc_(acc),
           counts_(counts), b_(buffers())
     {
         streams_.resize((size_t)W_ * (size_t)(y1 - y0));  // the tile's pixels' streams, once
@@ -90,11 +92,12 @@ private:
     const udm1app::PixelOrder &order_;
     int x0_, y0_, W_;
     uint64_t first_, count_;
-    double film_scale_;
+    const FilmResponse &film_;
     Accumulator *acc_;
     LoopCounts *counts_;
     Buffers &b_;
     std::vector<udm1_stream> streams_;
+    const bool volumetric_ = w_.estimator_.volumetric();
     size_t n_ = 0;
     bool first_bounce_ = true;
     RTCIntersectContext ctx_;
@@ -104,7 +107,7 @@ void GeneralWavefront::Batch::finish(size_t j)  // path j ends: its radiance int
 {
     int p = b_.pixel[j];
     int64_t *px = &acc_->sum[3 * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
-    Vec3 L = b_.paths[j].L * film_scale_;
+    Vec3 L = film_(b_.paths[j].L);
     for (int k = 0; k < 3; ++k) {
         double v = L[k];
         if (!std::isfinite(v)) {
@@ -130,6 +133,7 @@ void GeneralWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64
         double uv[4];
         udm1_domain_draw_f64(udm1_domain_root(path.pixel, path.index), camera.has_lens() ? 4 : 2, uv);
         camera.ray(x0_ + p % W_ + uv[0], y0_ + p / W_ + uv[1], uv[2], uv[3], &path.o, &path.d);
+        if (volumetric_) w_.estimator_.start(path);
         if (++s == count_) s = 0, ++p;  // the next pixel
     }
 }
@@ -148,13 +152,20 @@ void GeneralWavefront::Batch::trace()
     const Estimator &est = w_.estimator_;
     for (size_t j = 0; j < n; ++j) {
         PathState &path = b_.paths[j];
+        if (volumetric_) {
+            Hit h;
+            bool hit = R.geom[j] != RTC_INVALID_GEOMETRY_ID;
+            if (hit) h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j], R.inst[j]);
+            b_.alive[j] = est.step(path, hit ? &h : nullptr, &b_.shadows[j]);
+            continue;
+        }
         if (R.geom[j] == RTC_INVALID_GEOMETRY_ID) {
             est.miss(path);
             b_.shadows[j].active = false;
             b_.alive[j] = 0;
             continue;
         }
-        Hit h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j]);
+        Hit h = w_.rt_.hit_of(path.o, path.d, R.tfar[j], R.geom[j], R.prim[j], R.u[j], R.v[j], R.inst[j]);
         b_.alive[j] = est.scatter(path, h, &b_.shadows[j]);
     }
 }
@@ -164,9 +175,14 @@ void GeneralWavefront::Batch::shadows()
     Rays &O = b_.occlusion, &S = b_.spheres;
     const size_t n = n_;
     size_t no = 0, ns = 0;
+    size_t nw = 0;  // walking tests (the volumetric estimator's), piece by piece below
     for (size_t j = 0; j < n; ++j) {
         const ShadowTest &s = b_.shadows[j];
         if (!s.active) continue;
+        if (s.walk) {
+            b_.walking[nw++] = (uint32_t)j;
+            continue;
+        }
         Rays &R = s.sphere ? S : O;
         size_t &k = s.sphere ? ns : no;
         R.set(k, s.o, s.d, s.len);
@@ -186,11 +202,37 @@ void GeneralWavefront::Batch::shadows()
         rtcIntersectNp(w_.rt_.handle(), &ctx_, &q, (unsigned)ns);
         for (size_t k = 0; k < ns; ++k) {
             uint32_t j = S.path[k];
-            if (S.geom[k] == RTC_INVALID_GEOMETRY_ID || (int)w_.rt_.shape_of_geometry(S.geom[k]) == b_.shadows[j].shape)
+            if (S.geom[k] == RTC_INVALID_GEOMETRY_ID || (int)w_.rt_.shape_of_hit(S.inst[k], S.geom[k]) == b_.shadows[j].shape)
                 est.arrive(b_.paths[j], b_.shadows[j]);
         }
     }
     counts_->rays += no + ns;
+    while (nw) {  // one closest-hit stream per piece: each test's first surface, then cross()
+        Rays &W = b_.hits;  // (free: the bounce's hits are consumed)
+        for (size_t k = 0; k < nw; ++k) {
+            const ShadowTest &s = b_.shadows[b_.walking[k]];
+            W.set(k, s.o, s.d, s.len);
+        }
+        RTCRayHitNp q = W.ray_hits();
+        rtcInitIntersectContext(&ctx_);
+        rtcIntersectNp(w_.rt_.handle(), &ctx_, &q, (unsigned)nw);
+        counts_->rays += nw;
+        size_t next = 0;
+        for (size_t k = 0; k < nw; ++k) {
+            uint32_t j = b_.walking[k];
+            ShadowTest &s = b_.shadows[j];
+            Hit h;
+            bool hit = W.geom[k] != RTC_INVALID_GEOMETRY_ID;
+            if (hit) {
+                h = w_.rt_.hit_of(s.o, s.d, W.tfar[k], W.geom[k], W.prim[k], W.u[k], W.v[k], W.inst[k]);
+                hit = !(s.sphere && (int)h.shape == s.shape);
+            }
+            Crossing c = est.cross(s, hit ? &h : nullptr);
+            if (c == Crossing::Arrived) est.arrive(b_.paths[j], s);
+            else if (c == Crossing::Onward) b_.walking[next++] = j;
+        }
+        nw = next;
+    }
     size_t keep = 0;  // the paths that ended at this vertex retired, the others compacted
     for (size_t j = 0; j < n; ++j) {
         if (!b_.alive[j]) {
@@ -205,9 +247,9 @@ void GeneralWavefront::Batch::shadows()
 
 void GeneralWavefront::render(const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth,
                               const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1, uint64_t first,
-                              uint64_t count, double film_scale, Accumulator *acc, LoopCounts *counts) const
+                              uint64_t count, const FilmResponse &film, Accumulator *acc, LoopCounts *counts) const
 {
-    Batch batch(*this, seq, order, max_depth, x0, x1, y0, y1, first, count, film_scale, acc, counts);
+    Batch batch(*this, seq, order, max_depth, x0, x1, y0, y1, first, count, film, acc, counts);
     const uint64_t total = (uint64_t)(x1 - x0) * (uint64_t)(y1 - y0) * count;
     for (uint64_t start = 0; start < total; start += BATCH) {
         batch.camera(camera, start, (size_t)std::min<uint64_t>(BATCH, total - start));

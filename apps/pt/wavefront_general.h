@@ -17,13 +17,13 @@ namespace udm1pt {
 class GeneralWavefront {
 public:
     GeneralWavefront(const udm1scene::EmbreeScene &rt, const Estimator &estimator) : rt_(rt), estimator_(estimator) {}
-    // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them, scaled by
-    // film_scale, to acc's fixed-point sums (as the scalar loop does). Safe from many threads at once for
-    // disjoint pixels. seq: the render's sequence, of stream_dims(max_depth) dimensions or fewer.
+    // Traces the samples [first, first + count) of the pixels [x0, x1) x [y0, y1) and adds them, as the
+    // film makes them (FilmResponse), to acc's fixed-point sums (as the scalar loop does). Safe from many
+    // threads at once for disjoint pixels. seq: the render's sequence, of stream_dims(max_depth) dimensions or fewer.
     // order: how the pixels' samples are named to the library (udm1app/pixel_order.h).
     void render(const udm1_seq *seq, const udm1app::PixelOrder &order, int max_depth,
                 const udm1scene::CameraRays &camera, int x0, int x1, int y0, int y1, uint64_t first, uint64_t count,
-                double film_scale, Accumulator *acc, LoopCounts *counts) const;
+                const FilmResponse &film, Accumulator *acc, LoopCounts *counts) const;
 
 private:
     class Batch;  // a thread's batch of paths through the stages of a bounce (wavefront_general.cpp)

@@ -4,6 +4,7 @@
 #include "alpha.h"
 #include "bilinear_patch.h"
 #include "quadrics.h"
+#include "udm1app/one_line.h"
 
 #include <algorithm>
 #include <cmath>
@@ -154,63 +155,165 @@ void alpha_filter(const RTCFilterFunctionNArguments *args)
 
 }  // namespace
 
+const char *embree_error_name(RTCError code)
+{
+    switch (code) {
+    case RTC_ERROR_NONE: return "RTC_ERROR_NONE";
+    case RTC_ERROR_UNKNOWN: return "RTC_ERROR_UNKNOWN";
+    case RTC_ERROR_INVALID_ARGUMENT: return "RTC_ERROR_INVALID_ARGUMENT";
+    case RTC_ERROR_INVALID_OPERATION: return "RTC_ERROR_INVALID_OPERATION";
+    case RTC_ERROR_OUT_OF_MEMORY: return "RTC_ERROR_OUT_OF_MEMORY";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "RTC_ERROR_UNSUPPORTED_CPU";
+    case RTC_ERROR_CANCELLED: return "RTC_ERROR_CANCELLED";
+    }
+    return "an unknown Embree error code";
+}
+
+void EmbreeErrors::attach(RTCDevice device) { rtcSetDeviceErrorFunction(device, &EmbreeErrors::record, this); }
+
+void EmbreeErrors::record(void *self, RTCError code, const char *message)
+{
+    EmbreeErrors &e = *static_cast<EmbreeErrors *>(self);
+    std::lock_guard<std::mutex> lock(e.mutex_);
+    if (e.count_++ == 0)
+        e.first_ = std::string(embree_error_name(code)) + (message && *message ? ": " + udm1app::fold_lines(message) : "");
+}
+
+std::string EmbreeErrors::text() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (count_ <= 1) return first_;
+    return first_ + " (and " + std::to_string(count_ - 1) + " more)";
+}
+
 EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
 {
-    device_ = rtcNewDevice(nullptr);
-    if (!device_) throw SceneError(scene.source + ": Embree could not create a device");
-    scene_ = rtcNewScene(device_);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    try {
+        build(scene, robust);
+    } catch (...) {  // the device and scene made so far: a throwing constructor runs no destructor
+        release();
+        throw;
+    }
+}
+
+RTCScene EmbreeScene::new_scene(bool robust)
+{
+    RTCScene sc = rtcNewScene(device_);
+    if (!sc) {
+        std::string why = errors_->text();
+        throw SceneError(src_.source + ": Embree could not create a scene" + (why.empty() ? "" : ": " + why));
+    }
+    rtcSetSceneBuildQuality(sc, RTC_BUILD_QUALITY_HIGH);
+    if (robust) rtcSetSceneFlags(sc, RTC_SCENE_FLAG_ROBUST);
+    return sc;
+}
+
+RTCGeometry EmbreeScene::geometry(unsigned k)
+{
+    const Shape &s = src_.shapes[k];
+    auto failed = [&](const char *doing) {
+        std::string why = errors_->text();
+        return SceneError(src_.source + ": Embree could not " + doing + (why.empty() ? "" : ": " + why));
+    };
+    // Embree's triangles (alpha: a filter function) and spheres; the rest user geometry (quadrics.h,
+    // bilinear_patch.h)
+    bool user = s.kind == Shape::Bilinear || (s.kind != Shape::Triangles && (s.kind != Shape::Sphere || s.ellipsoid || s.has_alpha()));
+    RTCGeometry g = rtcNewGeometry(device_, s.kind == Shape::Triangles ? RTC_GEOMETRY_TYPE_TRIANGLE
+                                            : user                        ? RTC_GEOMETRY_TYPE_USER
+                                                                          : RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    if (!g) throw failed("create a geometry");
+    void *data = &geometry_data_[k];
+    bool filled = false;
+    if (s.kind == Shape::Triangles) {
+        size_t nv = s.P.size() / 3, nt = s.indices.size() / 3;
+        float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv);
+        unsigned *i = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                          3 * sizeof(unsigned), nt);
+        if (v && i) {
+            std::copy(s.P.begin(), s.P.end(), v);
+            std::copy(s.indices.begin(), s.indices.end(), i);
+            filled = true;
+        }
+        if (s.has_alpha()) {
+            rtcSetGeometryUserData(g, data);
+            rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
+            rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
+        }
+    } else if (user) {
+        rtcSetGeometryUserPrimitiveCount(g, (unsigned)s.primitive_count());
+        rtcSetGeometryUserData(g, data);
+        rtcSetGeometryBoundsFunction(g, s.kind == Shape::Bilinear ? patch_bounds : quadric_bounds, nullptr);
+        rtcSetGeometryIntersectFunction(g, user_query<RTCIntersectFunctionNArguments>);
+        rtcSetGeometryOccludedFunction(g, user_query<RTCOccludedFunctionNArguments>);
+        filled = true;
+    } else {
+        float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), 1);
+        if (v) {
+            v[0] = (float)s.center.x, v[1] = (float)s.center.y, v[2] = (float)s.center.z, v[3] = (float)s.radius;
+            filled = true;
+        }
+    }
+    if (!filled) {
+        rtcReleaseGeometry(g);
+        throw failed(s.kind == Shape::Triangles ? "allocate a mesh" : "allocate a sphere");
+    }
+    rtcCommitGeometry(g);
+    return g;
+}
+
+void EmbreeScene::build(const Scene &scene, bool robust)
+{
+    device_ = rtcNewDevice("verbose=0");  // errors come to errors_, never printed by Embree
+    if (!device_)
+        throw SceneError(scene.source + ": Embree could not create a device (" + embree_error_name(rtcGetDeviceError(nullptr)) +
+                         ")");
+    errors_->attach(device_);
+    auto failed = [&](const char *doing) {
+        std::string why = errors_->text();
+        return SceneError(scene.source + ": Embree could not " + doing + (why.empty() ? "" : ": " + why));
+    };
+    scene_ = new_scene(robust);
     bool any_alpha = false;
     for (const Shape &s : scene.shapes) any_alpha = any_alpha || s.has_alpha();
     if (any_alpha) alpha_ = std::make_unique<AlphaTest>(scene);
-    geometry_data_.reserve(scene.shapes.size());  // (stable: the geometries point into it)
+    geometry_data_.clear();
+    for (unsigned k = 0; k < scene.shapes.size(); ++k) geometry_data_.push_back({this, k});  // (the geometries point into it)
+    objects_.assign(scene.objects.size(), nullptr);
+    object_shapes_.resize(scene.objects.size());
     for (unsigned k = 0; k < scene.shapes.size(); ++k) {
         const Shape &s = scene.shapes[k];
-        geometry_data_.push_back({this, k});
-        void *user = &geometry_data_.back();
-        RTCGeometry g;
-        if (s.kind == Shape::Triangles) {
-            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-            size_t nv = s.P.size() / 3, nt = s.indices.size() / 3;
-            float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), nv);
-            unsigned *i = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                              3 * sizeof(unsigned), nt);
-            if (!v || !i) throw SceneError(scene.source + ": Embree could not allocate a mesh");
-            std::copy(s.P.begin(), s.P.end(), v);
-            std::copy(s.indices.begin(), s.indices.end(), i);
-            if (s.has_alpha()) {
-                rtcSetGeometryUserData(g, user);
-                rtcSetGeometryIntersectFilterFunction(g, alpha_filter);
-                rtcSetGeometryOccludedFilterFunction(g, alpha_filter);
-            }
-        } else if (s.kind == Shape::Bilinear) {
-            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
-            rtcSetGeometryUserPrimitiveCount(g, (unsigned)(s.indices.size() / 4));
-            rtcSetGeometryUserData(g, user);
-            rtcSetGeometryBoundsFunction(g, patch_bounds, nullptr);
-            rtcSetGeometryIntersectFunction(g, user_query<RTCIntersectFunctionNArguments>);
-            rtcSetGeometryOccludedFunction(g, user_query<RTCOccludedFunctionNArguments>);
-        } else if (s.kind != Shape::Sphere || s.ellipsoid || s.has_alpha()) {
-            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
-            rtcSetGeometryUserPrimitiveCount(g, 1);
-            rtcSetGeometryUserData(g, user);
-            rtcSetGeometryBoundsFunction(g, quadric_bounds, nullptr);
-            rtcSetGeometryIntersectFunction(g, user_query<RTCIntersectFunctionNArguments>);
-            rtcSetGeometryOccludedFunction(g, user_query<RTCOccludedFunctionNArguments>);
-        } else {
-            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
-            float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
-                                                        4 * sizeof(float), 1);
-            if (!v) throw SceneError(scene.source + ": Embree could not allocate a sphere");
-            v[0] = (float)s.center.x, v[1] = (float)s.center.y, v[2] = (float)s.center.z, v[3] = (float)s.radius;
+        RTCScene target = scene_;
+        std::vector<unsigned> *shape_of = &shape_of_geom_;
+        if (s.object >= 0) {  // an object's shape: in the object's own scene, which its instances place
+            if (!objects_[s.object]) objects_[s.object] = new_scene(robust);
+            target = objects_[s.object], shape_of = &object_shapes_[s.object];
         }
+        RTCGeometry g = geometry(k);
+        unsigned id = rtcAttachGeometry(target, g);
+        rtcReleaseGeometry(g);
+        if (id == RTC_INVALID_GEOMETRY_ID) throw failed("attach a geometry");
+        if (shape_of->size() <= id) shape_of->resize(id + 1);
+        (*shape_of)[id] = k;
+    }
+    for (RTCScene o : objects_)
+        if (o) rtcCommitScene(o);
+    for (unsigned k = 0; k < scene.instances.size(); ++k) {  // Embree instances, their transforms in float
+        const Instance &in = scene.instances[k];
+        RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        if (!g) throw failed("create an instance");
+        rtcSetGeometryInstancedScene(g, objects_[in.object]);
+        rtcSetGeometryTimeStepCount(g, 1);
+        float xfm[12];  // 3x4, column major
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 3; ++r) xfm[3 * c + r] = (float)in.world_from_object.m[r][c];
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xfm);
         rtcCommitGeometry(g);
         unsigned id = rtcAttachGeometry(scene_, g);
         rtcReleaseGeometry(g);
+        if (id == RTC_INVALID_GEOMETRY_ID) throw failed("attach an instance");
         if (shape_of_geom_.size() <= id) shape_of_geom_.resize(id + 1);
-        shape_of_geom_[id] = k;
+        if (instance_of_geom_.size() <= id) instance_of_geom_.resize(id + 1);
+        shape_of_geom_[id] = ~0u, instance_of_geom_[id] = k;
     }
     // every triangle's unit geometric normal, once (24 bytes a triangle): a hit reads it instead of
     // recomputing it from the vertices (udm1-pt: 8-11 % of a Cornell box render)
@@ -226,17 +329,29 @@ EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
             for (unsigned t = 0; t < s.indices.size() / 3; ++t) normals_.push_back(triangle_normal(s, t));
     }
     rtcCommitScene(scene_);
-    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw SceneError(scene.source + ": Embree failed to build the scene");
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE || !errors_->text().empty()) throw failed("build the scene");
     Vec3 lo, hi;
     scene.bounds(&lo, &hi);
     scale_ = std::max({1e-6, std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x), std::fabs(hi.y),
                        std::fabs(hi.z)});
 }
 
-EmbreeScene::~EmbreeScene()
+void EmbreeScene::release()
 {
     if (scene_) rtcReleaseScene(scene_);
+    for (RTCScene &o : objects_)
+        if (o) rtcReleaseScene(o), o = nullptr;
     if (device_) rtcReleaseDevice(device_);
+    scene_ = nullptr;
+    device_ = nullptr;
+}
+
+EmbreeScene::~EmbreeScene() { release(); }
+
+void EmbreeScene::check(const char *doing) const
+{
+    std::string why = errors_->text();
+    if (!why.empty()) throw SceneError(src_.source + ": Embree failed while " + doing + ": " + why);
 }
 
 bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit) const
@@ -258,20 +373,27 @@ bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit)
                          rh.ray.tnear, rh.ray.tfar, false});
     rtcIntersect1(scene_, &ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    *hit = hit_of(o, d, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v);
+    *hit = hit_of(o, d, rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v, rh.hit.instID[0]);
     return true;
 }
 
-Hit EmbreeScene::hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v) const
+Hit EmbreeScene::hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v,
+                        unsigned inst_id) const
 {
     Hit hit;
     hit.t = tfar;
-    hit.shape = shape_of_geom_[geom_id];
     hit.prim = prim_id;
     hit.u = u;
     hit.v = v;
-    hit.p = o + d * hit.t;
+    hit.p = o + d * hit.t;  // (Embree's instances keep the ray's parameter t)
+    if (inst_id != RTC_INVALID_GEOMETRY_ID) {
+        hit.instance = &src_.instances[instance_of_geom_[inst_id]];
+        hit.shape = object_shapes_[hit.instance->object][geom_id];
+    } else {
+        hit.shape = shape_of_geom_[geom_id];
+    }
     hit.ng = geometric_normal(hit);
+    if (hit.instance) hit.ng = normalize(world_normal(hit, hit.ng));  // by the inverse transpose, as pbrt-v4's instances
     return hit;
 }
 
@@ -280,7 +402,7 @@ Vec3 EmbreeScene::geometric_normal(const Hit &h) const
     const Shape &s = src_.shapes[h.shape];
     if (s.kind == Shape::Triangles) return normals_[first_normal_[h.shape] + h.prim];
     if (s.kind == Shape::Bilinear) return patch_normal(s, h.prim, h.u, h.v);
-    Vec3 n = quadric_normal(s, h.p);
+    Vec3 n = quadric_normal(s, shape_point(h));
     return s.reverse_orientation ? -n : n;
 }
 

@@ -12,6 +12,8 @@
 #include <embree3/rtcore.h>
 
 #include <memory>
+#include <mutex>
+#include <string>
 
 namespace udm1scene {
 
@@ -39,9 +41,20 @@ Segment segment_to_infinity(Vec3 p, Vec3 n, double t, Vec3 w);
 struct Hit {
     double t = 0;
     unsigned shape = 0, prim = 0;  // index into Scene::shapes, triangle (or patch) index
-    Vec3 p, ng;                    // position, unit geometric normal (as the geometry faces it)
+    Vec3 p, ng;                    // position, unit geometric normal (as the geometry faces it), world space
     double u = 0, v = 0;           // barycentrics (a bilinear patch: its (u, v))
+    const Instance *instance = nullptr;  // the ObjectInstance the shape was hit through (its data is then in
+                                         // the object's space: shape_point, world_vector, world_normal)
 };
+
+// The hit point in the space of its shape's data (the world's, or an instanced object's), and a vector or a
+// normal of that space in the world's.
+inline Vec3 shape_point(const Hit &h) { return h.instance ? h.instance->object_from_world.point(h.p) : h.p; }
+inline Vec3 world_vector(const Hit &h, Vec3 v) { return h.instance ? h.instance->world_from_object.vector(v) : v; }
+inline Vec3 world_normal(const Hit &h, Vec3 n)  // (not normalized)
+{
+    return h.instance ? h.instance->object_from_world.transposed_vector(n) : n;
+}
 
 // One query as Embree received it (for the replay benchmark, bench/bench_pt_embree.cpp).
 struct RayQuery {
@@ -49,11 +62,31 @@ struct RayQuery {
     bool shadow;  // occluded() rather than intersect()
 };
 
+// What Embree reported through its device's error function (from any thread), for the tool's one-line
+// error: Embree itself prints nothing (its device is made with verbose=0).
+class EmbreeErrors {
+public:
+    // Install on `device` (the object must outlive it).
+    void attach(RTCDevice device);
+    // "" if no error was reported, else the first one as one line: its code's name and Embree's message,
+    // and how many more followed.
+    std::string text() const;
+
+private:
+    static void record(void *self, RTCError code, const char *message);
+    mutable std::mutex mutex_;
+    std::string first_;
+    unsigned count_ = 0;
+};
+
+// An Embree error code's name ("RTC_ERROR_OUT_OF_MEMORY").
+const char *embree_error_name(RTCError code);
+
 class EmbreeScene {
 public:
     // robust: Embree's robust traversal (RTC_SCENE_FLAG_ROBUST). Without it rays through shared edges
     // of axis-aligned faces leak out of closed boxes at most scales (tests/cpp/test_ao.cpp); it costs
-    // speed (BENCHMARKS.md). Throws SceneError if Embree fails.
+    // speed (BENCHMARKS.md). Throws SceneError "SCENE: Embree ...: <its message>" if Embree fails.
     explicit EmbreeScene(const Scene &scene, bool robust = true);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
@@ -62,15 +95,24 @@ public:
     bool intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit) const;
     bool occluded(Vec3 o, Vec3 d, double tnear, double tfar) const;
     // The hit that Embree reported for the ray o + t d (given to it in float) as intersect() makes it: for
-    // loops that hand Embree many rays at once (rtcIntersectNp) and must find what intersect() finds.
-    Hit hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v) const;
+    // loops that hand Embree many rays at once (rtcIntersectNp) and must find what intersect() finds. inst_id:
+    // Embree's instID[0] (RTC_INVALID_GEOMETRY_ID for a shape of the world); no default, so that no loop
+    // leaves it out and takes an instanced shape's hit for a world shape's.
+    Hit hit_of(Vec3 o, Vec3 d, float tfar, unsigned geom_id, unsigned prim_id, float u, float v, unsigned inst_id) const;
     // The origin for rays leaving hit h on side n (the side `incoming` came from): offset along n and
     // back along the incoming ray, so that a hit on an edge or in a concave corner starts strictly on
     // the visible side of both faces (offsetting along n alone leaves it on the other face's plane).
     Vec3 spawn_origin(const Hit &h, Vec3 incoming, Vec3 n) const { return h.p + (n - incoming) * ray_offset(h.p, h.t); }
     RTCScene handle() const { return scene_; }
-    unsigned shape_of_geometry(unsigned geom_id) const { return shape_of_geom_[geom_id]; }  // Scene::shapes index
-    unsigned geometry_count() const { return (unsigned)shape_of_geom_.size(); }              // IDs 0 .. count - 1
+    // The world's geometries (IDs 0 .. count - 1; an ObjectInstance is one): the Scene::shapes index of each
+    // shape, and for the shape of an Embree hit (instID[0], geomID) its Scene::shapes index.
+    unsigned shape_of_geometry(unsigned geom_id) const { return shape_of_geom_[geom_id]; }
+    unsigned geometry_count() const { return (unsigned)shape_of_geom_.size(); }
+    unsigned shape_of_hit(unsigned inst_id, unsigned geom_id) const
+    {
+        return inst_id == RTC_INVALID_GEOMETRY_ID ? shape_of_geom_[geom_id]
+                                                  : object_shapes_[src_.instances[instance_of_geom_[inst_id]].object][geom_id];
+    }
     // Benchmarks only: append every later query to *log (nullptr: stop). Not thread-safe: record with
     // one thread. The renderers never set it (one predictable branch per query).
     void record_queries(std::vector<RayQuery> *log) { log_ = log; }
@@ -78,19 +120,33 @@ public:
     // What the geometry's callbacks need (alpha.h): whether the float ray (o, d) meets shape h.shape at h,
     // and the unit geometric normal of a triangle.
     bool alpha_passes(const Hit &h, const float o[3], const float d[3]) const;
-    // The unit geometric normal at hit h (h.shape, h.prim, h.p, h.u, h.v set), as hit_of() makes it.
+    // The unit geometric normal at hit h (h.shape, h.prim, h.p, h.u, h.v, h.instance set) in the space of the
+    // shape's data (shape_point): hit_of() takes it to the world's. The callbacks see the ray in that space
+    // (Embree's instances transform it), so their hits have no instance and are in that space throughout.
     Vec3 geometric_normal(const Hit &h) const;
     const Scene &scene() const { return src_; }
     struct GeometryData {  // each user geometry's and alpha-tested mesh's user pointer
         const EmbreeScene *rt;
         unsigned shape;
     };
+    // Throws SceneError "SCENE: Embree failed while <doing>: ..." if Embree reported an error since the
+    // scene was built (a query that Embree refused): the renderers call it after rendering.
+    void check(const char *doing) const;
 
 private:
+    void build(const Scene &scene, bool robust);
+    void release();
+    RTCScene new_scene(bool robust);
+    RTCGeometry geometry(unsigned shape);  // Scene::shapes[shape]'s, committed; throws SceneError
+
     const Scene &src_;
+    std::unique_ptr<EmbreeErrors> errors_ = std::make_unique<EmbreeErrors>();
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
-    std::vector<unsigned> shape_of_geom_;
+    std::vector<unsigned> shape_of_geom_;            // world geometry ID -> Scene::shapes index (instances: none)
+    std::vector<RTCScene> objects_;                  // per Scene::objects: its shapes' scene (null if unused)
+    std::vector<std::vector<unsigned>> object_shapes_;  // per object: its geometry ID -> Scene::shapes index
+    std::vector<unsigned> instance_of_geom_;         // world geometry ID -> Scene::instances index
     std::vector<size_t> first_normal_;  // per shape: its first triangle's entry in normals_
     std::vector<Vec3> normals_;         // triangle_normal() of every triangle, in shape order
     double scale_ = 1;

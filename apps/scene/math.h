@@ -66,6 +66,12 @@ struct Mat4 {
     Vec3 point(Vec3 p) const;
     Vec3 vector(Vec3 v) const;
     Vec3 normal(Vec3 n) const;  // by the inverse transpose; pass the inverse's transpose-less normal: see .cpp
+    // The 3x3 part's transpose times v: a normal by the inverse transpose when this is the inverse.
+    Vec3 transposed_vector(Vec3 v) const
+    {
+        return {m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z, m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+                m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z};
+    }
     bool inverse(Mat4 *out) const;
     double scale_factor() const;  // the cube root of |det| of the 3x3 part
     double determinant3() const;  // of the 3x3 part (negative: the transform swaps handedness)

@@ -8,6 +8,8 @@
 #include "mesh_io.h"
 #include "pbrt_parser.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cstring>
 #include <limits>
@@ -16,8 +18,9 @@ namespace udm1scene {
 
 const Param *ParamSet::find(const std::string &name) const
 {
-    for (const Param &p : params)
-        if (p.name == name) return &p;
+    for (int pass = 0; pass < 2; ++pass)  // the directive's own (the last given), then the latest Attribute's
+        for (size_t i = params.size(); i-- > 0;)
+            if (params[i].attribute == (pass == 1) && params[i].name == name) return &params[i];
     return nullptr;
 }
 
@@ -95,8 +98,10 @@ Vec3 ParamSet::get_point(const std::string &name, Vec3 fallback) const
 size_t Scene::triangle_count() const
 {
     size_t n = 0;
+    std::vector<size_t> of_object(objects.size(), 0);
     for (const Shape &s : shapes)
-        if (s.kind == Shape::Triangles) n += s.indices.size() / 3;
+        if (s.kind == Shape::Triangles) (s.object < 0 ? n : of_object[s.object]) += s.indices.size() / 3;
+    for (const Instance &i : instances) n += of_object[i.object];
     return n;
 }
 
@@ -111,15 +116,59 @@ void Scene::bounds(Vec3 *lo, Vec3 *hi) const
             (*hi)[a] = std::max((*hi)[a], p[a] + r);
         }
     };
+    std::vector<Vec3> object_lo(objects.size(), Vec3(inf, inf, inf)), object_hi(objects.size(), Vec3(-inf, -inf, -inf));
     for (const Shape &s : shapes) {
-        if (s.kind == Shape::Sphere && !s.ellipsoid) grow(s.center, s.radius);
-        if ((s.kind == Shape::Sphere && s.ellipsoid) || s.kind == Shape::Disk || s.kind == Shape::Cylinder) {
-            Vec3 a, b;
-            shape_bounds(s, &a, &b);
-            grow(a, 0), grow(b, 0);
+        if (s.object < 0) {
+            if (s.kind == Shape::Sphere && !s.ellipsoid) grow(s.center, s.radius);
+            if ((s.kind == Shape::Sphere && s.ellipsoid) || s.kind == Shape::Disk || s.kind == Shape::Cylinder) {
+                Vec3 a, b;
+                shape_bounds(s, &a, &b);
+                grow(a, 0), grow(b, 0);
+            }
+            for (size_t i = 0; i + 2 < s.P.size(); i += 3) grow(Vec3(s.P[i], s.P[i + 1], s.P[i + 2]), 0);
+            continue;
         }
-        for (size_t i = 0; i + 2 < s.P.size(); i += 3) grow(Vec3(s.P[i], s.P[i + 1], s.P[i + 2]), 0);
+        Vec3 &a = object_lo[s.object], &b = object_hi[s.object];  // an object's shape: the object's box
+        auto add = [&](Vec3 p, double r) {
+            for (int k = 0; k < 3; ++k) a[k] = std::min(a[k], p[k] - r), b[k] = std::max(b[k], p[k] + r);
+        };
+        if (s.kind == Shape::Sphere && !s.ellipsoid) add(s.center, s.radius);
+        if ((s.kind == Shape::Sphere && s.ellipsoid) || s.kind == Shape::Disk || s.kind == Shape::Cylinder) {
+            Vec3 c, d;
+            shape_bounds(s, &c, &d);
+            add(c, 0), add(d, 0);
+        }
+        for (size_t i = 0; i + 2 < s.P.size(); i += 3) add(Vec3(s.P[i], s.P[i + 1], s.P[i + 2]), 0);
     }
+    for (const Instance &in : instances) {  // the corners of the object's box, placed
+        const Vec3 &a = object_lo[in.object], &b = object_hi[in.object];
+        if (!(a.x <= b.x)) continue;  // an empty object
+        for (int c = 0; c < 8; ++c) grow(in.world_from_object.point(Vec3(c & 1 ? b.x : a.x, c & 2 ? b.y : a.y, c & 4 ? b.z : a.z)), 0);
+    }
+}
+
+void Scene::film_window(int w, int h, int window[4]) const
+{
+    int x0 = 0, y0 = 0, x1 = w, y1 = h;
+    if (has_crop) {  // pbrt-v4: ceil(resolution * fraction), in float
+        x0 = (int)std::ceil((float)w * crop[0]), x1 = (int)std::ceil((float)w * crop[1]);
+        y0 = (int)std::ceil((float)h * crop[2]), y1 = (int)std::ceil((float)h * crop[3]);
+    } else if (has_pixel_bounds) {
+        x0 = std::max(0, pixel_bounds[0]), x1 = std::min(w, pixel_bounds[1]);
+        y0 = std::max(0, pixel_bounds[2]), y1 = std::min(h, pixel_bounds[3]);
+    }
+    if (!(x0 < x1 && y0 < y1))
+        throw SceneError(source + ": the Film's " + (has_crop ? "cropwindow" : "pixelbounds") + " leaves no pixel of the " +
+                         std::to_string(w) + "x" + std::to_string(h) + " film");
+    window[0] = x0, window[1] = y0, window[2] = x1, window[3] = y1;
+}
+
+std::string resolve_path(const std::string &search_dir, const std::string &name)
+{
+    if (search_dir.empty() || name.empty() || name[0] == '/') return name;
+    std::string p = search_dir + (search_dir.back() == '/' ? "" : "/") + name;
+    struct stat st;
+    return stat(p.c_str(), &st) == 0 ? p : name;
 }
 
 namespace {
@@ -219,11 +268,18 @@ uint64_t Scene::digest() const
     for (int r = 0; r < 4; ++r)
         for (int c = 0; c < 4; ++c) f.value(camera.world_from_camera.m[r][c]);
     f.value(camera.fov), f.value(camera.lens_radius), f.value(camera.focal_distance);
+    // (what older scenes do not have is hashed only where a scene has it, so that their digests stay)
+    if (has_crop || has_pixel_bounds || max_component != HUGE_VAL || film_scale != 1) {
+        f.value(has_crop), f.value(has_pixel_bounds), f.value(max_component), f.value(film_scale);
+        for (int k = 0; k < 4; ++k) f.value(crop[k]), f.value(pixel_bounds[k]);
+    }
     f.value((uint64_t)shapes.size());
     for (const Shape &s : shapes) {
         f.value((int)s.kind), f.vec(s.P), f.vec(s.N), f.vec(s.indices);
+        if (s.object >= 0) f.value(s.object);
         f.value(s.center.x), f.value(s.center.y), f.value(s.center.z), f.value(s.radius);
         f.value(s.material), f.value(s.light), f.value(s.reverse_orientation);
+        if (!media.empty()) f.value(s.inside), f.value(s.outside);  // (scenes without media keep their digests)
         if ((s.kind == Shape::Sphere && (s.ellipsoid || !object_frame_is_world(s))) || s.kind == Shape::Disk ||
             s.kind == Shape::Cylinder)  // (its texture coordinates; the other quadrics' placement)
             for (int r = 0; r < 4; ++r)
@@ -253,6 +309,16 @@ uint64_t Scene::digest() const
         f.value(m.v1.x), f.value(m.v1.y), f.value(m.v1.z), f.value(m.v2.x), f.value(m.v2.y), f.value(m.v2.z);
         for (int r = 0; r < 4; ++r)
             for (int c = 0; c < 4; ++c) f.value(m.texture_from_world.m[r][c]);
+    }
+    if (!media.empty()) f.value(camera.medium), f.vec(std::vector<char>(integrator.begin(), integrator.end()));
+    for (const Medium &m : media)
+        for (double x : {m.sigma_a.x, m.sigma_a.y, m.sigma_a.z, m.sigma_s.x, m.sigma_s.y, m.sigma_s.z, m.Le.x, m.Le.y, m.Le.z, m.g})
+            f.value(x);
+    if (!instances.empty()) f.value((uint64_t)instances.size());
+    for (const Instance &in : instances) {
+        f.value(in.object);
+        for (int r = 0; r < 4; ++r)
+            for (int c = 0; c < 4; ++c) f.value(in.world_from_object.m[r][c]);
     }
     for (const AreaLight &l : lights) f.value(l.L.x), f.value(l.L.y), f.value(l.L.z), f.value(l.scale), f.value(l.twosided);
     for (const LightSource &l : light_sources) {
@@ -345,9 +411,9 @@ Scene load_scene(const std::string &path, Need need)
         std::transform(tail.begin(), tail.end(), tail.begin(), ::tolower);
         return tail == ext;
     };
-    if (ends(".pbrt")) return parse_pbrt(path, need);
-    if (ends(".ply") || ends(".obj")) return mesh_scene(path);
-    throw SceneError(path + ": not a .pbrt, .ply or .obj file, nor builtin:NAME");
+    if (ends(".pbrt") || ends(".pbrt.gz")) return parse_pbrt(path, need);
+    if (ends(".ply") || ends(".ply.gz") || ends(".obj")) return mesh_scene(path);
+    throw SceneError(path + ": not a .pbrt, .pbrt.gz, .ply, .ply.gz or .obj file, nor builtin:NAME");
 }
 
 }  // namespace udm1scene

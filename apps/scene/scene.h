@@ -6,6 +6,7 @@
 
 #include "math.h"
 
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -28,11 +29,13 @@ struct Param {
     std::vector<double> numbers;
     std::vector<std::string> strings;  // string, bool (as "true"/"false"), texture, spectrum names
     std::string where;                 // "file:line"
+    bool attribute = false;            // a default from an Attribute directive, not the directive's own
 };
 
 // Its getters read a parameter of one type ("float", "integer", "bool", "string", "point3": pbrt-v4's for
 // it) and refuse it given as another: pbrt-v4 looks parameters up by type and name, and refuses one it did
-// not use.
+// not use. As in pbrt-v4, the directive's own parameters come first (the last of a name given twice), then
+// the defaults of the Attribute directives in force (the latest first).
 struct ParamSet {
     std::vector<Param> params;
     std::string where;  // the directive's "file:line"
@@ -78,7 +81,7 @@ struct TextureMapping {
 //                  alternate cubes of the point in texture space (dimension 3)
 struct Texture {
     std::string name, kind, type;  // kind "float" or "spectrum"
-    std::string filename;          // imagemap: resolved against the scene file's folder
+    std::string filename;          // imagemap: resolved against the main scene file's folder (resolve_path)
     bool srgb = true, invert = false;
     bool point = false;            // imagemap: "filter" "point" (the nearest texel), else bilinear
     std::string wrap = "repeat";   // imagemap: "repeat", "clamp" or "black"
@@ -94,6 +97,17 @@ struct Material {
     std::string name;  // MakeNamedMaterial's name ("" for Material)
     std::string type;  // "diffuse", "coateddiffuse", ...
     ParamSet params;
+};
+
+// A pbrt-v4 "homogeneous" medium in linear sRGB (the parser reduces its spectra, pbrt_parser.h): absorption and
+// scattering coefficients per unit length with "scale" applied, the Henyey-Greenstein asymmetry g (clamped to
+// [-0.99, 0.99] where it is evaluated, as pbrt-v4 clamps it), the emitted radiance Le with "Lescale" applied
+// (a medium emits sigma_a Le per unit length).
+struct Medium {
+    std::string name;
+    Vec3 sigma_a, sigma_s, Le;
+    double g = 0;
+    std::string where;  // its MakeNamedMedium's file:line
 };
 
 struct AreaLight {
@@ -149,6 +163,9 @@ struct Shape {
     // 1 (a hash of the ray against it), a constant or a float texture (alpha_tex, Scene::textures index)
     double alpha = 1;
     int alpha_tex = -1;
+    int inside = -1, outside = -1;   // its MediumInterface: Scene::media indices, -1 for none (vacuum)
+    int object = -1;                 // the Scene::objects index of the ObjectBegin block that holds it (its
+                                     // data then in the object's space, placed by Scene::instances), or -1
     std::string where;               // "file:line" of its Shape directive
     bool quadric() const { return kind == Sphere || kind == Disk || kind == Cylinder; }
     bool has_alpha() const { return alpha_tex >= 0 || alpha < 1; }
@@ -158,23 +175,46 @@ struct Shape {
     }
 };
 
+// pbrt-v4's object instancing: the shapes of an ObjectBegin block (Shape::object), placed in the world by
+// each ObjectInstance of its name with the transform world_from_object (the CTM at the ObjectInstance; the
+// shapes keep the CTM they had inside the block, so a point of a shape goes to the world by the instance's
+// transform times its own, as pbrt-v4 composes them).
+struct ObjectDef {
+    std::string name, where;  // where: its ObjectBegin
+};
+struct Instance {
+    int object = -1;  // Scene::objects index
+    Mat4 world_from_object, object_from_world;
+    std::string where;  // its ObjectInstance
+};
+
 struct Camera {
     Mat4 world_from_camera;  // pbrt camera space: +z forward, +y up
     double fov = 90;         // degrees, along the shorter image axis (pbrt)
     double lens_radius = 0, focal_distance = 1e6;
+    int medium = -1;         // the medium the camera is in (Scene::media index; pbrt-v4's outside medium at Camera)
 };
 
 struct Scene {
     Camera camera;
-    int width = 256, height = 256;
+    int width = 256, height = 256;      // the film's full resolution
+    // The part of the film rendered, as pbrt-v4's film reads it (film_window()): "cropwindow" (fractions of
+    // the film, x0 x1 y0 y1) wins over "pixelbounds" (pixels x0 x1 y0 y1); the image is that part.
+    bool has_crop = false, has_pixel_bounds = false;
+    float crop[4] = {0, 1, 0, 1};
+    int pixel_bounds[4] = {0, 0, 0, 0};
+    double max_component = HUGE_VAL;    // Film "maxcomponentvalue": each sample scaled so that the largest of its
+                                        // CIE XYZ components (the cie1931 sensor's values) is at most this
     std::string film_filename;
-    double film_scale = 1;              // pbrt-v4's imaging ratio: exposuretime * iso / 100
+    double shutter_open = 0, shutter_close = 1;  // the Camera's; pbrt-v4's exposure time is their difference
+    double film_scale = 1;              // pbrt-v4's imaging ratio: exposure time * iso / 100
     std::string film_sensor = "cie1931";  // named in the file; udm1-pt renders plain RGB whatever it is
     std::string media_where;              // file:line of the first MakeNamedMedium, if any
+    std::vector<Medium> media;            // the homogeneous ones (grid media are refused under "volpath")
     std::string sampler;        // the scene's Sampler directive (udm1's renderers use their own samplers)
     std::string sampler_where;  // its file:line ("" without one)
     int pixel_samples = 16;     // its "pixelsamples" (pbrt-v4's default 16)
-    std::string integrator = "path";
+    std::string integrator = "volpath";  // pbrt-v4's default (without media the same image as "path")
     int max_depth = 5;
     // pbrt-v4's integrators without light sampling (simplepath "samplelights" false, randomwalk) find
     // lights only where paths hit them: point, spot and distant lights are left out of the scene. Without
@@ -186,17 +226,24 @@ struct Scene {
     std::vector<Texture> textures;  // referenced from material parameters "texture NAME" by name
     std::vector<AreaLight> lights;
     std::vector<LightSource> light_sources;
-    std::vector<Shape> shapes;
+    std::vector<Shape> shapes;           // the world's and, with Shape::object set, the objects' (instanced only)
+    std::vector<ObjectDef> objects;
+    std::vector<Instance> instances;
     std::string source;  // file name, or "built-in NAME"
+    std::string search_dir;  // pbrt-v4's folder for relative file names: the main scene file's ("" for the cwd)
     // What a geometry-only load left out, one "file:line: what" per kind of directive or parameter.
     std::vector<std::string> ignored;
     // What the renderers substitute or ignore because it does not change the image (an Integrator that
     // converges to the same image, an Accelerator), one "file:line: what" each, for the user to read.
     std::vector<std::string> notes;
 
-    size_t triangle_count() const;
-    // Axis-aligned bounds of all shapes (for ray offsets and default cameras).
+    size_t triangle_count() const;  // in the world (an instanced shape's once per instance)
+    // Axis-aligned bounds of everything in the world (for ray offsets and default cameras).
     void bounds(Vec3 *lo, Vec3 *hi) const;
+    // The pixels rendered of a width x height film, as pbrt-v4 computes them from cropwindow (ceil of the
+    // resolution times each fraction, in float) or pixelbounds (clipped to the film): window = x0, y0, x1, y1.
+    // Throws SceneError if the window is empty.
+    void film_window(int width, int height, int window[4]) const;
     // A 64-bit FNV-1a digest of what a render sees: geometry, materials, lights, camera, film size. Two scenes with
     // the same digest render the same image (cached references are keyed by it).
     uint64_t digest() const;
@@ -250,7 +297,12 @@ private:
 // left out, and each kind left out is listed in Scene::ignored.
 enum class Need { Everything, Geometry };
 
-// Load a scene by file name: .pbrt (pbrt-v4 subset), .ply or .obj (a mesh with a default camera and a
+// pbrt-v4's rule for a file name in a scene (ResolveFilename): an absolute name as it is; a relative one in
+// search_dir (the main scene file's folder, for names in included files too) if it exists there, else as
+// given (relative to the working directory).
+std::string resolve_path(const std::string &search_dir, const std::string &name);
+
+// Load a scene by file name: .pbrt or .pbrt.gz (pbrt-v4 subset), .ply, .ply.gz or .obj (a mesh with a default camera and a
 // grey diffuse material), or "builtin:NAME". Throws SceneError naming the file (and line).
 Scene load_scene(const std::string &path, Need need = Need::Everything);
 

@@ -63,6 +63,8 @@ void export_scene(const udm1scene::Scene &scene, int width, int height, int max_
 {
     if (!scene.light_sources.empty())  // scene.json describes shapes and their emission only
         throw Error(scene.light_sources[0].where + ": export writes area lights only, not a LightSource", 1);
+    for (const udm1scene::Shape &s : scene.shapes)  // (scene.json has world shapes only)
+        if (s.object >= 0) throw Error(s.where + ": export writes no ObjectBegin objects and instances", 1);
     std::error_code ec;
     std::filesystem::create_directories(dir, ec);
     if (ec || !std::filesystem::is_directory(dir)) throw Error("cannot create the folder '" + dir + "'", 1);

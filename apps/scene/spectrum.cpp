@@ -1,6 +1,8 @@
 // spectrum.cpp - see spectrum.h.
 #include "spectrum.h"
 
+#include "udm1app/one_line.h"
+
 #include "file_read.h"
 #include "spectral_data.h"
 #include "scene.h"
@@ -123,7 +125,7 @@ Spectrum read_spectrum_file(const std::string &path)
         double x = std::strtod(begin, &end);
         if (end == begin || errno == ERANGE || !std::isfinite(x))
             throw SceneError(path + ": not a spectrum file (a number was expected, found '" +
-                             text.substr(i, std::min<size_t>(12, text.size() - i)) + "')");
+                             udm1app::quote_raw(text.substr(i, text.find('\n', i) - i), 12) + "')");
         v.push_back(x);
         i += (size_t)(end - begin);
     }
@@ -173,7 +175,7 @@ struct M3 {
 
 // linear sRGB from XYZ as pbrt-v4's RGBColorSpace builds it: the Rec. 709 primaries and the white point
 // of the D65 table itself, so that D65 is exactly (1, 1, 1)
-const M3 &rgb_from_xyz()
+const M3 &xyz_from_rgb()
 {
     static const M3 m = [] {
         Vec3 w;
@@ -187,13 +189,20 @@ const M3 &rgb_from_xyz()
         }
         Vec3 k = p.inverse() * w;
         for (int r = 0; r < 3; ++r) p.m[r][0] *= k.x, p.m[r][1] *= k.y, p.m[r][2] *= k.z;
-        return p.inverse();
+        return p;
     }();
+    return m;
+}
+
+const M3 &rgb_from_xyz()
+{
+    static const M3 m = xyz_from_rgb().inverse();
     return m;
 }
 }  // namespace
 
 Vec3 xyz_to_rgb(Vec3 c) { return rgb_from_xyz() * c; }
+Vec3 rgb_to_xyz(Vec3 c) { return xyz_from_rgb() * c; }
 
 Vec3 illuminant_rgb(const Spectrum &s, const std::string &where)
 {

@@ -40,8 +40,9 @@ Spectrum read_spectrum_file(const std::string &path);
 // XYZ of a spectrum, the integral of s(lambda) (x, y, z)(lambda) over 360..830 nm in 1 nm steps (as
 // pbrt-v4 integrates), optionally weighted by D65.
 Vec3 spectrum_xyz(const Spectrum &s, bool under_d65 = false);
-// CIE XYZ to linear sRGB (Rec. 709 primaries, D65 white).
+// CIE XYZ to linear sRGB (Rec. 709 primaries, D65 white), and back.
 Vec3 xyz_to_rgb(Vec3 xyz);
+Vec3 rgb_to_xyz(Vec3 rgb);
 
 // A light's spectrum as linear sRGB at luminance Y = 1 (negative components, of colours outside the
 // sRGB gamut, clamped to 0). Throws SceneError(where) for a spectrum of no luminance.

@@ -10,7 +10,7 @@ namespace udm1scene {
 
 void hit_uv(const Shape &s, const Hit &h, double *u, double *v)
 {
-    if (s.quadric()) return quadric_uv(s, h.p, u, v);
+    if (s.quadric()) return quadric_uv(s, shape_point(h), u, v);
     if (s.kind == Shape::Bilinear) return patch_texture_uv(s, h.prim, h.u, h.v, u, v);
     double b0 = 1 - h.u - h.v;
     if (s.UV.empty()) {  // pbrt-v4: (0,0), (1,0), (1,1)
@@ -26,19 +26,28 @@ Vec3 shading_normal(const Shape &s, const Hit &h)
 {
     if (s.N.empty()) return h.ng;
     if (s.kind == Shape::Bilinear) {
-        Vec3 n = patch_shading_normal(s, h.prim, h.u, h.v);
-        return n.x != 0 || n.y != 0 || n.z != 0 ? n : h.ng;
+        Vec3 n = world_normal(h, patch_shading_normal(s, h.prim, h.u, h.v));
+        double len = length(n);
+        return len > 0 ? n * (1 / len) : h.ng;
     }
     if (s.kind != Shape::Triangles) return h.ng;
     const uint32_t *i = &s.indices[3 * (size_t)h.prim];
     auto N = [&](uint32_t k) { return Vec3(s.N[3 * k], s.N[3 * k + 1], s.N[3 * k + 2]); };
-    Vec3 n = N(i[0]) * (1 - h.u - h.v) + N(i[1]) * h.u + N(i[2]) * h.v;
+    Vec3 n = world_normal(h, N(i[0]) * (1 - h.u - h.v) + N(i[1]) * h.u + N(i[2]) * h.v);
     double len = length(n);
     return len > 0 ? n * (1 / len) : h.ng;
 }
 
 void surface_derivatives(const Shape &s, const Hit &h, Vec3 n, Vec3 *dpdu, Vec3 *dpdv)
 {
+    if (h.instance) {  // the shape's own derivatives (in the object's space), placed by the instance
+        Hit local = h;
+        local.instance = nullptr, local.p = shape_point(h);
+        Vec3 nl = h.instance->world_from_object.transposed_vector(n);  // (a normal to the object's space)
+        surface_derivatives(s, local, normalize(nl), dpdu, dpdv);
+        *dpdu = world_vector(h, *dpdu), *dpdv = world_vector(h, *dpdv);
+        return;
+    }
     if (s.quadric()) return quadric_derivatives(s, h.p, dpdu, dpdv);
     if (s.kind == Shape::Bilinear) return patch_texture_derivatives(s, h.prim, h.u, h.v, dpdu, dpdv);
     const uint32_t *i = &s.indices[3 * (size_t)h.prim];

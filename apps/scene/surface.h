@@ -1,6 +1,7 @@
 // surface.h - what a hit knows of the surface it is on, for every kind of shape: pbrt-v4's texture
 // coordinates, the shading normal (interpolated vertex normals where the mesh has them), dp/du and dp/dv
-// (for bump and normal maps), and the point at which textures are looked up.
+// (for bump and normal maps), and the point at which textures are looked up. A hit through an object
+// instance (Hit::instance) is read in its shape's space and answered in the world's.
 #pragma once
 
 #include "embree_scene.h"

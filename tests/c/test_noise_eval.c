@@ -12,6 +12,9 @@
  *  - points in rows of 1 to 6 numbers (the kernels' strided loads and gathers), noise and cellular noise
  *    in float and double: the values of one array per axis bit for bit, the rows at the very end of
  *    their allocation (nothing past the last point is read: AddressSanitizer's build);
+ *  - large batches (the kernels check the coordinates of the later points while they evaluate the first
+ *    ones into memory of their own: noise/batch.c) equal the same batch in pieces of 1000 bit for bit, in
+ *    every layout, also with NaN in the unused columns of rows (read by that check, then found harmless);
  *  - bad input: one message, the point named.
  */
 #include "check.h"
@@ -336,6 +339,79 @@ static void test_rows(void)
     udm1_noise_destroy(n);
 }
 
+/* A batch of m points against the same batch in pieces of 1000 (each checked before it is evaluated). */
+static int batch_equals_pieces(const udm1_noise *n, uint32_t dims, const void *const *axes, size_t stride, size_t m,
+                               int f32, int points, int gradient)
+{
+    size_t size = f32 ? sizeof(float) : sizeof(double);
+    char *v1 = malloc(m * size), *v2 = malloc(m * size), *g1 = malloc(m * dims * size), *g2 = malloc(m * dims * size);
+    CHECK(v1 && v2 && g1 && g2);
+    int same = 1;
+    for (int whole = 1; whole >= 0; --whole) {
+        char *v = whole ? v1 : v2, *g = whole ? g1 : g2;
+        for (size_t at = 0, k = whole ? m : 1000; at < m; at += k) {
+            size_t c = m - at < k ? m - at : k;
+            const void *sub[4];
+            for (uint32_t a = 0; a < dims; ++a) sub[a] = (const char *)axes[a] + at * stride * size;
+            udm1_status st;
+            if (points)
+                st = udm1_noise_points(n, dims, sub[0], c, stride, (double *)(void *)(v + at * size));
+            else if (f32)
+                st = udm1_noise_eval_f32(n, dims, (const float *const *)sub, stride, c, (float *)(void *)(v + at * size),
+                                         gradient ? (float *)(void *)(g + at * dims * size) : NULL);
+            else
+                st = udm1_noise_eval(n, dims, (const double *const *)sub, stride, c, (double *)(void *)(v + at * size),
+                                     gradient ? (double *)(void *)(g + at * dims * size) : NULL);
+            same &= st == UDM1_OK;
+        }
+    }
+    same &= memcmp(v1, v2, m * size) == 0 && (!gradient || memcmp(g1, g2, m * dims * size) == 0);
+    free(v1), free(v2), free(g1), free(g2);
+    return same;
+}
+
+static void test_large_batches(void)
+{
+    enum { M = 9001 };
+    static double soa64[3][M], rows64[4 * M];
+    static float soa32[3][M], rows32[4 * M];
+    udm1_noise *n = make("wr", UDM1_NOISE_IMPROVED, 0, 0);
+    const size_t counts[] = {4096, 4097, 5003, M};
+    for (size_t t = 0; t < sizeof counts / sizeof counts[0]; ++t) {
+        size_t m = counts[t];
+        for (size_t i = 0; i < m; ++i)
+            for (int c = 0; c < 3; ++c) {
+                double v = (uniform() - 0.5) * (i % 97 == 5 ? 1e10 : 200); /* some past 2^31: the scalar groups */
+                soa64[c][i] = soa32[c][i] = (float)v;
+            }
+        for (uint32_t dims = 2; dims <= 3; ++dims)
+            for (size_t stride = 1; stride <= 4; ++stride) {
+                if (stride > 1 && stride < dims) continue;
+                const void *a64[3], *a32[3];
+                if (stride == 1) {
+                    for (uint32_t c = 0; c < 3; ++c) a64[c] = soa64[c], a32[c] = soa32[c];
+                } else {
+                    for (size_t i = 0; i < m; ++i)
+                        for (size_t c = 0; c < stride; ++c) { /* unused columns: NaN */
+                            rows64[i * stride + c] = c < dims ? soa64[c][i] : NAN;
+                            rows32[i * stride + c] = c < dims ? soa32[c][i] : NAN;
+                        }
+                    for (uint32_t c = 0; c < 3; ++c) a64[c] = rows64 + c, a32[c] = rows32 + c;
+                }
+                for (int gradient = 0; gradient <= 1; ++gradient) {
+                    CHECKF(batch_equals_pieces(n, dims, a32, stride, m, 1, 0, gradient),
+                           "%s: float, dims %u, stride %zu, %zu points, gradient %d", udm1_isa(), dims, stride, m, gradient);
+                    CHECKF(batch_equals_pieces(n, dims, a64, stride, m, 0, 0, gradient),
+                           "%s: double, dims %u, stride %zu, %zu points, gradient %d", udm1_isa(), dims, stride, m, gradient);
+                }
+                if (stride >= dims)
+                    CHECKF(batch_equals_pieces(n, dims, a64, stride, m, 0, 1, 0), "%s: points, dims %u, stride %zu, %zu points",
+                           udm1_isa(), dims, stride, m);
+            }
+    }
+    udm1_noise_destroy(n);
+}
+
 static void test_bad_input(void)
 {
     udm1_noise *n = make(NULL, UDM1_NOISE_IMPROVED, 0, 0);
@@ -373,6 +449,7 @@ int main(void)
     test_gradients();
     test_float_far();
     test_rows();
+    test_large_batches();
     test_bad_input();
     CHECK_DONE();
 }

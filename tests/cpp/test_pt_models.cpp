@@ -647,7 +647,7 @@ void test_textures()
     CHECK(refused(std::string(HEAD) + "Texture \"t\" \"float\" \"checkerboard\" \"string mapping\" \"planar\" \"float uscale\" [ 2 ]\n",
                   "unsupported parameter 'uscale'"));
     CHECK(refused(std::string(HEAD) + "Texture \"t\" \"float\" \"constant\"\nTexture \"u\" \"spectrum\" \"mix\" \"texture tex1\" \"t\"\n",
-                  "spectrum texture \"t\" was not made"));
+                  "texture \"t\" was not made (a spectrum texture)"));
     CHECK(refused(std::string(HEAD) + "Texture \"t\" \"float\" \"wrinkled\"\n", "\"wrinkled\" is not supported"));
 }
 

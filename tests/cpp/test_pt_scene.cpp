@@ -352,6 +352,67 @@ void test_albedo_spectra_clamped()
            "%.15g %.15g %.15g against %.15g %.15g %.15g", a.x, a.y, a.z, b.x, b.y, b.z);
 }
 
+// An ObjectInstance is its object's shapes under the instance's transform times their own (pbrt-v4's
+// composition): rays meet an instanced scene where they meet the same shapes written out under the composed
+// transform - the same shape, t, point and geometric normal (by the inverse transpose), texture coordinates
+// from the object's data - within float rounding (Embree transforms the ray in float). Meshes with vertex
+// normals and uv, a sphere under a similarity and one made an ellipsoid by the instance, and a mirroring
+// instance, whose sphere keeps its outward normal (pbrt-v4 flips a sphere's normal where its own transform
+// swaps handedness, not where an instance's does).
+void test_instances_equal_flattened_shapes()
+{
+    // (written out under a mirroring transform, the sphere is reversed back: ReverseOrientation around it)
+    auto object = [](bool reverse_sphere) {
+        std::string r = reverse_sphere ? "ReverseOrientation\n" : "";
+        return "Translate 0.5 0 0\n" + r + "Shape \"sphere\" \"float radius\" 0.6\n" + r +
+               "Shape \"trianglemesh\" \"point3 P\" [ -1 0 0  1 0 0  0 2 0.3 ] "
+               "\"normal N\" [ 0 0.2 -1  0.3 0 -1  -0.3 0 -1 ] \"point2 uv\" [ 0 0 1 0 0.5 1 ]\n";
+    };
+    const char *places[] = {"Translate -1.5 0.7 0\nRotate 30 0 1 0\nScale 1 1.3 0.8\n",
+                            "Translate 1.6 0.6 0.5\nRotate -50 1 1 0\nScale 0.7 0.7 0.7\n",
+                            "Translate 0 -1 1\nScale -1 1 1\n"};
+    std::string inst = std::string(HEAD) + "ObjectBegin \"o\"\n" + object(false) + "ObjectEnd\n", flat = HEAD;
+    for (const char *p : places) {
+        inst += std::string("AttributeBegin\n") + p + "ObjectInstance \"o\"\nAttributeEnd\n";
+        bool mirror = std::string(p).find("Scale -1") != std::string::npos;
+        flat += std::string("AttributeBegin\n") + p + object(mirror) + "AttributeEnd\n";
+    }
+    Scene a = load(inst), b = load(flat);
+    if (a.instances.size() != 3 || b.shapes.size() != 6) {
+        CHECKF(false, "instances %zu, shapes %zu", a.instances.size(), b.shapes.size());
+        return;
+    }
+    EmbreeScene ra(a), rb(b);
+    CameraRays camera(a);
+    int rays = 0, hits = 0, differ = 0, instance_hits = 0;
+    double worst_t = 0, worst_n = 0, worst_uv = 0;
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            Vec3 o, d;
+            camera.ray((x + 0.5) * a.width / 96.0, (y + 0.5) * a.height / 96.0, &o, &d);
+            Hit ha, hb;
+            bool fa = ra.intersect(o, d, 0.0, 1e300, &ha), fb = rb.intersect(o, d, 0.0, 1e300, &hb);
+            ++rays;
+            if (fa != fb || (fa && a.shapes[ha.shape].kind != b.shapes[hb.shape].kind)) {
+                ++differ;  // a ray through an edge, moved across it by a rounding
+                continue;
+            }
+            if (!fa) continue;
+            ++hits;
+            instance_hits += ha.instance != nullptr;
+            worst_t = std::max(worst_t, std::fabs(ha.t - hb.t) / hb.t);
+            worst_n = std::max(worst_n, length(ha.ng - hb.ng));
+            double ua, va, ub, vb;
+            hit_uv(a.shapes[ha.shape], ha, &ua, &va), hit_uv(b.shapes[hb.shape], hb, &ub, &vb);
+            worst_uv = std::max({worst_uv, std::fabs(ua - ub), std::fabs(va - vb)});
+        }
+    CHECKF(instance_hits > rays / 10 && differ <= rays / 200, "%d of %d rays hit instances, %d differ", instance_hits,
+           rays, differ);
+    CHECKF(worst_t < 2e-6 && worst_n < 2e-5 && worst_uv < 1e-4, "t %g, normal %g, uv %g", worst_t, worst_n, worst_uv);
+    std::printf("instances: %d rays, %d hits (%d through instances), %d differ; t %.3g, normal %.3g, uv %.3g\n", rays,
+                hits, instance_hits, differ, worst_t, worst_n, worst_uv);
+}
+
 }  // namespace
 
 int main()
@@ -364,5 +425,6 @@ int main()
     test_reversed_vertex_normals();
     test_refusals();
     test_albedo_spectra_clamped();
+    test_instances_equal_flattened_shapes();
     CHECK_DONE();
 }

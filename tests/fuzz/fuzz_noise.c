@@ -3,7 +3,8 @@
  *
  * Invariants: no crash, no hang, no sanitizer report; statuses are udm1_status values with a message;
  * finite coordinates give finite noise with |n| < 1.1; a non-finite coordinate gives NaN from the scalar
- * functions and an error from the batch ones; batch values equal the scalar ones. */
+ * functions and an error from the batch ones; batch values equal the scalar ones; a batch that fails
+ * (noise, noise with gradients, cellular noise, patterns, grids) leaves its outputs as they were. */
 #include "fuzz_bytes.h"
 
 #include <udm1/udm1.h>
@@ -13,6 +14,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define SENTINEL 0xA5
+/* Whether the n bytes at p are all SENTINEL (a failed batch's outputs, filled with it before the call). */
+static int untouched(const void *p, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        if (((const unsigned char *)p)[i] != SENTINEL) return 0;
+    return 1;
+}
 
 /* A coordinate: any bit pattern, or one of the hard cases. */
 static double coord(bytes *b)
@@ -73,10 +83,45 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (isfinite(x)) REQUIRE(isfinite(v1) && fabs(v1) < 1.1);
     }
     double out[8];
+    memset(out, SENTINEL, sizeof out);
     st = udm1_noise_points(noise, 3, pts, 8, 3, out);
     REQUIRE(st == (finite ? UDM1_OK : UDM1_ERROR_INVALID_ARGUMENT));
     if (st == UDM1_OK)
         for (int i = 0; i < 8; ++i) REQUIRE(out[i] == udm1_noise_3d(noise, pts[3 * i], pts[3 * i + 1], pts[3 * i + 2]));
+    else
+        REQUIRE(untouched(out, sizeof out));
+    /* the same points with gradients, in double and float, and cellular noise: all or nothing */
+    {
+        const double *axes[3] = {pts, pts + 1, pts + 2};
+        double value[8], grad[24];
+        float ptsf[24], valuef[8], gradf[24];
+        int finite_f = 1;
+        for (int i = 0; i < 24; ++i) {
+            ptsf[i] = (float)pts[i];
+            finite_f &= isfinite(ptsf[i]) != 0;
+        }
+        const float *axesf[3] = {ptsf, ptsf + 1, ptsf + 2};
+        memset(value, SENTINEL, sizeof value), memset(grad, SENTINEL, sizeof grad);
+        st = udm1_noise_eval(noise, 3, axes, 3, 8, value, grad);
+        REQUIRE(udm1_status_string(st) != NULL);
+        if (st != UDM1_OK) REQUIRE(untouched(value, sizeof value) && untouched(grad, sizeof grad));
+        if (finite) REQUIRE(st == UDM1_OK);
+        memset(valuef, SENTINEL, sizeof valuef), memset(gradf, SENTINEL, sizeof gradf);
+        st = udm1_noise_eval_f32(noise, 3, axesf, 3, 8, valuef, gradf);
+        if (st != UDM1_OK) REQUIRE(untouched(valuef, sizeof valuef) && untouched(gradf, sizeof gradf));
+        if (finite_f) REQUIRE(st == UDM1_OK);
+        udm1_cellular_params cp; /* from bytes already read: the corpus keeps feeding what follows as before */
+        udm1_cellular_params_init(&cp);
+        cp.metric = (uint32_t)(desc.seed % 5), cp.output = (uint32_t)(desc.seed >> 8) % 6;
+        cp.jitter = (desc.seed >> 16) & 1 ? pts[9] : 0.5;
+        memset(value, SENTINEL, sizeof value);
+        st = udm1_cellular_eval(noise, &cp, 2 + (uint32_t)(desc.seed >> 24) % 2, axes, 3, 8, value);
+        REQUIRE(udm1_status_string(st) != NULL);
+        if (st != UDM1_OK) REQUIRE(untouched(value, sizeof value));
+        memset(valuef, SENTINEL, sizeof valuef);
+        st = udm1_cellular_eval_f32(noise, &cp, 3, axesf, 3, 8, valuef);
+        if (st != UDM1_OK) REQUIRE(untouched(valuef, sizeof valuef));
+    }
 
     udm1_pattern_params par;
     uint32_t pattern = (uint32_t)take(&b, 1) % 17; /* includes 0 and 16: unknown */
@@ -89,17 +134,30 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         for (int i = 0; i < 3; ++i) par.turbulence[i] = coord(&b);
     }
     double pv[8];
-    st = udm1_pattern_points(noise, &par, pts, 8, 3, pv);
+    memset(pv, SENTINEL, sizeof pv);
+    udm1_status st_points = st = udm1_pattern_points(noise, &par, pts, 8, 3, pv);
     REQUIRE(udm1_status_string(st) != NULL);
+    if (st != UDM1_OK) REQUIRE(untouched(pv, sizeof pv));
     if (st == UDM1_OK)
         for (int i = 0; i < 8; ++i) REQUIRE(pv[i] == udm1_pattern_eval(noise, &par, pts[3 * i], pts[3 * i + 1],
                                                                         pts[3 * i + 2]) ||
                                             (isnan(pv[i]) && isnan(udm1_pattern_eval(noise, &par, pts[3 * i],
                                                                                      pts[3 * i + 1], pts[3 * i + 2]))));
+    if (par.pattern >= UDM1_PATTERN_NOISE && par.pattern <= UDM1_PATTERN_RIDGED) {
+        double pg[8], gg[24];
+        memset(pg, SENTINEL, sizeof pg), memset(gg, SENTINEL, sizeof gg);
+        st = udm1_pattern_gradient(noise, &par, pts, 8, 3, pg, gg);
+        REQUIRE(udm1_status_string(st) != NULL);
+        if (st != UDM1_OK) REQUIRE(untouched(pg, sizeof pg) && untouched(gg, sizeof gg));
+        if (st == UDM1_OK && st_points == UDM1_OK) /* its values are the pattern's */
+            for (int i = 0; i < 8; ++i) REQUIRE(pg[i] == pv[i]);
+    }
     float grid[4 * 3];
     double origin[3] = {pts[0], pts[1], pts[2]}, sx[3] = {pts[3], pts[4], pts[5]}, sy[3] = {pts[6], pts[7], pts[8]};
+    memset(grid, SENTINEL, sizeof grid);
     st = udm1_pattern_grid(noise, &par, 4, 3, 0, 3, origin, sx, sy, grid);
     REQUIRE(udm1_status_string(st) != NULL);
+    if (st != UDM1_OK) REQUIRE(untouched(grid, sizeof grid));
     udm1_noise_destroy(noise);
     return 0;
 }

@@ -8,7 +8,9 @@
  *    (stream, index, first + dim) bit for bit, or are refused: NaN (0 raw) with a message;
  *  - a domain's draws, whatever derivation made it, equal udm1_domain_fill_raw (the library's own
  *    computation) bit for bit, its floats and doubles are those raw values converted, or it is refused
- *    alike by both. */
+ *    alike by both;
+ *  - a fill of many dimensions (more than a chunk of 64) writes all of them or, refused, none; the double
+ *    draw of as many writes them or n NaN, and nothing past them. */
 #include "fuzz_bytes.h"
 
 #include <udm1/udm1.h>
@@ -51,6 +53,35 @@ static void stream_draw(const udm1_seq *seq, const udm1_stream *st, uint64_t ind
         REQUIRE(f64[j] == udm1_raw_to_f64(raw[j]) && f32[j] == udm1_raw_to_f32(raw[j]));
         REQUIRE(f64[j] >= 0.0 && f64[j] < 1.0 && f32[j] >= 0.0f && f32[j] < 1.0f);
     }
+}
+
+#define SENTINEL 0xA5
+static int untouched(const void *p, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        if (((const unsigned char *)p)[i] != SENTINEL) return 0;
+    return 1;
+}
+
+/* a fill of n (up to 300) dimensions: all written, or none */
+static void stream_fill_long(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
+{
+    enum { MAX = 300 };
+    uint64_t raw[MAX];
+    float f32[MAX];
+    double f64[MAX];
+    memset(raw, SENTINEL, sizeof raw), memset(f32, SENTINEL, sizeof f32), memset(f64, SENTINEL, sizeof f64);
+    udm1_status s1 = udm1_stream_fill_raw(st, index, dim, n, raw), s2 = udm1_stream_fill_f32(st, index, dim, n, f32);
+    udm1_stream_draw_f64(st, index, dim, n, f64);
+    REQUIRE(s1 == s2);
+    if (s1 != UDM1_OK) {
+        REQUIRE(untouched(raw, sizeof raw) && untouched(f32, sizeof f32));
+        for (uint32_t j = 0; j < n; ++j) REQUIRE(isnan(f64[j]));
+    } else {
+        for (uint32_t j = 0; j < n; ++j) REQUIRE(f32[j] == udm1_raw_to_f32(raw[j]) && f64[j] == udm1_raw_to_f64(raw[j]));
+        REQUIRE(untouched(raw + n, sizeof raw - n * sizeof *raw) && untouched(f32 + n, sizeof f32 - n * sizeof *f32));
+    }
+    REQUIRE(untouched(f64 + n, sizeof f64 - n * sizeof *f64));
 }
 
 /* one draw of n (1..4) dimensions from the domain, compared with the library's own computation */
@@ -110,6 +141,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             uint32_t dim = (pick & 6) == 6 ? (uint32_t)take(&b, 4) : (uint32_t)take(&b, 1) % (count + 3);
             uint32_t n = 1 + (uint32_t)(pick >> 3) % 4;
             stream_draw(seq, &st, index, dim, n);
+            stream_fill_long(&st, index, dim, 60 + (uint32_t)((index + dim + k) % 241)); /* (no new bytes read) */
             /* a domain from that sample: a chain of derivations from its root */
             udm1_domain d = udm1_domain_root(&st, index);
             int steps = (int)(take(&b, 1) % 5);

@@ -162,7 +162,9 @@ def test_meshes(tmp_path):
 
 
 @pytest.mark.skipif(not SCENES.is_dir(), reason=f"{SCENES} is absent: the shared test scenes are not here")
-@pytest.mark.parametrize("name,maxdist", [("cornell-box", None), ("veach-mis", None), ("crown", "3")])
+@pytest.mark.parametrize("name,maxdist", [("cornell-box", None), ("veach-mis", None),
+                                          pytest.param("crown", "3", marks=pytest.mark.release_only(
+                                              "3.5 M triangles read again; udm1-pt's tests read the Crown under the sanitizers"))])
 def test_shared_scenes(name, maxdist, tmp_path):
     out = tmp_path / f"{name}.png"
     args = ["--scene", str(SCENES / name / f"{name}.pbrt"), "--spp", "8", "--size", "60x80", "--png", str(out)]

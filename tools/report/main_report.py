@@ -13,7 +13,8 @@ terminal, and records what each did in OUT/steps.json:
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
     tent        beyond the paper: the tent transform's effect per integrand (udm1_bench_samplers error)
     screen      beyond the paper: blue-noise error from screen-space decorrelation (screen_report.py)
-    crown       with --full, where ../shared has it: the same protocol on the paper's Crown at 100 x 140
+    crown       with --full, where ../shared has it: the same protocol on the paper's Crown as distributed
+                (crown-volpath.pbrt: its gems' media) at 100 x 140
     accuracy    with --full: udm1-pt against pbrt-v4 on every shared and test scene (bench/bench_accuracy.py;
                 pbrt-v4 built once from ../shared/anchors, skipped with a message where it is absent)
     renderers   with --full: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes
@@ -139,7 +140,7 @@ def plan(args, out: Path) -> list[Step]:
 
 def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
     """--full: the paper's Figure 10 scene itself, where ../shared has it."""
-    crown = SHARED / "crown" / "crown.pbrt"
+    crown = SHARED / "crown" / "crown-volpath.pbrt"  # as distributed: Integrator "volpath", its gems' media
     if not args.full:
         return []
     if not crown.exists():

@@ -17,8 +17,8 @@ scrambled), PMJ02, WR, WMMR, HWMMR and R_d. Per scene:
 
 Scenes: the built-in Cornell box by default (no files needed); --full adds the shared pbrt-v4 scenes
 cornell-box and veach-mis (skipped with a message where ../shared is absent) at larger sizes; --scene
-renders one given scene instead (the paper's Crown: --scene ../shared/scenes/crown/crown.pbrt, into its
-own --out folder).
+renders one given scene instead (the paper's Crown as distributed: --scene
+../shared/scenes/crown/crown-volpath.pbrt, into its own --out folder).
 
 Writes OUT/pt.md, OUT/pt.html, OUT/pt_*.png, OUT/pt.csv and OUT/pt.json; images go to OUT/pt/.
 

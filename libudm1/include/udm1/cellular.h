@@ -66,9 +66,9 @@ UDM1_API void udm1_cellular_params_init(udm1_cellular_params *params);
 
 /* Cellular noise at n points of `dims` (2 or 3) coordinates: coordinate c of point i is axes[c][i * stride]
  * (packed points: axes = {p, p + 1, p + 2} and stride 3); out[i] its value. A NULL params takes the
- * defaults. Errors: NULL_ARGUMENT (noise, axes or an axis, out), INVALID_ARGUMENT (dims, stride 0, a
- * params field: struct_size, metric, output, reserved, jitter outside [0, 1], exponent outside [1, 64];
- * a non-finite coordinate: the message names the point; out's values are then unspecified). */
+ * defaults. Errors (out left unchanged): NULL_ARGUMENT (noise, axes or an axis, out), INVALID_ARGUMENT
+ * (dims, stride 0, a params field: struct_size, metric, output, reserved, jitter outside [0, 1], exponent
+ * outside [1, 64]; a non-finite coordinate: the message names the first such point). */
 UDM1_API udm1_status udm1_cellular_eval(const udm1_noise *noise, const udm1_cellular_params *params, uint32_t dims,
                                         const double *const axes[], size_t stride, size_t n, double *out);
 UDM1_API udm1_status udm1_cellular_eval_f32(const udm1_noise *noise, const udm1_cellular_params *params,

@@ -50,6 +50,12 @@ typedef enum udm1_status {
 } udm1_status;
 
 /*
+ * A function that returns a udm1_status and fails writes nothing into the caller's memory: every output
+ * array, struct and pointer it was given keeps every byte it had (the creators - udm1_seq_create,
+ * udm1_noise_create, udm1_lattice_bound_create - set *out to NULL and nothing else), and
+ * udm1_last_error() names the function and the input. A batch checks all of its input (every point,
+ * index and dimension) before it writes its first output.
+ *
  * Functions without a status (queries, the cursor's draws, the scalar noise and pattern calls, the
  * initializers and destroyers) follow one rule for inputs they cannot use, a NULL handle or pointer
  * first: they never crash, they do nothing or return a neutral value - 0, NULL, or NaN where the

@@ -139,7 +139,7 @@ static inline udm1_domain udm1_domain_chain(udm1_domain parent, uint64_t key, ui
 UDM1_API udm1_status udm1_domain_fill_raw(const udm1_domain *d, uint32_t n, uint64_t *raw);
 
 /* The same as floats (the conversion of udm1/seq.h), without the low bits a float does not read.
- * Errors as udm1_domain_fill_raw, NULL out. */
+ * Errors as udm1_domain_fill_raw, NULL out (out left unchanged). */
 UDM1_API udm1_status udm1_domain_fill_f32(const udm1_domain *d, uint32_t n, float *out);
 
 /* udm1_mix64(add + in[j]) of four values at once, where the compiler targets AVX2 (64-bit products from
@@ -186,7 +186,7 @@ static inline void udm1_put_(int out_kind, void *out, uint32_t j, uint64_t r)
 static inline int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
 {
     const udm1_stream *st = d->stream;
-    return st && d->key && (st->flags & UDM1_STREAM_INLINE) && n <= 4 && n <= st->held &&
+    return st && d->key && (st->flags & UDM1_STREAM_INLINE) && n - 1u < 4u && n <= st->held &&
            d->dim <= st->held - n && st->point_count == 0;
 }
 
@@ -235,8 +235,8 @@ static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint
 static inline int udm1_domain_pmj02_(const udm1_domain *d, uint32_t n)
 {
     const udm1_stream *st = d->stream;
-    return st && d->key && (st->flags & UDM1_STREAM_PMJ02) && n <= 4 && n <= st->held && d->dim <= st->held - n &&
-           d->index < st->point_count;
+    return st && d->key && (st->flags & UDM1_STREAM_PMJ02) && n - 1u < 4u && n <= st->held &&
+           d->dim <= st->held - n && d->index < st->point_count;
 }
 
 /* A pmj02 child domain's values (out_kind as udm1_put_): its index permuted inside the K points, its own
@@ -258,8 +258,8 @@ static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, i
 static inline int udm1_domain_sobol_(const udm1_domain *d, uint32_t n)
 {
     const udm1_stream *st = d->stream;
-    return st && d->key && (st->flags & UDM1_STREAM_SOBOL) && n <= 4 && n <= st->held && d->dim <= st->held - n &&
-           d->index <= 0xFFFFFFFFu && d->dim <= UDM1_STREAM_DIMS - 4;
+    return st && d->key && (st->flags & UDM1_STREAM_SOBOL) && n - 1u < 4u && n <= st->held &&
+           d->dim <= st->held - n && d->index <= 0xFFFFFFFFu && d->dim <= UDM1_STREAM_DIMS - 4;
 }
 
 /* A Sobol child domain's values (out_kind as udm1_put_): its index scrambled, its own words. */
@@ -274,12 +274,13 @@ static inline void udm1_domain_sobol_values_(const udm1_domain *d, uint32_t n, i
         for (uint32_t j = 0; j < n; ++j) udm1_put_(out_kind, out, j, udm1_sobol_value_(st, m, d->dim + j, words[j], out_kind != 1));
 }
 
-/* A draw through the library (out_kind as udm1_put_), out of line: a refused draw gives 0 (raw) or NaN. */
+/* A draw through the library (out_kind as udm1_put_), out of line: a refused draw gives 0 (raw) or NaN in
+ * its first min(n, 4) outputs. */
 UDM1_COLD_ void udm1_domain_library_(udm1_domain d, uint32_t n, int out_kind, void *out)
 {
     uint64_t raw[4];
-    udm1_status s = out_kind == 1 ? udm1_domain_fill_f32(&d, n, (float *)out) : udm1_domain_fill_raw(&d, n, raw);
-    for (uint32_t j = 0; j < n && j < 4; ++j) {
+    udm1_status s = out_kind == 1 ? udm1_domain_fill_f32(&d, n, (float *)out) : udm1_domain_fill_raw(&d, n, out ? raw : NULL);
+    for (uint32_t j = 0; out && j < n && j < 4; ++j) {
         if (out_kind == 0) ((uint64_t *)out)[j] = s == UDM1_OK ? raw[j] : 0;
         else if (out_kind == 2) ((double *)out)[j] = s == UDM1_OK ? udm1_raw_to_f64(raw[j]) : (double)NAN;
         else if (s != UDM1_OK) ((float *)out)[j] = (float)NAN;
@@ -287,11 +288,12 @@ UDM1_COLD_ void udm1_domain_library_(udm1_domain d, uint32_t n, int out_kind, vo
 }
 
 /* The domain's first n dimensions (1..4) as raw values, floats or doubles. A draw the library refuses
- * gives 0 (raw) or NaN, with udm1_last_error() saying why. */
+ * (n outside 1..4 among them) gives 0 (raw) or NaN in its first min(n, 4) outputs and writes nothing else,
+ * with udm1_last_error() saying why. */
 UDM1_DRAW_ void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
 {
-    if (!d.key && d.stream) {
-        udm1_stream_draw_raw(d.stream, d.index, d.dim, n <= 4 ? n : 4, raw);
+    if (!d.key && d.stream && n - 1u < 4u) {
+        udm1_stream_draw_raw(d.stream, d.index, d.dim, n, raw);
         return;
     }
     if (udm1_domain_inline_(&d, n)) {
@@ -315,8 +317,8 @@ UDM1_DRAW_ void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
         udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, 1, out);
         return;
     }
-    if (!d.key && d.stream) {
-        udm1_stream_draw_f32(d.stream, d.index, d.dim, n <= 4 ? n : 4, out);
+    if (!d.key && d.stream && n - 1u < 4u) {
+        udm1_stream_draw_f32(d.stream, d.index, d.dim, n, out);
         return;
     }
     if (udm1_domain_pmj02_(&d, n)) {
@@ -336,8 +338,8 @@ UDM1_DRAW_ void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
         udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, 2, out);
         return;
     }
-    if (!d.key && d.stream) {
-        udm1_stream_draw_f64(d.stream, d.index, d.dim, n <= 4 ? n : 4, out);
+    if (!d.key && d.stream && n - 1u < 4u) {
+        udm1_stream_draw_f64(d.stream, d.index, d.dim, n, out);
         return;
     }
     if (udm1_domain_pmj02_(&d, n)) {

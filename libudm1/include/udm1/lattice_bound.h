@@ -39,7 +39,7 @@ typedef struct udm1_lattice_bound udm1_lattice_bound;
 /* Create one that reads the bound at `lag` (1 .. 30) with the constant `fudge` (finite, > 0), with
  * room for `capacity` points (0 or more: the buffers grow as points are added; room given up front is
  * never copied). Errors: NULL_ARGUMENT (out), INVALID_ARGUMENT (lag, fudge, capacity above 2^32),
- * OUT_OF_MEMORY. */
+ * OUT_OF_MEMORY; on failure *out is set to NULL. */
 UDM1_API udm1_status udm1_lattice_bound_create(uint32_t lag, double fudge, uint64_t capacity,
                                                udm1_lattice_bound **out);
 UDM1_API void udm1_lattice_bound_destroy(udm1_lattice_bound *bound);

@@ -15,6 +15,8 @@ extern "C" {
 /* ------------------------------------------------------------------------ */
 /* Quality metrics                                                           */
 /* ------------------------------------------------------------------------ */
+/* A metric that fails writes nothing into its outputs (udm1/core.h): each checks all of its arguments
+ * (every point of a set) before it writes, and the spectrum sums its periodograms in memory of its own. */
 
 typedef enum udm1_discrepancy_kind {
     UDM1_DISCREPANCY_L2_STAR = 1,      /* L2-star, square-rooted (as scipy.stats.qmc) */

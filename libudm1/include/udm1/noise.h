@@ -49,7 +49,8 @@ extern "C" {
  * cell is found with exact floating-point floor and fmod (no int overflow,
  * |x| up to the largest double); past 2^52 every double is a lattice point
  * and the noise is 0. A NaN or infinite coordinate gives NaN from the scalar
- * functions and UDM1_ERROR_INVALID_ARGUMENT from the batch ones.
+ * functions and UDM1_ERROR_INVALID_ARGUMENT from the batch ones, which check
+ * every point before they write and so leave their outputs unchanged.
  * A udm1_noise is immutable and may be shared by threads.
  */
 typedef struct udm1_noise udm1_noise;
@@ -70,7 +71,8 @@ typedef struct udm1_noise_desc {
 
 UDM1_API void udm1_noise_desc_init(udm1_noise_desc *desc);
 /* Errors: NULL_ARGUMENT, INVALID_ARGUMENT (struct_size, kind, reserved, a period
- * above 2^30), UNKNOWN_PRESET (table), OUT_OF_MEMORY. */
+ * above 2^30), UNKNOWN_PRESET (table), OUT_OF_MEMORY. On failure *out is set to
+ * NULL (if out is not NULL). */
 UDM1_API udm1_status udm1_noise_create(const udm1_noise_desc *desc, udm1_noise **out);
 UDM1_API void udm1_noise_destroy(udm1_noise *noise);
 /* The permutation (256 entries) and gradients (256 x 3) of a noise, copied out.
@@ -103,18 +105,18 @@ UDM1_API double udm1_noise_4d(const udm1_noise *noise, double x, double y, doubl
  *    float (far from the origin the offset keeps a float's precision, as the double path keeps a
  *    double's), and every kernel (AVX-512 with 16 lanes, AVX2 with 8, the scalar code) gives the same
  *    bits.
- * Errors: NULL_ARGUMENT (noise, axes or an axis, value and gradient both), INVALID_ARGUMENT (dims, stride
- * 0, 4D classic noise, a non-finite coordinate: the message names the point; the outputs are then
- * unspecified). */
+ * Errors (value and gradient left unchanged): NULL_ARGUMENT (noise, axes or an axis, value and gradient
+ * both), INVALID_ARGUMENT (dims, stride 0, 4D classic noise, a non-finite coordinate: the message names
+ * the first such point). */
 UDM1_API udm1_status udm1_noise_eval(const udm1_noise *noise, uint32_t dims, const double *const axes[], size_t stride,
                                      size_t n, double *value, double *gradient);
 UDM1_API udm1_status udm1_noise_eval_f32(const udm1_noise *noise, uint32_t dims, const float *const axes[],
                                          size_t stride, size_t n, float *value, float *gradient);
 
 /* Noise values at n points of `dims` (1, 2 or 3) coordinates, point i at
- * xyz[i * stride]. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (dims, stride < dims,
- * a non-finite coordinate: the message names the point; out's values are then
- * unspecified). */
+ * xyz[i * stride]. Errors (out left unchanged): NULL_ARGUMENT, INVALID_ARGUMENT
+ * (dims, stride < dims, a non-finite coordinate: the message names the first
+ * such point). */
 UDM1_API udm1_status udm1_noise_points(const udm1_noise *noise, uint32_t dims, const double *xyz, size_t n,
                                        size_t stride, double *out);
 
@@ -214,16 +216,20 @@ UDM1_API double udm1_pattern_eval(const udm1_noise *noise, const udm1_pattern_pa
  * first given row first): pixel (i, j) is the pattern at
  * origin + (i + 1/2) * step_x + (j + 1/2) * step_y (3-vectors). Rows can be
  * computed by different threads into their own part of an image.
- * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (sizes 0 or above 65536, rows past
- * height, a bad params field: struct_size, pattern, octaves outside 1..10,
- * non-finite numbers, origin/steps not finite; a pattern that is not a number
- * at some pixel because an octave's scale or sum overflows a double: the
- * message names the pixel, out's values are then unspecified). */
+ * Errors (out left unchanged): NULL_ARGUMENT, INVALID_ARGUMENT (sizes 0 or
+ * above 65536, rows past height, a bad params field: struct_size, pattern,
+ * octaves outside 1..10, non-finite numbers, origin/steps not finite; a pattern
+ * that is not a number at some pixel because an octave's scale or sum
+ * overflows a double: the message names the pixel), OUT_OF_MEMORY (where a
+ * pixel could be NaN - parameters or coordinates near the double range, and
+ * every pattern whose bounds are not worked out, POV-Ray's - the rows are
+ * computed into a scratch image, copied to out when every pixel is a number). */
 UDM1_API udm1_status udm1_pattern_grid(const udm1_noise *noise, const udm1_pattern_params *params, uint32_t width,
                                        uint32_t height, uint32_t row0, uint32_t rows, const double origin[3],
                                        const double step_x[3], const double step_y[3], float *out);
 /* The pattern at n points (point i at xyz[i * stride], 3 coordinates).
- * Errors: as udm1_pattern_grid (naming the point), and INVALID_ARGUMENT for a non-finite point. */
+ * Errors: as udm1_pattern_grid (naming the point; the scratch buffer, where one is needed, holds the n
+ * values), and INVALID_ARGUMENT for a non-finite point; out left unchanged. */
 UDM1_API udm1_status udm1_pattern_points(const udm1_noise *noise, const udm1_pattern_params *params,
                                          const double *xyz, size_t n, size_t stride, double *out);
 
@@ -232,8 +238,8 @@ UDM1_API udm1_status udm1_pattern_points(const udm1_noise *noise, const udm1_pat
  * bit for bit, gradient[3 i + c] its derivative along axis c: each octave's noise gradient (as
  * udm1_noise_eval's) times its scale lambda^i and weight, through the pattern's function (RIDGED:
  * 2 (1 - |n|) sign(n); TURBULENCE: the clamps' slopes, 0 outside (0, 1) and at the kinks).
- * Errors: as udm1_pattern_points, and INVALID_ARGUMENT for another pattern (POV-Ray's patterns warp,
- * clamp and wave-shape: no gradient is defined for them here). */
+ * Errors: as udm1_pattern_points (value and gradient left unchanged), and INVALID_ARGUMENT for another
+ * pattern (POV-Ray's patterns warp, clamp and wave-shape: no gradient is defined for them here). */
 UDM1_API udm1_status udm1_pattern_gradient(const udm1_noise *noise, const udm1_pattern_params *params,
                                            const double *xyz, size_t n, size_t stride, double *value,
                                            double *gradient);

@@ -42,8 +42,9 @@
  * handle. A udm1_cursor belongs to one thread at a time.
  *
  * Errors: functions that can fail return a udm1_status. On failure nothing is
- * written to the caller's output, and udm1_last_error() returns a one-line
- * message, on the calling thread, naming the function and the bad input.
+ * written to the caller's output (udm1/core.h; the creators set *out to NULL),
+ * and udm1_last_error() returns a one-line message, on the calling thread,
+ * naming the function and the bad input.
  */
 #ifndef UDM1_SEQ_H
 #define UDM1_SEQ_H
@@ -375,8 +376,9 @@ UDM1_API uint32_t udm1_cursor_padded(const udm1_cursor *cursor);
  * (streams[k], indices[k], first_dimension) and filled with n_dims values (padding included).
  * Consecutive points of one stream share its per-stream randomization: keep them together
  * (sorted by stream) and a Weyl sequence's shifts are computed once per stream, not per point.
- * Errors: NULL arguments with n > 0, an index outside a point set (naming k), DIMENSION (n_dims 0, or
- * first_dimension + n_dims past UDM1_DIMENSION_INDEX_LIMIT; checked also when n is 0). Since 1.5. */
+ * Errors: NULL arguments with n > 0, an index outside a point set (naming k; every index is checked
+ * before out is written), DIMENSION (n_dims 0, or first_dimension + n_dims past
+ * UDM1_DIMENSION_INDEX_LIMIT; checked also when n is 0). Since 1.5. */
 UDM1_API udm1_status udm1_seq_fill_points_f64(const udm1_seq *seq, size_t n, const uint64_t *streams,
                                               const uint64_t *indices, uint32_t first_dimension,
                                               uint32_t n_dims, double *out);
@@ -418,8 +420,8 @@ typedef struct udm1_alpha_report {
 } udm1_alpha_report;
 
 /* Check the generators of a Weyl sequence at n points (2 <= n <= 65536).
- * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (n, work limit, not a Weyl
- * sequence), OUT_OF_MEMORY. */
+ * Errors (the report left unchanged): NULL_ARGUMENT, INVALID_ARGUMENT (n, work
+ * limit, not a Weyl sequence), OUT_OF_MEMORY. */
 UDM1_API udm1_status udm1_seq_check(const udm1_seq *seq, uint64_t n, udm1_alpha_report *report);
 /* Check user generators before creating a sequence; unlike creation, a
  * rational generator is reported, not refused. Errors: NULL_ARGUMENT,

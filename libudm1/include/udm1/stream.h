@@ -122,7 +122,8 @@ UDM1_API udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index,
                                           uint64_t *raw);
 
 /* The same values as floats into out[0..n-1] (the conversion of udm1/seq.h); for the kinds whose low
- * bits a float does not read, without computing them. Errors as udm1_stream_fill_raw, NULL out. */
+ * bits a float does not read, without computing them. Errors as udm1_stream_fill_raw, NULL out (out left
+ * unchanged: the whole range is checked before the first value is written). */
 UDM1_API udm1_status udm1_stream_fill_f32(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
                                           float *out);
 
@@ -392,8 +393,9 @@ static inline int udm1_stream_pmj02_(const udm1_stream *st, uint64_t index, uint
 }
 
 /* Dimensions [first + dim, first + dim + n) of point `index`, as raw 0.64 values, floats or doubles.
- * A draw the library refuses (an index outside a point set, a NULL stream) gives NaN for the float
- * and double draws (0 for raw values), and udm1_last_error() says why. */
+ * A draw the library refuses (an index outside a point set, a NULL stream, dimensions past the index
+ * limit) gives NaN in each of the n outputs of the float and double draws (0 for raw values) and
+ * nothing else, and udm1_last_error() says why (a NULL output array is then left alone). */
 UDM1_DRAW_ void udm1_stream_draw_raw(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
                                         uint64_t *raw)
 {
@@ -415,7 +417,7 @@ UDM1_DRAW_ void udm1_stream_draw_raw(const udm1_stream *st, uint64_t index, uint
         for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_sobol_value_(st, (uint32_t)index, dim + j, st->offset[dim + j], 1);
         return;
     }
-    if (udm1_stream_fill_raw(st, index, dim, n, raw) != UDM1_OK)
+    if (udm1_stream_fill_raw(st, index, dim, n, raw) != UDM1_OK && raw)
         for (uint32_t j = 0; j < n; ++j) raw[j] = 0;
 }
 
@@ -453,7 +455,7 @@ UDM1_DRAW_ void udm1_stream_draw_f32(const udm1_stream *st, uint64_t index, uint
             out[j] = udm1_raw_to_f32(udm1_sobol_value_(st, (uint32_t)index, dim + j, st->offset[dim + j], 0));
         return;
     }
-    if (udm1_stream_fill_f32(st, index, dim, n, out) != UDM1_OK)
+    if (udm1_stream_fill_f32(st, index, dim, n, out) != UDM1_OK && out)
         for (uint32_t j = 0; j < n; ++j) out[j] = (float)NAN;
 }
 
@@ -488,12 +490,15 @@ UDM1_DRAW_ void udm1_stream_draw_f64(const udm1_stream *st, uint64_t index, uint
         return;
     }
     uint64_t raw[UDM1_STREAM_DIMS];
-    for (uint32_t done = 0; done < n;) {
+    int ok = 1;
+    for (uint32_t done = 0; ok && done < n;) {
         uint32_t m = n - done < UDM1_STREAM_DIMS ? n - done : UDM1_STREAM_DIMS;
-        int ok = udm1_stream_fill_raw(st, index, dim + done, m, raw) == UDM1_OK;
-        for (uint32_t j = 0; j < m; ++j) out[done + j] = ok ? udm1_raw_to_f64(raw[j]) : NAN;
+        ok = udm1_stream_fill_raw(st, index, dim + done, m, out ? raw : NULL) == UDM1_OK;
+        for (uint32_t j = 0; ok && j < m; ++j) out[done + j] = udm1_raw_to_f64(raw[j]);
         done += m;
     }
+    if (!ok && out) /* a later part refused (dimensions past the limit): the whole draw is */
+        for (uint32_t j = 0; j < n; ++j) out[j] = NAN;
 }
 
 #ifdef __cplusplus

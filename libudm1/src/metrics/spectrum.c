@@ -29,17 +29,19 @@ udm1_status udm1_spectrum_2d(const udm1_seq *seq, uint32_t dim0, uint64_t n, uin
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: n = %llu of a %llu-point set", fn, (unsigned long long)n,
                          (unsigned long long)udm1_seq_point_count(seq));
     size_t S = size, cells = S * S;
+    /* the periodograms summed in sum, written to out only when every point was drawn */
     double *fre = malloc(sizeof(double) * cells), *fim = malloc(sizeof(double) * cells);
     double *ex = malloc(sizeof(double) * 4 * S), *pts = malloc(sizeof(double) * 2 * 1024);
-    if (!fre || !fim || !ex || !pts) {
+    double *sum = calloc(cells, sizeof(double));
+    if (!fre || !fim || !ex || !pts || !sum) {
         free(fre);
         free(fim);
         free(ex);
         free(pts);
+        free(sum);
         return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory", fn);
     }
     double *exr = ex, *exi = ex + S, *eyr = ex + 2 * S, *eyi = ex + 3 * S;
-    memset(out, 0, sizeof(double) * cells);
     udm1_status st = UDM1_OK;
     for (uint32_t r = 0; r < randomizations && st == UDM1_OK; ++r) {
         memset(fre, 0, sizeof(double) * cells);
@@ -66,12 +68,14 @@ udm1_status udm1_spectrum_2d(const udm1_seq *seq, uint32_t dim0, uint64_t n, uin
                 }
             }
         }
-        for (size_t k = 0; k < cells; ++k) out[k] += (fre[k] * fre[k] + fim[k] * fim[k]) / (double)n;
+        for (size_t k = 0; k < cells; ++k) sum[k] += (fre[k] * fre[k] + fim[k] * fim[k]) / (double)n;
     }
-    for (size_t k = 0; k < cells; ++k) out[k] /= randomizations;
+    if (st == UDM1_OK)
+        for (size_t k = 0; k < cells; ++k) out[k] = sum[k] / randomizations;
     free(fre);
     free(fim);
     free(ex);
     free(pts);
+    free(sum);
     return st;
 }

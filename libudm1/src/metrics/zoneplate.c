@@ -29,6 +29,8 @@ udm1_status udm1_zoneplate(const udm1_seq *seq, uint32_t dim0, uint32_t width, u
     double *uv = malloc(sizeof(double) * 2 * spp);
     if (!uv) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory", fn);
     double k = PI / (double)width;
+    /* the checks above are every pixel's fill's own (the dimensions, spp within a point set), so no fill
+     * fails once a pixel is written: the status below is OK (a failure would still be returned) */
     for (uint32_t y = 0; y < height; ++y)
         for (uint32_t x = 0; x < width; ++x) {
             udm1_status st = udm1_seq_fill_f64(seq, ((uint64_t)y << 32) | x, 0, spp, dim0, 2, uv, 2);

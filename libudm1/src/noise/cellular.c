@@ -1,5 +1,6 @@
 /* cellular.c - cellular (Worley) noise: udm1_cellular_eval and udm1_cellular_eval_f32 (udm1/cellular.h),
  * the scalar search of noise/cellular_impl.h in both precisions, and the vector kernels' entry. */
+#include "core/finite.h"
 #include "noise/noise_tables.h"
 
 #include <math.h>
@@ -119,16 +120,15 @@ udm1_status udm1_cellular_eval(const udm1_noise *n, const udm1_cellular_params *
     if (st != UDM1_OK) return st;
     udm1_cellular_params p;
     if ((st = load(fn, params, &p)) != UDM1_OK) return st;
+    uint32_t axis = 0;
+    size_t bad = udm1_first_nonfinite_f64(dims, axes, stride, count, &axis);
+    if (bad < count) return udm1_not_finite(fn, bad, axis);
     cellular_setup_f64 u;
     cellular_setup_init_f64(&u, n, dims, p.metric, needed(p.output), p.jitter, p.exponent);
     size_t i = udm1_cellular_fast_f64(n, &p, dims, axes, stride, count, out);
     for (; i < count; ++i) {
         double c[3] = {0, 0, 0};
-        for (uint32_t a = 0; a < dims; ++a) {
-            c[a] = axes[a][i * stride];
-            if (!isfinite(c[a]))
-                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, a);
-        }
+        for (uint32_t a = 0; a < dims; ++a) c[a] = axes[a][i * stride];
         nearest3_f64 s;
         SEARCH(f64, n, &u, c, &s);
         out[i] = cellular_output_f64(&s, &u, p.output);
@@ -144,16 +144,15 @@ udm1_status udm1_cellular_eval_f32(const udm1_noise *n, const udm1_cellular_para
     if (st != UDM1_OK) return st;
     udm1_cellular_params p;
     if ((st = load(fn, params, &p)) != UDM1_OK) return st;
+    uint32_t axis = 0;
+    size_t bad = udm1_first_nonfinite_f32(dims, axes, stride, count, &axis);
+    if (bad < count) return udm1_not_finite(fn, bad, axis);
     cellular_setup_f32 u;
     cellular_setup_init_f32(&u, n, dims, p.metric, needed(p.output), p.jitter, p.exponent);
     size_t i = udm1_cellular_fast_f32(n, &p, dims, axes, stride, count, out);
     for (; i < count; ++i) {
         float c[3] = {0, 0, 0};
-        for (uint32_t a = 0; a < dims; ++a) {
-            c[a] = axes[a][i * stride];
-            if (!isfinite(c[a]))
-                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, a);
-        }
+        for (uint32_t a = 0; a < dims; ++a) c[a] = axes[a][i * stride];
         nearest3_f32 s;
         SEARCH(f32, n, &u, c, &s);
         out[i] = cellular_output_f32(&s, &u, p.output);

@@ -74,24 +74,19 @@ static udm1_status eval_args(const char *fn, const udm1_noise *n, uint32_t dims,
     return UDM1_OK;
 }
 
+/* The message of a batch refused for point i's coordinate c (core/finite.h found it before any output). */
+udm1_status udm1_not_finite(const char *fn, size_t i, uint32_t c)
+{
+    return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, c);
+}
+
 udm1_status udm1_noise_eval(const udm1_noise *n, uint32_t dims, const double *const axes[], size_t stride,
                             size_t count, double *value, double *gradient)
 {
     static const char fn[] = "udm1_noise_eval";
     udm1_status st = eval_args(fn, n, dims, (const void *const *)axes, stride, count, value, gradient);
     if (st != UDM1_OK) return st;
-    size_t i = udm1_noise_eval_fast_f64(n, dims, axes, stride, count, value, gradient);
-    for (; i < count; ++i) {
-        double c[4];
-        for (uint32_t k = 0; k < dims; ++k) {
-            c[k] = axes[k][i * stride];
-            if (!(fabs(c[k]) < INFINITY))
-                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, k);
-        }
-        double v = udm1_lattice_f64(n, dims, c, gradient ? gradient + i * dims : NULL);
-        if (value) value[i] = v;
-    }
-    return UDM1_OK;
+    return udm1_noise_batch_f64(fn, n, dims, axes, stride, count, value, gradient);
 }
 
 udm1_status udm1_noise_eval_f32(const udm1_noise *n, uint32_t dims, const float *const axes[], size_t stride,
@@ -100,18 +95,7 @@ udm1_status udm1_noise_eval_f32(const udm1_noise *n, uint32_t dims, const float 
     static const char fn[] = "udm1_noise_eval_f32";
     udm1_status st = eval_args(fn, n, dims, (const void *const *)axes, stride, count, value, gradient);
     if (st != UDM1_OK) return st;
-    size_t i = udm1_noise_eval_fast_f32(n, dims, axes, stride, count, value, gradient);
-    for (; i < count; ++i) {
-        float c[4];
-        for (uint32_t k = 0; k < dims; ++k) {
-            c[k] = axes[k][i * stride];
-            if (!(fabsf(c[k]) < INFINITY))
-                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, k);
-        }
-        float v = udm1_lattice_f32(n, dims, c, gradient ? gradient + i * dims : NULL);
-        if (value) value[i] = v;
-    }
-    return UDM1_OK;
+    return udm1_noise_batch_f32(fn, n, dims, axes, stride, count, value, gradient);
 }
 
 double udm1_lattice_f64(const udm1_noise *n, uint32_t dims, const double *c, double *grad)

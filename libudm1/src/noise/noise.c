@@ -244,16 +244,6 @@ udm1_status udm1_noise_points(const udm1_noise *n, uint32_t dims, const double *
     if (!n || !xyz || !out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: a pointer argument is NULL", fn);
     if (dims < 1 || dims > 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: dims %u is not 1, 2 or 3", fn, dims);
     if (stride < dims) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < dims %u", fn, stride, dims);
-    /* one pass over memory: the vector kernels stop before a group with a non-finite coordinate, and
-     * the scalar loop checks every point it evaluates */
     const double *axes[3] = {xyz, xyz + 1, xyz + 2};
-    size_t i = dims >= 2 ? udm1_noise_eval_fast_f64(n, dims, axes, stride, count, out, NULL) : 0;
-    for (; i < count; ++i) {
-        const double *q = xyz + i * stride;
-        for (uint32_t c = 0; c < dims; ++c)
-            if (!isfinite(q[c]))
-                return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu coordinate %u is not finite", fn, i, c);
-        out[i] = udm1_lattice_f64(n, dims, q, NULL);
-    }
-    return UDM1_OK;
+    return udm1_noise_batch_f64(fn, n, dims, axes, stride, count, out, NULL);
 }

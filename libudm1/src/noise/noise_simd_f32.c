@@ -16,6 +16,7 @@
 #include <immintrin.h>
 
 #include "noise/byte_table.h"
+#include "noise/side_check.h"
 #include "noise/strided_loads.h"
 
 /* ---- AVX-512 (F, VL, DQ, BW, VBMI): 16 points ---- */
@@ -142,14 +143,17 @@ AVX512 static inline __m512i spread4_plus(__m512i a, int plus)
 AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const udm1_noise *n,
                                                                           const float *const *axes, size_t stride,
                                                                           size_t count, float *value, float *gradient,
-                                                                          const int with_gradient)
+                                                                          const int with_gradient,
+                                                                          udm1_side_check *side)
 {
     const byte_table T = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 16);
     const __m512 onef = _mm512_set1_ps(1.0f);
     const tables512 E = {_mm512_loadu_ps(EDGES[0]), _mm512_loadu_ps(EDGES[1]), _mm512_loadu_ps(EDGES[2])};
+    __m512 checked = _mm512_setzero_ps();
     size_t i = 0;
     for (; i + 16 <= count; i += 16) {
+        checked = udm1_side_step512_ps(side, checked);
         __m512 x = strided_load16(&L, axes[0] + i * stride), y = strided_load16(&L, axes[1] + i * stride);
         __m512 z = strided_load16(&L, axes[2] + i * stride);
         if (not_finite16(x) | not_finite16(y) | not_finite16(z)) break; /* the caller reports it */
@@ -196,25 +200,28 @@ AVX512 static inline __attribute__((always_inline)) size_t noise3_avx512_k(const
             store_interleaved16(gradient + 3 * i, g, 3);
         }
     }
+    udm1_side_end512_ps(side, checked);
     return i;
 }
 
 AVX512 static size_t noise3_avx512(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
-                                   float *value, float *gradient)
+                                   float *value, float *gradient, udm1_side_check *side)
 {
-    return gradient ? noise3_avx512_k(n, axes, stride, count, value, gradient, 1)
-                    : noise3_avx512_k(n, axes, stride, count, value, NULL, 0);
+    return gradient ? noise3_avx512_k(n, axes, stride, count, value, gradient, 1, side)
+                    : noise3_avx512_k(n, axes, stride, count, value, NULL, 0, side);
 }
 
 AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
-                                   float *value, float *gradient)
+                                   float *value, float *gradient, udm1_side_check *side)
 {
     const byte_table T = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 16);
     const __m512 onef = _mm512_set1_ps(1.0f), scale = _mm512_set1_ps(0.507f);
     const tables512 E = {_mm512_loadu_ps(G2[0]), _mm512_loadu_ps(G2[1]), _mm512_loadu_ps(G2[2])};
+    __m512 checked = _mm512_setzero_ps();
     size_t i = 0;
     for (; i + 16 <= count; i += 16) {
+        checked = udm1_side_step512_ps(side, checked);
         __m512 x = strided_load16(&L, axes[0] + i * stride), y = strided_load16(&L, axes[1] + i * stride);
         if (not_finite16(x) | not_finite16(y)) break;
         __m512i X0, Y0;
@@ -236,6 +243,7 @@ AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes
             store_interleaved16(gradient + 2 * i, g, 2);
         }
     }
+    udm1_side_end512_ps(side, checked);
     return i;
 }
 
@@ -328,14 +336,16 @@ AVX2 static inline void gvec2_8(__m256i h, __m256 g[2])
 }
 
 AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
-                               float *value, float *gradient)
+                               float *value, float *gradient, udm1_side_check *side)
 {
     const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
     const __m256i m255 = _mm256_set1_epi32(255);
     const __m256 onef = _mm256_set1_ps(1.0f);
     const int *hash4 = (const int *)n->hash4, *pair = n->pair;
+    __m256 checked = _mm256_setzero_ps();
     size_t i = 0;
     for (; i + 8 <= count; i += 8) {
+        checked = udm1_side_step256_ps(side, checked);
         __m256 x = load8(axes[0] + i * stride, stride, vindex), y = load8(axes[1] + i * stride, stride, vindex);
         __m256 z = load8(axes[2] + i * stride, stride, vindex);
         if (!(finite8(x) && finite8(y) && finite8(z))) break;
@@ -385,17 +395,20 @@ AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, si
                 for (int k = 0; k < 3; ++k) gradient[3 * (i + j) + k] = tmp[k][j];
         }
     }
+    udm1_side_end256_ps(side, checked);
     return i;
 }
 
 AVX2 static size_t noise2_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
-                               float *value, float *gradient)
+                               float *value, float *gradient, udm1_side_check *side)
 {
     const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
     const __m256 onef = _mm256_set1_ps(1.0f), scale = _mm256_set1_ps(0.507f);
     const int *hash4 = (const int *)n->hash4;
+    __m256 checked = _mm256_setzero_ps();
     size_t i = 0;
     for (; i + 8 <= count; i += 8) {
+        checked = udm1_side_step256_ps(side, checked);
         __m256 x = load8(axes[0] + i * stride, stride, vindex), y = load8(axes[1] + i * stride, stride, vindex);
         if (!(finite8(x) && finite8(y))) break;
         __m256i X0, Y0;
@@ -419,29 +432,46 @@ AVX2 static size_t noise2_avx2(const udm1_noise *n, const float *const *axes, si
             for (int j = 0; j < 8; ++j) gradient[2 * (i + j)] = tmp[0][j], gradient[2 * (i + j) + 1] = tmp[1][j];
         }
     }
+    udm1_side_end256_ps(side, checked);
     return i;
 }
 
-size_t udm1_noise_eval_fast_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
-                                size_t count, float *value, float *gradient)
+size_t udm1_noise_eval_group_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
+                                 const float *value, const float *gradient)
 {
+    (void)axes, (void)value, (void)gradient;
     if (n->kind != UDM1_NOISE_IMPROVED || n->period[0] || n->period[1] || n->period[2]) return 0;
     if (dims < 2 || dims > 3 || stride > (1u << 26)) return 0; /* (a gather's offsets must fit an int) */
-    int level = udm1_isa_level();
-    if (udm1_isa_vbmi())
-        return dims == 3 ? noise3_avx512(n, axes, stride, count, value, gradient)
-                         : noise2_avx512(n, axes, stride, count, value, gradient);
-    if (level >= UDM1_ISA_AVX2) /* (AVX-512 without VBMI takes the AVX2 kernel) */
-        return dims == 3 ? noise3_avx2(n, axes, stride, count, value, gradient)
-                         : noise2_avx2(n, axes, stride, count, value, gradient);
+    return udm1_isa_vbmi() ? 16 : udm1_isa_level() >= UDM1_ISA_AVX2 ? 8 : 0;
+}
+
+size_t udm1_noise_eval_fast_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
+                                size_t count, float *value, float *gradient, udm1_side_check *side)
+{
+    udm1_side_check none = {{NULL}, 0, 0, 0, 0};
+    if (!side) side = &none;
+    size_t group = udm1_noise_eval_group_f32(n, dims, axes, stride, value, gradient);
+    if (group == 16)
+        return dims == 3 ? noise3_avx512(n, axes, stride, count, value, gradient, side)
+                         : noise2_avx512(n, axes, stride, count, value, gradient, side);
+    if (group == 8) /* (AVX-512 without VBMI takes the AVX2 kernel) */
+        return dims == 3 ? noise3_avx2(n, axes, stride, count, value, gradient, side)
+                         : noise2_avx2(n, axes, stride, count, value, gradient, side);
     return 0;
 }
 
 #else
-size_t udm1_noise_eval_fast_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
-                                size_t count, float *value, float *gradient)
+size_t udm1_noise_eval_group_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
+                                 const float *value, const float *gradient)
 {
-    (void)n, (void)dims, (void)axes, (void)stride, (void)count, (void)value, (void)gradient;
+    (void)n, (void)dims, (void)axes, (void)stride, (void)value, (void)gradient;
+    return 0;
+}
+
+size_t udm1_noise_eval_fast_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
+                                size_t count, float *value, float *gradient, udm1_side_check *side)
+{
+    (void)n, (void)dims, (void)axes, (void)stride, (void)count, (void)value, (void)gradient, (void)side;
     return 0;
 }
 #endif

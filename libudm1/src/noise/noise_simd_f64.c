@@ -20,6 +20,7 @@
 #include <immintrin.h>
 
 #include "noise/byte_table.h"
+#include "noise/side_check.h"
 #include "noise/strided_loads.h"
 
 #define AVX512 __attribute__((target("avx512f,avx512vl,avx512dq,avx512bw,avx512vbmi")))
@@ -195,7 +196,7 @@ AVX512 static inline __attribute__((always_inline)) void half2(__m512i H, const 
 AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1_noise *n, const uint32_t dims,
                                                                      const double *const *axes, size_t stride,
                                                                      size_t count, double *value, double *gradient,
-                                                                     const int with_gradient)
+                                                                     const int with_gradient, udm1_side_check *side)
 {
     const byte_table T = byte_table_load(n->perm);
     edges16 E;
@@ -205,8 +206,10 @@ AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1
         E.lo[c] = _mm512_loadu_pd(t), E.hi[c] = _mm512_loadu_pd(t + 8);
     }
     const strided_loads L = strided_loads_init(stride, 8);
+    __m512d checked = _mm512_setzero_pd();
     size_t i = 0;
     for (; i + 16 <= count; i += 16) {
+        checked = udm1_side_step512_pd(side, checked);
         __m512d c[3][2];
         __mmask8 bad = 0;
         for (uint32_t a = 0; a < dims; ++a)
@@ -246,38 +249,57 @@ AVX512 static inline __attribute__((always_inline)) size_t kernel_f64(const udm1
                       with_gradient ? gradient + 2 * (i + 8 * h) : NULL, with_gradient);
         }
     }
+    udm1_side_end512_pd(side, checked);
     return i;
 }
 
 AVX512 static size_t noise_f64_avx512(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
-                                      size_t count, double *value, double *gradient)
+                                      size_t count, double *value, double *gradient, udm1_side_check *side)
 {
     if (dims == 3)
-        return gradient ? kernel_f64(n, 3, axes, stride, count, value, gradient, 1)
-                        : kernel_f64(n, 3, axes, stride, count, value, NULL, 0);
-    return gradient ? kernel_f64(n, 2, axes, stride, count, value, gradient, 1)
-                    : kernel_f64(n, 2, axes, stride, count, value, NULL, 0);
+        return gradient ? kernel_f64(n, 3, axes, stride, count, value, gradient, 1, side)
+                        : kernel_f64(n, 3, axes, stride, count, value, NULL, 0, side);
+    return gradient ? kernel_f64(n, 2, axes, stride, count, value, gradient, 1, side)
+                    : kernel_f64(n, 2, axes, stride, count, value, NULL, 0, side);
 }
 
-size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
-                                size_t count, double *value, double *gradient)
+size_t udm1_noise_eval_group_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                 const double *value, const double *gradient)
 {
     if (n->kind != UDM1_NOISE_IMPROVED || n->period[0] || n->period[1] || n->period[2]) return 0;
     if (dims < 2 || dims > 3) return 0;
-    if (udm1_isa_vbmi() && stride <= (1u << 26))
-        return noise_f64_avx512(n, dims, axes, stride, count, value, gradient);
-    /* otherwise the 4-lane kernels of noise_simd.c, for packed points and values alone */
-    if (gradient || !value) return 0;
+    if (udm1_isa_vbmi() && stride <= (1u << 26)) return 16;
+    /* otherwise the 4-lane kernels of noise_simd.c (blocks of 16 groups of four), for packed points and
+     * values alone */
+    if (gradient || !value || udm1_isa_level() < UDM1_ISA_AVX2) return 0;
     for (uint32_t c = 1; c < dims; ++c)
         if (axes[c] != axes[0] + c) return 0;
-    return udm1_noise_points_fast(n, dims, axes[0], count, stride, value);
+    return 64;
+}
+
+size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                size_t count, double *value, double *gradient, udm1_side_check *side)
+{
+    udm1_side_check none = {{NULL}, 0, 0, 0, 0};
+    if (!side) side = &none;
+    size_t group = udm1_noise_eval_group_f64(n, dims, axes, stride, value, gradient);
+    if (group == 16) return noise_f64_avx512(n, dims, axes, stride, count, value, gradient, side);
+    if (group == 64) return udm1_noise_points_fast(n, dims, axes[0], count, stride, value, side);
+    return 0;
 }
 
 #else
-size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
-                                size_t count, double *value, double *gradient)
+size_t udm1_noise_eval_group_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                 const double *value, const double *gradient)
 {
-    (void)n, (void)dims, (void)axes, (void)stride, (void)count, (void)value, (void)gradient;
+    (void)n, (void)dims, (void)axes, (void)stride, (void)value, (void)gradient;
+    return 0;
+}
+
+size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                size_t count, double *value, double *gradient, udm1_side_check *side)
+{
+    (void)n, (void)dims, (void)axes, (void)stride, (void)count, (void)value, (void)gradient, (void)side;
     return 0;
 }
 #endif

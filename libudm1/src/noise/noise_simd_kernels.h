@@ -3,18 +3,22 @@
  * NOISE2 (the functions' names), GRAD3 and GRAD2 (that set's gradients)
  * defined. Not a public header. Each kernel returns how many leading points
  * it computed: all of them in groups of four, or up to the first group with a
- * non-finite coordinate, which the caller then finds and reports. */
+ * non-finite coordinate, which the caller then finds and reports; and checks
+ * the coordinates of `side` beside them, a step per block (noise/side_check.h). */
 
 /* Points go in blocks of BLOCK groups of four, in passes: the cells and their column hashes
  * (hash4) of every group, then the corner hashes (pair), then the gradients and lerps. Each
  * pass is a short loop whose loads do not depend on each other across groups, so the
  * processor overlaps their cache misses (the tables are 256 KiB); one long loop per group
  * stalled on them (perf: a third of the time on the two dependent loads). */
-KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t count, size_t stride, double *out)
+KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t count, size_t stride, double *out,
+                                 udm1_side_check *side)
 {
     size_t i = 0;
     int stop = 0;
+    __m256d checked = _mm256_setzero_pd();
     while (i + 4 <= count && !stop) {
+        checked = udm1_side_step256_pd(side, checked);
         size_t groups = (count - i) / 4 < BLOCK ? (count - i) / 4 : BLOCK;
         __m256d fx[BLOCK], fy[BLOCK], fz[BLOCK];
         __m128i z0[BLOCK];
@@ -82,14 +86,18 @@ KERNEL_ATTR static size_t NOISE3(const udm1_noise *n, const double *xyz, size_t 
             _mm256_storeu_pd(out + i, r);
         }
     }
+    udm1_side_end256_pd(side, checked);
     return i;
 }
 
-KERNEL_ATTR static size_t NOISE2(const udm1_noise *n, const double *xyz, size_t count, size_t stride, double *out)
+KERNEL_ATTR static size_t NOISE2(const udm1_noise *n, const double *xyz, size_t count, size_t stride, double *out,
+                                 udm1_side_check *side)
 {
     size_t i = 0;
     int stop = 0;
+    __m256d checked = _mm256_setzero_pd();
     while (i + 4 <= count && !stop) {
+        checked = udm1_side_step256_pd(side, checked);
         size_t groups = (count - i) / 4 < BLOCK ? (count - i) / 4 : BLOCK;
         __m256d fx[BLOCK], fy[BLOCK];
         int32_t ci[BLOCK * 4];
@@ -136,5 +144,6 @@ KERNEL_ATTR static size_t NOISE2(const udm1_noise *n, const double *xyz, size_t 
             _mm256_storeu_pd(out + i, _mm256_mul_pd(_mm256_set1_pd(0.507), r)); /* noise1234's scale */
         }
     }
+    udm1_side_end256_pd(side, checked);
     return i;
 }

@@ -28,19 +28,54 @@ struct udm1_noise {
     uint8_t feature[3][256];  /* the cellular noise's feature point offsets by axis, b: (b + 1/2) / 256 (udm1/cellular.h) */
 };
 
-/* The vector path of udm1_noise_points (noise_simd.c): how many leading points it computed. */
+/* Coordinates a vector kernel checks for NaN and infinities beside its own work (noise/side_check.h has
+ * the steps): `runs` contiguous arrays of the kernel's type, `vectors` 64-byte vectors of each per
+ * iteration of its loop for `steps` iterations, `at` advanced as they are read; the kernel sets `bad`
+ * when one of them is not finite. */
+typedef struct udm1_side_check {
+    const char *at[4];
+    unsigned runs;
+    unsigned vectors;
+    size_t steps;
+    int bad;
+} udm1_side_check;
+
+/* The vector path of udm1_noise_points (noise_simd.c): how many leading points it computed, checking side
+ * (NULL: nothing) beside them, BLOCK groups of four points per iteration. */
 UDM1_HIDDEN size_t udm1_noise_points_fast(const struct udm1_noise *n, uint32_t dims, const double *xyz, size_t count,
-                                          size_t stride, double *out);
+                                          size_t stride, double *out, udm1_side_check *side);
 /* The vector paths of udm1_noise_eval and udm1_noise_eval_f32 (noise_simd.c, noise_simd_f32.c): how many
- * leading points they computed (they stop before a group with a non-finite coordinate). */
+ * leading points they computed (they stop before a group with a non-finite coordinate), checking side
+ * (NULL: nothing) beside them. The _group functions: the points of one iteration of the path the same
+ * arguments take (its steps of side), 0 where no vector path applies. */
 UDM1_HIDDEN size_t udm1_noise_eval_fast_f64(const struct udm1_noise *n, uint32_t dims, const double *const *axes,
-                                            size_t stride, size_t count, double *value, double *gradient);
+                                            size_t stride, size_t count, double *value, double *gradient,
+                                            udm1_side_check *side);
 UDM1_HIDDEN size_t udm1_noise_eval_fast_f32(const struct udm1_noise *n, uint32_t dims, const float *const *axes,
-                                            size_t stride, size_t count, float *value, float *gradient);
+                                            size_t stride, size_t count, float *value, float *gradient,
+                                            udm1_side_check *side);
+UDM1_HIDDEN size_t udm1_noise_eval_group_f64(const struct udm1_noise *n, uint32_t dims, const double *const *axes,
+                                             size_t stride, const double *value, const double *gradient);
+UDM1_HIDDEN size_t udm1_noise_eval_group_f32(const struct udm1_noise *n, uint32_t dims, const float *const *axes,
+                                             size_t stride, const float *value, const float *gradient);
+/* A lattice noise batch, all or nothing (batch.c): every coordinate of points [0, count) checked (before
+ * the evaluation, or beside the vector kernel while it writes a first part to memory of its own) before
+ * value and gradient are written; INVALID_ARGUMENT naming fn and the first point not finite, OUT_OF_MEMORY,
+ * or the values. The arguments otherwise checked. */
+UDM1_HIDDEN udm1_status udm1_noise_batch_f64(const char *fn, const struct udm1_noise *n, uint32_t dims,
+                                             const double *const *axes, size_t stride, size_t count, double *value,
+                                             double *gradient);
+UDM1_HIDDEN udm1_status udm1_noise_batch_f32(const char *fn, const struct udm1_noise *n, uint32_t dims,
+                                             const float *const *axes, size_t stride, size_t count, float *value,
+                                             float *gradient);
 /* The scalar references (lattice.c): the noise of dims (1..4) coordinates c, and its gradient into grad
  * (dims values) unless grad is NULL. c must be finite. */
 UDM1_HIDDEN double udm1_lattice_f64(const struct udm1_noise *n, uint32_t dims, const double *c, double *grad);
 UDM1_HIDDEN float udm1_lattice_f32(const struct udm1_noise *n, uint32_t dims, const float *c, float *grad);
+
+/* The refusal of a batch whose point i has a coordinate c not finite (lattice.c): INVALID_ARGUMENT, the
+ * message naming fn, the point and the coordinate. The batches find it (core/finite.h) before they write. */
+UDM1_HIDDEN udm1_status udm1_not_finite(const char *fn, size_t i, uint32_t c);
 
 /* Cellular noise (cellular.c): the vector kernels (cellular_simd.c): how many leading points they
  * computed (they stop before a group with a non-finite coordinate); params checked, its metric never

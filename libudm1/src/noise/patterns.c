@@ -1,7 +1,9 @@
 /* patterns.c - fractal sums and POV-Ray 3.7's procedural patterns over udm1's
  * noise, POV-Ray's wave shaping and colour maps. Definitions in udm1.h. */
+#include "core/finite.h"
 #include "noise/noise_tables.h"
 
+#include <float.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -263,6 +265,42 @@ double udm1_pattern_eval(const udm1_noise *n, const udm1_pattern_params *caller,
     return eval(n, &p, x, y, z);
 }
 
+/* Whether the raw pattern p (NOISE, FBM, RIDGED, TURBULENCE) is a number, and with `gradient` its
+ * gradient finite, at every point whose coordinates are at most `reach` in magnitude: each octave's scaled
+ * coordinates (lambda^i P) and the sums of the octaves' weights (omega^i; with the gradient times
+ * lambda^i) stay well inside the double range, the noise and its derivatives being bounded (|n| < 1.1, each
+ * derivative below 16; the bounds here have room for 16 times more). Where this does not hold (or for
+ * the other patterns, not bounded here) a value may be NaN somewhere, and the batch calls compute into a
+ * scratch buffer that they copy to the caller's only when every value is a number. */
+static int raw_sums_finite(const udm1_pattern_params *p, double reach, int gradient)
+{
+    const double limit = DBL_MAX / 256;
+    uint32_t octaves = p->pattern == UDM1_PATTERN_NOISE ? 1 : p->octaves;
+    double amp = 1.0, s = 1.0, weights = 0.0, slopes = 0.0;
+    for (uint32_t i = 0; i < octaves; ++i) {
+        if (i > 0 && !(reach * fabs(s) <= limit)) return 0; /* (octave 0: the finite coordinates themselves) */
+        weights += fabs(amp);
+        slopes += fabs(amp) * fabs(s);
+        amp *= p->omega;
+        s *= p->lambda;
+    }
+    return p->pattern <= UDM1_PATTERN_RIDGED && weights <= limit && (!gradient || slopes <= limit);
+}
+
+/* The largest coordinate magnitude of n finite 3D points (point i at xyz[i * stride]), where p's octaves
+ * beyond the first need it (raw_sums_finite); else 0. */
+static double reach_of(const udm1_pattern_params *p, const double *xyz, size_t count, size_t stride)
+{
+    if (p->pattern > UDM1_PATTERN_RIDGED || p->pattern == UDM1_PATTERN_NOISE || p->octaves < 2) return 0.0;
+    double r = 0.0;
+    for (size_t i = 0; i < count; ++i)
+        for (int c = 0; c < 3; ++c) {
+            double a = fabs(xyz[i * stride + c]);
+            r = a > r ? a : r;
+        }
+    return r;
+}
+
 /* A pattern that is not a number at a finite point: an octave's scale (lambda^i P) or its sum
  * (omega^i) left the range of a double. Refused rather than written as NaN. */
 static udm1_status not_a_number(const char *fn, const char *what, size_t a, size_t b)
@@ -302,6 +340,21 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *ca
     double *val = xyz ? xyz + 3 * (size_t)width : NULL;
     double *acc = batch ? malloc(sizeof(double) * width) : NULL;
     if (batch && (!xyz || !acc)) batch = 0;
+    /* the rows go straight to out where no pixel can be NaN (raw_sums_finite over the grid's reach: each
+     * coordinate is at most |origin| + width |step_x| + (row0 + rows) |step_y|, with room for rounding),
+     * else to a scratch image copied to out once every pixel is a number: a refused grid writes nothing */
+    double reach = 0.0;
+    for (int c = 0; c < 3; ++c)
+        reach = fmax(reach, fabs(origin[c]) + width * fabs(step_x[c]) + (row0 + (double)rows) * fabs(step_y[c]));
+    reach *= 1.0 + 0x1p-40;
+    int direct = reach <= DBL_MAX / 256 && raw_sums_finite(p, reach, 0); /* (the coordinates are computed) */
+    size_t pixels = (size_t)rows * width;
+    float *image = direct ? out : malloc(sizeof(float) * (pixels ? pixels : 1));
+    if (!image) {
+        free(xyz);
+        free(acc);
+        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu pixels", fn, pixels);
+    }
     for (uint32_t j = 0; j < rows; ++j) {
         double b = row0 + j + 0.5;
         if (batch) {
@@ -315,6 +368,7 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *ca
                 if (udm1_noise_points(n, 3, xyz, width, 3, val) != UDM1_OK) { /* a scaled coordinate overflowed */
                     free(xyz);
                     free(acc);
+                    if (image != out) free(image);
                     return not_a_number(fn, "pixel", row0 + j, 0);
                 }
                 /* as the per-point sum: v = 0, v += amp t (the raw noise pattern is t itself) */
@@ -323,20 +377,25 @@ udm1_status udm1_pattern_grid(const udm1_noise *n, const udm1_pattern_params *ca
                 amp *= p->omega;
                 s *= p->lambda;
             }
-            for (uint32_t i = 0; i < width; ++i) out[(size_t)j * width + i] = (float)acc[i];
+            for (uint32_t i = 0; i < width; ++i) image[(size_t)j * width + i] = (float)acc[i];
         } else {
             for (uint32_t i = 0; i < width; ++i) {
                 double a = i + 0.5, q[3];
                 for (int c = 0; c < 3; ++c) q[c] = origin[c] + a * step_x[c] + b * step_y[c];
-                out[(size_t)j * width + i] = (float)eval(n, p, q[0], q[1], q[2]);
+                image[(size_t)j * width + i] = (float)eval(n, p, q[0], q[1], q[2]);
             }
         }
         for (uint32_t i = 0; i < width; ++i)
-            if (isnan(out[(size_t)j * width + i])) {
+            if (isnan(image[(size_t)j * width + i])) {
                 free(xyz);
                 free(acc);
+                if (image != out) free(image);
                 return not_a_number(fn, "pixel", row0 + j, i);
             }
+    }
+    if (image != out) {
+        memcpy(out, image, sizeof(float) * pixels);
+        free(image);
     }
     free(xyz);
     free(acc);
@@ -353,15 +412,24 @@ udm1_status udm1_pattern_points(const udm1_noise *n, const udm1_pattern_params *
     if (st != UDM1_OK) return st;
     if (!xyz) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: xyz is NULL", fn);
     if (stride < 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < 3", fn, stride);
+    const double *axes[3] = {xyz, xyz + 1, xyz + 2};
+    size_t bad = udm1_first_nonfinite_f64(3, axes, stride, count, NULL);
+    if (bad < count) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu is not finite", fn, bad);
+    /* straight to out where no value can be NaN, else through a scratch buffer (raw_sums_finite) */
+    int direct = raw_sums_finite(p, reach_of(p, xyz, count, stride), 0);
+    double *values = direct ? out : malloc(sizeof(double) * (count ? count : 1));
+    if (!values) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu points", fn, count);
     for (size_t i = 0; i < count; ++i) {
         const double *q = xyz + i * stride;
-        if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
-            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu is not finite", fn, i);
+        values[i] = eval(n, p, q[0], q[1], q[2]);
+        if (isnan(values[i])) {
+            if (values != out) free(values);
+            return not_a_number(fn, "point", i, 0);
+        }
     }
-    for (size_t i = 0; i < count; ++i) {
-        const double *q = xyz + i * stride;
-        out[i] = eval(n, p, q[0], q[1], q[2]);
-        if (isnan(out[i])) return not_a_number(fn, "point", i, 0);
+    if (values != out) {
+        memcpy(out, values, sizeof(double) * count);
+        free(values);
     }
     return UDM1_OK;
 }
@@ -426,17 +494,32 @@ udm1_status udm1_pattern_gradient(const udm1_noise *n, const udm1_pattern_params
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: pattern %s has no gradient here (noise, fbm, turbulence, "
                          "ridged have)", fn, NAMES[p->pattern]);
     if (stride < 3) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: stride %zu < 3", fn, stride);
-    for (size_t i = 0; i < count; ++i) {
-        const double *q = xyz + i * stride;
-        if (!isfinite(q[0]) || !isfinite(q[1]) || !isfinite(q[2]))
-            return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu is not finite", fn, i);
+    const double *axes[3] = {xyz, xyz + 1, xyz + 2};
+    size_t bad = udm1_first_nonfinite_f64(3, axes, stride, count, NULL);
+    if (bad < count) return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "%s: point %zu is not finite", fn, bad);
+    /* straight to the outputs where every value and gradient is finite, else through a scratch buffer of
+     * both (raw_sums_finite), copied to the outputs once every point is */
+    double *scratch = NULL, *v_out = value, *g_out = gradient;
+    if (!raw_sums_finite(p, reach_of(p, xyz, count, stride), 1)) {
+        scratch = malloc(sizeof(double) * 4 * (count ? count : 1));
+        if (!scratch) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu points", fn, count);
+        v_out = value ? scratch : NULL;
+        g_out = gradient ? scratch + count : NULL;
     }
     for (size_t i = 0; i < count; ++i) {
         double g[3], v = raw_gradient(n, p, xyz + i * stride, g);
-        if (!isfinite(v) || !isfinite(g[0]) || !isfinite(g[1]) || !isfinite(g[2])) return not_a_number(fn, "point", i, 0);
-        if (value) value[i] = v;
-        if (gradient)
-            for (int k = 0; k < 3; ++k) gradient[3 * i + k] = g[k];
+        if (!isfinite(v) || !isfinite(g[0]) || !isfinite(g[1]) || !isfinite(g[2])) {
+            free(scratch);
+            return not_a_number(fn, "point", i, 0);
+        }
+        if (v_out) v_out[i] = v;
+        if (g_out)
+            for (int k = 0; k < 3; ++k) g_out[3 * i + k] = g[k];
+    }
+    if (scratch) {
+        if (value) memcpy(value, v_out, sizeof(double) * count);
+        if (gradient) memcpy(gradient, g_out, sizeof(double) * 3 * count);
+        free(scratch);
     }
     return UDM1_OK;
 }

@@ -79,13 +79,13 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
     return UDM1_OK;
 }
 
-/* The raw values of a draw; with low_half 0 a base-2 Owen-scrambled kind may leave the low 32 bits 0
- * (a float reads the top 24). */
-udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
-                             uint64_t *raw, int low_half)
+/* The checks of a draw of dimensions [first + dim, first + dim + n) at index into out: the status of the
+ * first bad input, with a message naming fn. */
+static udm1_status stream_check(const char *fn, const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+                                const void *out, const char *out_name)
 {
-    if (!st || !st->seq || !raw)
-        return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, !st ? "st" : !raw ? "raw" : "st->seq");
+    if (!st || !st->seq || !out)
+        return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "%s: %s is NULL", fn, !st ? "st" : !out ? out_name : "st->seq");
     const udm1_seq *seq = st->seq;
     if (seq->point_count && index >= seq->point_count)
         return udm1_fail(UDM1_ERROR_INDEX_RANGE, "%s: index %llu of a %llu-point set", fn, (unsigned long long)index,
@@ -94,7 +94,18 @@ udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t ind
     if (d0 + n > UDM1_DIMENSION_INDEX_LIMIT)
         return udm1_fail(UDM1_ERROR_DIMENSION, "%s: dimensions from %llu, %u of them, pass the dimension index limit",
                          fn, (unsigned long long)d0, n);
-    if (n == 0) return UDM1_OK;
+    return UDM1_OK;
+}
+
+/* The raw values of a draw; with low_half 0 a base-2 Owen-scrambled kind may leave the low 32 bits 0
+ * (a float reads the top 24). */
+udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+                             uint64_t *raw, int low_half)
+{
+    udm1_status checked = stream_check(fn, st, index, dim, n, raw, "raw");
+    if (checked != UDM1_OK || n == 0) return checked;
+    const udm1_seq *seq = st->seq;
+    uint64_t d0 = (uint64_t)st->first + dim;
     if ((st->flags & STREAM_WORDS) && dim < st->held && n <= st->held - dim) { /* base-2 kinds: words found */
         uint64_t skey = st->key;
         if (seq->kind == &udm1_weyl_scrambled_kind) {
@@ -129,17 +140,19 @@ udm1_status udm1_stream_fill_raw(const udm1_stream *st, uint64_t index, uint32_t
 
 udm1_status udm1_stream_fill_f32(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n, float *out)
 {
-    if (!out) return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_stream_fill_f32: out is NULL");
+    static const char fn[] = "udm1_stream_fill_f32";
     uint64_t raw[64];
     if (n <= 4) { /* the common draw (n 0: the checks only) */
-        udm1_status s = udm1_stream_fill("udm1_stream_fill_f32", st, index, dim, n, raw, 0);
+        udm1_status s = out ? udm1_stream_fill(fn, st, index, dim, n, raw, 0) : stream_check(fn, st, index, dim, n, out, "out");
         for (uint32_t j = 0; s == UDM1_OK && j < n; ++j) out[j] = udm1_to_f32(raw[j]);
         return s;
     }
+    /* the whole range checked before the first chunk is written: no chunk can fail after it */
+    udm1_status checked = stream_check(fn, st, index, dim, n, out, "out");
+    if (checked != UDM1_OK) return checked;
     for (uint32_t done = 0; done < n;) {
         uint32_t m = n - done < 64 ? n - done : 64;
-        udm1_status s = udm1_stream_fill("udm1_stream_fill_f32", st, index, dim + done, m, raw, 0);
-        if (s != UDM1_OK) return s;
+        udm1_stream_fill(fn, st, index, dim + done, m, raw, 0);
         for (uint32_t j = 0; j < m; ++j) out[done + j] = udm1_to_f32(raw[j]);
         done += m;
     }

@@ -54,7 +54,8 @@ static void set_dependent(udm1_alpha_report *r, uint32_t a, uint32_t b, int exac
 }
 
 /* Returns 0, or 1 when the numeric scan was skipped for its cost. */
-static udm1_status check_dependence(const udm1_generator *gen, uint32_t dims, udm1_alpha_report *r, int *skipped)
+static udm1_status check_dependence(const char *fn, const udm1_generator *gen, uint32_t dims, udm1_alpha_report *r,
+                                    int *skipped)
 {
     /* rational generators */
     for (uint32_t j = 0; j < dims; ++j) {
@@ -67,7 +68,7 @@ static udm1_status check_dependence(const udm1_generator *gen, uint32_t dims, ud
     }
     /* exact: quadratic irrationals with the same square-free part */
     radical_dim *q = malloc(sizeof(radical_dim) * dims);
-    if (!q) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_alpha_check: out of memory");
+    if (!q) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory", fn);
     uint32_t nq = 0;
     for (uint32_t j = 0; j < dims; ++j)
         if (gen[j].nature == UDM1_NATURE_QUADRATIC) q[nq++] = (radical_dim){gen[j].radical, j};
@@ -89,9 +90,10 @@ static udm1_status check_dependence(const udm1_generator *gen, uint32_t dims, ud
     return UDM1_OK;
 }
 
-udm1_status udm1_check_generators(const udm1_generator *gen, uint32_t dims, uint64_t n, udm1_alpha_report *r)
+udm1_status udm1_check_generators(const char *fn, const udm1_generator *gen, uint32_t dims, uint64_t n,
+                                  udm1_alpha_report *report)
 {
-    static const char fn[] = "udm1_alpha_check";
+    udm1_alpha_report local, *r = &local; /* the caller's report is written once, at the end */
     memset(r, 0, sizeof *r);
     uint64_t pairs = dims > 1 ? (uint64_t)dims * (dims - 1) / 2 : 1;
     if (n < 2 || n > 65536)
@@ -102,7 +104,7 @@ udm1_status udm1_check_generators(const udm1_generator *gen, uint32_t dims, uint
                          dims,
                          (unsigned long long)n);
     int skipped = 0;
-    udm1_status st = check_dependence(gen, dims, r, &skipped);
+    udm1_status st = check_dependence(fn, gen, dims, r, &skipped);
     if (st != UDM1_OK) return st;
 
     uint32_t pd = dims > 1 ? 2 : 1;
@@ -154,6 +156,7 @@ udm1_status udm1_check_generators(const udm1_generator *gen, uint32_t dims, uint
              "%u generators: %s%s; worst %uD projection (%u, %u) at n = %llu: L2-star %.3g = %.2fx random", dims,
              r->rational ? "a rational generator; " : "", dep, pd, a, b, (unsigned long long)n, r->worst_l2_star,
              r->worst_l2_star / r->random_l2_star);
+    *report = local;
     return UDM1_OK;
 }
 
@@ -163,7 +166,7 @@ udm1_status udm1_seq_check(const udm1_seq *seq, uint64_t n, udm1_alpha_report *r
         return udm1_fail(UDM1_ERROR_NULL_ARGUMENT, "udm1_seq_check: %s is NULL", seq ? "report" : "seq");
     if (!seq->gen)
         return udm1_fail(UDM1_ERROR_INVALID_ARGUMENT, "udm1_seq_check: '%s' is not a Weyl sequence", seq->name);
-    return udm1_check_generators(seq->gen, seq->dims, n, report);
+    return udm1_check_generators("udm1_seq_check", seq->gen, seq->dims, n, report);
 }
 
 udm1_status udm1_alpha_check(const udm1_alpha *alphas, uint32_t count, uint64_t n, udm1_alpha_report *report)
@@ -176,7 +179,7 @@ udm1_status udm1_alpha_check(const udm1_alpha *alphas, uint32_t count, uint64_t 
     if (!gen) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "%s: out of memory", fn);
     udm1_status st = UDM1_OK;
     for (uint32_t j = 0; j < count && st == UDM1_OK; ++j) st = udm1_user_generator(fn, j, &alphas[j], &gen[j], 1);
-    if (st == UDM1_OK) st = udm1_check_generators(gen, count, n, report);
+    if (st == UDM1_OK) st = udm1_check_generators(fn, gen, count, n, report);
     free(gen);
     return st;
 }

@@ -39,7 +39,9 @@ UDM1_HIDDEN udm1_status udm1_user_generator(const char *fn, uint32_t j, const ud
                                             int check);
 
 /* ---- the constant-set check (alpha_check.c) ---- */
-UDM1_HIDDEN udm1_status udm1_check_generators(const udm1_generator *gen, uint32_t dims, uint64_t n,
+/* The report of udm1_seq_check and udm1_alpha_check (fn, their name, for the messages); *report is written
+ * only on success. */
+UDM1_HIDDEN udm1_status udm1_check_generators(const char *fn, const udm1_generator *gen, uint32_t dims, uint64_t n,
                                               udm1_alpha_report *report);
 
 #endif /* UDM1_GENERATORS_H */
