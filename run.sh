@@ -43,8 +43,8 @@ report | --*)
 test)
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
-    udm1_log "running every test (ctest in build/; the report tests run once, below, against the sanitized tools)"
-    ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_(reports|main_report)$'
+    udm1_log "running every test (ctest in build/; the report steps' tests run once, below, against the sanitized tools)"
+    ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_reports$'
     udm1_log "building and running the C and C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
     build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -56,7 +56,7 @@ test)
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
         "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --dist loadfile \
         $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study)'))
-    udm1_log "the tools' tests again and the report tests, against the sanitized tools and benchmarks of build-asan"
+    udm1_log "the tools' tests again and the report steps' tests, against the sanitized tools and benchmarks of build-asan"
     udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library; two pytest runs side by side)"
     asan_tools_pytest() { # asan_tools_pytest <log> <test files...>: one pytest run, its own temporary folder
         local log="$1"
@@ -70,7 +70,7 @@ test)
             "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --basetemp="$(mktemp -d)" "$@") >"$log" 2>&1
     }
     logs="$(mktemp -d)"
-    asan_tools_pytest "$logs/reports" test_reports.py test_main_report.py &
+    asan_tools_pytest "$logs/reports" test_reports.py &
     reports_pid=$!
     tools_status=0 reports_status=0
     asan_tools_pytest "$logs/tools" test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py \
