@@ -1,8 +1,9 @@
 /* core/internal.h - what every libudm1 source shares: visibility and branch hints, the error report,
- * 64x64 -> 128-bit multiplication and the conversions of a raw 0.64 value. Not installed. */
+ * the conversions of a raw 0.64 value, and (core/u128.h) the 128-bit arithmetic. Not installed. */
 #ifndef UDM1_INTERNAL_H
 #define UDM1_INTERNAL_H
 
+#include "core/u128.h"
 #include "udm1/udm1.h"
 
 #include <stddef.h>
@@ -42,23 +43,6 @@ UDM1_HIDDEN udm1_status udm1_read_struct(const char *fn, const char *what, const
 static inline int udm1_work_above(uint64_t a, uint64_t b, uint64_t c, uint64_t limit)
 {
     return (double)a * (double)b * (double)c > (double)limit;
-}
-
-/* ---- 64x64 -> 128 multiply ---- */
-static inline void udm1_mul64(uint64_t a, uint64_t b, uint64_t *hi, uint64_t *lo)
-{
-#if defined(__SIZEOF_INT128__)
-    __extension__ typedef unsigned __int128 u128;
-    u128 p = (u128)a * b;
-    *hi = (uint64_t)(p >> 64);
-    *lo = (uint64_t)p;
-#else
-    uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
-    uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
-    uint64_t mid = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);
-    *lo = (mid << 32) | (p00 & 0xffffffffu);
-    *hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
-#endif
 }
 
 /* Conversions of a raw 0.64 value. Both are < 1 for every input. */
