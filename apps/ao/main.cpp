@@ -108,6 +108,9 @@ public:
         udm1ao::Image img;
         try {
             img = udm1ao::render(scene_, *rt_, options(s), &st);
+            rt_->check("rendering");
+        } catch (const udm1scene::SceneError &e) {
+            throw Error(e.what(), 1);
         } catch (const std::runtime_error &e) {
             throw Error(e.what(), 2);
         }

@@ -20,9 +20,9 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 using udm1app::Error;
@@ -74,7 +74,7 @@ std::vector<double> parse_vector(const std::string &text, const std::string &wha
         start = comma + 1;
     }
     if (v.size() > want_max || (v.size() != 1 && v.size() != want_max))
-        throw Error(what + " '" + text + "' needs 1 or " + std::to_string(want_max) + " numbers");
+        throw Error(what + " '" + udm1app::quote_raw(text) + "' needs 1 or " + std::to_string(want_max) + " numbers");
     return v;
 }
 
@@ -92,7 +92,7 @@ Options parse(int argc, char **argv)
     for (size_t k = i; k + 1 < args.size(); ++k)
         if (args[k] == "--pattern") o.pattern = args[k + 1];
     uint32_t code = udm1_pattern_from_name(o.pattern.c_str());
-    if (!code) throw Error("--pattern '" + o.pattern + "' is not a pattern (udm1-noise help lists them)");
+    if (!code) throw Error("--pattern '" + udm1app::quote_raw(o.pattern) + "' is not a pattern (udm1-noise help lists them)");
     udm1_pattern_params_init(&o.params, code);
     auto value = [&](const std::string &flag) -> std::string {
         if (i + 1 >= args.size()) throw Error(flag + " needs a value");
@@ -111,7 +111,7 @@ Options parse(int argc, char **argv)
             std::string k = value(a);
             if (k == "improved") o.kind = UDM1_NOISE_IMPROVED;
             else if (k == "classic") o.kind = UDM1_NOISE_CLASSIC;
-            else throw Error("--kind '" + k + "' is not improved or classic");
+            else throw Error("--kind '" + udm1app::quote_raw(k) + "' is not improved or classic");
         } else if (a == "--size") {
             int w = 0, h = 0;  // the shared parser: its errors name the whole input
             udm1app::parse_size(value(a), "--size", 16384, (uint64_t)16384 * 16384, &w, &h);
@@ -133,11 +133,11 @@ Options parse(int argc, char **argv)
             static const char *waves[] = {"default", "ramp", "triangle", "sine", "scallop", "cubic", "poly"};
             std::string w = value(a);
             auto it = std::find_if(std::begin(waves), std::end(waves), [&](const char *n) { return w == n; });
-            if (it == std::end(waves)) throw Error("--wave '" + w + "' is not a wave type");
+            if (it == std::end(waves)) throw Error("--wave '" + udm1app::quote_raw(w) + "' is not a wave type");
             o.params.wave = (uint32_t)(it - std::begin(waves));
         } else if (a == "--colors") {
             std::string c = value(a);
-            if (c != "grey" && c != "pov") throw Error("--colors '" + c + "' is not grey or pov");
+            if (c != "grey" && c != "pov") throw Error("--colors '" + udm1app::quote_raw(c) + "' is not grey or pov");
             o.pov_colors = c == "pov";
         } else if (a == "--bits") {
             o.bits = (uint32_t)udm1app::parse_u64(value(a), "--bits", 8, 16);
@@ -153,12 +153,12 @@ Options parse(int argc, char **argv)
         else if (a == "--loop") o.loop = (uint32_t)udm1app::parse_u64(value(a), "--loop", 1, 1u << 30);
         else if (a == "--time") o.time = udm1app::parse_double(value(a), "--time", -1e15, 1e15), o.four_d = true;
         else if (a == "--pov") o.pov = value(a);
-        else throw Error("unknown option '" + a + "'");
+        else throw Error("unknown option '" + udm1app::quote_raw(a) + "'");
     }
     if (o.output.empty() && o.figures) throw Error("figures needs an output folder: -o DIR");
     if (o.four_d && o.params.pattern > UDM1_PATTERN_RIDGED)
         throw Error("--frames and --time animate 4D noise: --pattern noise, fbm, turbulence or ridged, not '" +
-                    o.pattern + "'");
+                    udm1app::quote_raw(o.pattern) + "'");
     if (o.four_d && o.kind == UDM1_NOISE_CLASSIC) throw Error("--frames and --time need --kind improved (4D noise)");
     if (o.four_d && !o.pov.empty()) throw Error("--pov writes one texture: not with --frames or --time");
     if (o.output.empty()) o.output = "noise.png";  // the built-in default, as udm1-ao and udm1-pt write theirs
@@ -191,7 +191,7 @@ void make_noise(const std::string &table, uint64_t seed, uint32_t kind, uint32_t
         if (table != "perlin" && table != "drand48") {
             udm1_preset_info info;
             if (udm1_preset_find(table.c_str(), &info) != UDM1_OK)
-                throw Error("--table '" + table + "' is not perlin, drand48 or a udm1 sampler");
+                throw Error("--table '" + udm1app::quote_raw(table) + "' is not perlin, drand48 or a udm1 sampler");
         }
         throw Error(udm1_last_error());
     }
@@ -276,17 +276,8 @@ std::vector<float> colorize(const std::vector<float> &grey, uint32_t pattern, bo
     return rgb;
 }
 
-void write_text(const std::string &path, const std::string &text)
-{
-    udm1app::AtomicFile file(path);
-    std::ofstream f(file.temp_path());
-    f << text;
-    f.close();
-    if (!f) throw Error("cannot write '" + path + "'", 1);
-    file.commit();
-}
-
-void write_pov(const Options &o)
+// The POV-Ray include and demo scene beside the texture, written into inc_file and demo_file (pov_paths).
+void write_pov(const Options &o, udm1app::AtomicFile &inc_file, udm1app::AtomicFile &demo_file)
 {
     std::string image = o.output.substr(o.output.find_last_of('/') + 1);
     std::string ext = image.substr(image.find_last_of('.') + 1);
@@ -308,9 +299,16 @@ void write_pov(const Options &o)
                        "#include \"" + name + ".inc\"\n"
                        "camera { orthographic location <0.5, 0.5, -1> look_at <0.5, 0.5, 0> right x up y }\n"
                        "plane { z, 0 texture { pigment { " + name + "_pigment } finish { ambient 1 diffuse 0 emission 0 } } }\n";
+    inc_file.write(inc);
+    demo_file.write(demo);
+}
+
+// The paths write_pov writes: NAME.inc and NAME_demo.pov.
+std::vector<std::string> pov_paths(const Options &o)
+{
+    std::string name = o.pov.substr(o.pov.find_last_of('/') + 1);
     std::string dir = o.pov.find('/') == std::string::npos ? "" : o.pov.substr(0, o.pov.find_last_of('/') + 1);
-    write_text(o.pov + ".inc", inc);
-    write_text(dir + name + "_demo.pov", demo);
+    return {o.pov + ".inc", dir + name + "_demo.pov"};
 }
 
 // FILE.png -> FILE_0007.png
@@ -330,15 +328,25 @@ void run_animation(const Options &o)
     double wu = o.period ? (double)o.period : o.scale;
     double hu = o.period ? (double)o.period : o.scale * o.height / o.width;
     uint32_t frames = o.frames ? o.frames : 1;
-    for (uint32_t k = 0; k < frames; ++k) {  // frame k at w = k T / N: frame N would be frame 0
-        double w = o.frames ? (double)k * o.loop / o.frames : o.time;
-        std::vector<float> img = render4(noise.n, o.params, o.width, o.height, o.origin, wu, hu, w);
-        std::vector<float> out = colorize(img, o.params.pattern, o.pov_colors);
-        std::string path = o.frames ? frame_name(o.output, k) : o.output;
-        udm1app::write_image(path, out, (int)o.width, (int)o.height, o.pov_colors ? 3 : 1, false, (int)o.bits);
-        if (o.frames > 1) std::fprintf(stderr, "\rudm1-noise: frame %u/%u", k + 1, frames);
+    const bool progress = o.frames > 1 && isatty(2);
+    std::vector<udm1app::AtomicFile> files;  // committed together after the last frame: an error leaves none
+    files.emplace_back(o.frames ? frame_name(o.output, 0) : o.output);  // a bad path fails before the work
+    try {
+        for (uint32_t k = 0; k < frames; ++k) {  // frame k at w = k T / N: frame N would be frame 0
+            double w = o.frames ? (double)k * o.loop / o.frames : o.time;
+            std::vector<float> img = render4(noise.n, o.params, o.width, o.height, o.origin, wu, hu, w);
+            std::vector<float> out = colorize(img, o.params.pattern, o.pov_colors);
+            if (k > 0) files.emplace_back(frame_name(o.output, k));
+            udm1app::write_image(files.back(), out, (int)o.width, (int)o.height, o.pov_colors ? 3 : 1, false, (int)o.bits);
+            files.back().finish();
+            if (progress) std::fprintf(stderr, "\rudm1-noise: frame %u/%u", k + 1, frames);
+        }
+    } catch (...) {
+        if (progress) std::fprintf(stderr, "\n");  // the error on a line of its own
+        throw;
     }
-    if (o.frames > 1) std::fprintf(stderr, "\n");
+    if (progress) std::fprintf(stderr, "\n");
+    udm1app::commit_all(files);
 }
 
 void run_single(const Options &o)
@@ -348,10 +356,15 @@ void run_single(const Options &o)
     make_noise(o.table, o.seed, o.kind, o.period, noise);
     double wu = o.period ? (double)o.period : o.scale;
     double hu = o.period ? (double)o.period : o.scale * o.height / o.width;
+    std::vector<udm1app::AtomicFile> files;  // the texture and the POV-Ray files, committed together
+    files.emplace_back(o.output);
+    if (!o.pov.empty())
+        for (const std::string &path : pov_paths(o)) files.emplace_back(path);
     std::vector<float> img = render(noise.n, o.params, o.width, o.height, o.origin, wu, hu);
     std::vector<float> out = colorize(img, o.params.pattern, o.pov_colors);
-    udm1app::write_image(o.output, out, (int)o.width, (int)o.height, o.pov_colors ? 3 : 1, false, (int)o.bits);
-    if (!o.pov.empty()) write_pov(o);
+    udm1app::write_image(files[0], out, (int)o.width, (int)o.height, o.pov_colors ? 3 : 1, false, (int)o.bits);
+    if (!o.pov.empty()) write_pov(o, files[1], files[2]);
+    udm1app::commit_all(files);
 }
 
 // The paper's Figures 2 (noise) and 3 (patterns), each panel twice: tables from a
@@ -359,7 +372,8 @@ void run_single(const Options &o)
 void run_figures(const Options &o)
 {
     const std::string dir = o.output + "/";
-    udm1app::AtomicFile probe(dir + "figure2.png"); // fails early if the folder is not writable
+    std::vector<udm1app::AtomicFile> files;  // committed together: an error leaves none
+    for (const char *name : {"figure2.png", "figure3.png", "figures.md"}) files.emplace_back(dir + name);
     struct Panel { const char *pattern; double turb; bool pov; double scale; };
     const std::vector<Panel> fig2 = {{"noise", 0, false, 8}, {"fbm", 0, false, 4}, {"turbulence", 0, false, 4},
                                      {"ridged", 0, false, 4}};
@@ -390,7 +404,7 @@ void run_figures(const Options &o)
                         }
             }
         }
-        udm1app::write_image(dir + (f == 0 ? "figure2.png" : "figure3.png"), sheet, (int)W, (int)H, 3, true);
+        udm1app::write_image(files[f], sheet, (int)W, (int)H, 3, true);
     }
     std::string md = "# udm1-noise figures\n\n"
                      "The paper's Figure 2 (noise) and Figure 3 (procedural patterns), re-made with Perlin's classic\n"
@@ -398,7 +412,8 @@ void run_figures(const Options &o)
                      "(square roots of primes, seed " + std::to_string(o.seed) + "); bottom row: from drand48, the paper's baseline.\n\n"
                      "figure2.png: noise, fBm, turbulence, ridged.\n\n"
                      "figure3.png: marble, wood, granite, agate, bozo, wrinkles, ripples, leopard (POV-Ray 3.7 definitions).\n";
-    write_text(dir + "figures.md", md);
+    files[2].write(md);
+    udm1app::commit_all(files);
 }
 
 }  // namespace

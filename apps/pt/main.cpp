@@ -159,6 +159,7 @@ public:
         udm1pt::Accumulator acc;
         try {
             acc = udm1pt::render(scene_, *rt_, *materials_, options(s), &stats_);
+            rt_->check("rendering");
         } catch (const udm1scene::SceneError &e) {
             throw Error(e.what(), 1);
         } catch (const std::runtime_error &e) {

@@ -1,6 +1,8 @@
 // embree_scene.cpp - see embree_scene.h.
 #include "embree_scene.h"
 
+#include "udm1app/one_line.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -101,39 +103,98 @@ void ellipsoid_occluded(const RTCOccludedFunctionNArguments *args)
 
 }  // namespace
 
+const char *embree_error_name(RTCError code)
+{
+    switch (code) {
+    case RTC_ERROR_NONE: return "RTC_ERROR_NONE";
+    case RTC_ERROR_UNKNOWN: return "RTC_ERROR_UNKNOWN";
+    case RTC_ERROR_INVALID_ARGUMENT: return "RTC_ERROR_INVALID_ARGUMENT";
+    case RTC_ERROR_INVALID_OPERATION: return "RTC_ERROR_INVALID_OPERATION";
+    case RTC_ERROR_OUT_OF_MEMORY: return "RTC_ERROR_OUT_OF_MEMORY";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "RTC_ERROR_UNSUPPORTED_CPU";
+    case RTC_ERROR_CANCELLED: return "RTC_ERROR_CANCELLED";
+    }
+    return "an unknown Embree error code";
+}
+
+void EmbreeErrors::attach(RTCDevice device) { rtcSetDeviceErrorFunction(device, &EmbreeErrors::record, this); }
+
+void EmbreeErrors::record(void *self, RTCError code, const char *message)
+{
+    EmbreeErrors &e = *static_cast<EmbreeErrors *>(self);
+    std::lock_guard<std::mutex> lock(e.mutex_);
+    if (e.count_++ == 0)
+        e.first_ = std::string(embree_error_name(code)) + (message && *message ? ": " + udm1app::fold_lines(message) : "");
+}
+
+std::string EmbreeErrors::text() const
+{
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (count_ <= 1) return first_;
+    return first_ + " (and " + std::to_string(count_ - 1) + " more)";
+}
+
 EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
 {
-    device_ = rtcNewDevice(nullptr);
-    if (!device_) throw SceneError(scene.source + ": Embree could not create a device");
+    try {
+        build(scene, robust);
+    } catch (...) {  // the device and scene made so far: a throwing constructor runs no destructor
+        release();
+        throw;
+    }
+}
+
+void EmbreeScene::build(const Scene &scene, bool robust)
+{
+    device_ = rtcNewDevice("verbose=0");  // errors come to errors_, never printed by Embree
+    if (!device_)
+        throw SceneError(scene.source + ": Embree could not create a device (" + embree_error_name(rtcGetDeviceError(nullptr)) +
+                         ")");
+    errors_->attach(device_);
+    auto failed = [&](const char *doing) {
+        std::string why = errors_->text();
+        return SceneError(scene.source + ": Embree could not " + doing + (why.empty() ? "" : ": " + why));
+    };
     scene_ = rtcNewScene(device_);
+    if (!scene_) throw failed("create a scene");
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
     if (robust) rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     for (unsigned k = 0; k < scene.shapes.size(); ++k) {
         const Shape &s = scene.shapes[k];
-        RTCGeometry g;
+        RTCGeometry g = rtcNewGeometry(device_, s.kind == Shape::Triangles ? RTC_GEOMETRY_TYPE_TRIANGLE
+                                                : s.ellipsoid                 ? RTC_GEOMETRY_TYPE_USER
+                                                                              : RTC_GEOMETRY_TYPE_SPHERE_POINT);
+        if (!g) throw failed("create a geometry");
+        bool filled = false;
         if (s.kind == Shape::Triangles) {
-            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
             size_t nv = s.P.size() / 3, nt = s.indices.size() / 3;
             float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                         3 * sizeof(float), nv);
             unsigned *i = (unsigned *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                                               3 * sizeof(unsigned), nt);
-            if (!v || !i) throw SceneError(scene.source + ": Embree could not allocate a mesh");
-            std::copy(s.P.begin(), s.P.end(), v);
-            std::copy(s.indices.begin(), s.indices.end(), i);
+            if (v && i) {
+                std::copy(s.P.begin(), s.P.end(), v);
+                std::copy(s.indices.begin(), s.indices.end(), i);
+                filled = true;
+            }
         } else if (s.ellipsoid) {
-            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
             rtcSetGeometryUserPrimitiveCount(g, 1);
             rtcSetGeometryUserData(g, (void *)&s);
             rtcSetGeometryBoundsFunction(g, ellipsoid_bounds, nullptr);
             rtcSetGeometryIntersectFunction(g, ellipsoid_intersect);
             rtcSetGeometryOccludedFunction(g, ellipsoid_occluded);
+            filled = true;
         } else {
-            g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_SPHERE_POINT);
             float *v = (float *)rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4,
                                                         4 * sizeof(float), 1);
-            if (!v) throw SceneError(scene.source + ": Embree could not allocate a sphere");
-            v[0] = (float)s.center.x, v[1] = (float)s.center.y, v[2] = (float)s.center.z, v[3] = (float)s.radius;
+            if (v) {
+                v[0] = (float)s.center.x, v[1] = (float)s.center.y, v[2] = (float)s.center.z, v[3] = (float)s.radius;
+                filled = true;
+            }
+        }
+        if (!filled) {
+            rtcReleaseGeometry(g);
+            throw failed(s.kind == Shape::Triangles ? "allocate a mesh" : "allocate a sphere");
         }
         rtcCommitGeometry(g);
         unsigned id = rtcAttachGeometry(scene_, g);
@@ -155,17 +216,27 @@ EmbreeScene::EmbreeScene(const Scene &scene, bool robust) : src_(scene)
             for (unsigned t = 0; t < s.indices.size() / 3; ++t) normals_.push_back(triangle_normal(s, t));
     }
     rtcCommitScene(scene_);
-    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE) throw SceneError(scene.source + ": Embree failed to build the scene");
+    if (rtcGetDeviceError(device_) != RTC_ERROR_NONE || !errors_->text().empty()) throw failed("build the scene");
     Vec3 lo, hi;
     scene.bounds(&lo, &hi);
     scale_ = std::max({1e-6, std::fabs(lo.x), std::fabs(lo.y), std::fabs(lo.z), std::fabs(hi.x), std::fabs(hi.y),
                        std::fabs(hi.z)});
 }
 
-EmbreeScene::~EmbreeScene()
+void EmbreeScene::release()
 {
     if (scene_) rtcReleaseScene(scene_);
     if (device_) rtcReleaseDevice(device_);
+    scene_ = nullptr;
+    device_ = nullptr;
+}
+
+EmbreeScene::~EmbreeScene() { release(); }
+
+void EmbreeScene::check(const char *doing) const
+{
+    std::string why = errors_->text();
+    if (!why.empty()) throw SceneError(src_.source + ": Embree failed while " + doing + ": " + why);
 }
 
 bool EmbreeScene::intersect(Vec3 o, Vec3 d, double tnear, double tfar, Hit *hit) const

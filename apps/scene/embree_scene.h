@@ -9,6 +9,10 @@
 
 #include <embree3/rtcore.h>
 
+#include <memory>
+#include <mutex>
+#include <string>
+
 namespace udm1scene {
 
 // How far rays leaving p start from it: 2^-18 (64 float ulps) of the largest magnitude among p's coordinates and the
@@ -43,11 +47,31 @@ struct RayQuery {
     bool shadow;  // occluded() rather than intersect()
 };
 
+// What Embree reported through its device's error function (from any thread), for the tool's one-line
+// error: Embree itself prints nothing (its device is made with verbose=0).
+class EmbreeErrors {
+public:
+    // Install on `device` (the object must outlive it).
+    void attach(RTCDevice device);
+    // "" if no error was reported, else the first one as one line: its code's name and Embree's message,
+    // and how many more followed.
+    std::string text() const;
+
+private:
+    static void record(void *self, RTCError code, const char *message);
+    mutable std::mutex mutex_;
+    std::string first_;
+    unsigned count_ = 0;
+};
+
+// An Embree error code's name ("RTC_ERROR_OUT_OF_MEMORY").
+const char *embree_error_name(RTCError code);
+
 class EmbreeScene {
 public:
     // robust: Embree's robust traversal (RTC_SCENE_FLAG_ROBUST). Without it rays through shared edges
     // of axis-aligned faces leak out of closed boxes at most scales (tests/cpp/test_ao.cpp); it costs
-    // speed (BENCHMARKS.md). Throws SceneError if Embree fails.
+    // speed (BENCHMARKS.md). Throws SceneError "SCENE: Embree ...: <its message>" if Embree fails.
     explicit EmbreeScene(const Scene &scene, bool robust = true);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene &) = delete;
@@ -69,9 +93,16 @@ public:
     // one thread. The renderers never set it (one predictable branch per query).
     void record_queries(std::vector<RayQuery> *log) { log_ = log; }
     double scale() const { return scale_; }  // the scene's extent
+    // Throws SceneError "SCENE: Embree failed while <doing>: ..." if Embree reported an error since the
+    // scene was built (a query that Embree refused): the renderers call it after rendering.
+    void check(const char *doing) const;
 
 private:
+    void build(const Scene &scene, bool robust);
+    void release();
+
     const Scene &src_;
+    std::unique_ptr<EmbreeErrors> errors_ = std::make_unique<EmbreeErrors>();
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     std::vector<unsigned> shape_of_geom_;

@@ -2,6 +2,7 @@
 #include "mesh_io.h"
 
 #include "file_read.h"
+#include "udm1app/one_line.h"
 
 #include <cmath>
 #include <cerrno>
@@ -63,7 +64,7 @@ public:
     {
         if (format_ == 0) return ascii(what);
         size_t n = size_of(t);
-        if (p_ + n > d_.size()) throw SceneError(path_ + ": truncated: the file ends inside the " + what);
+        if (p_ + n > d_.size()) throw SceneError(path_ + ": truncated: the file ends inside the " + udm1app::quote_raw(what));
         unsigned char b[8];
         std::memcpy(b, d_.data() + p_, n);
         p_ += n;
@@ -85,12 +86,12 @@ private:
     double ascii(const char *what)
     {
         while (p_ < d_.size() && std::isspace((unsigned char)d_[p_])) ++p_;
-        if (p_ >= d_.size()) throw SceneError(path_ + ": truncated: the file ends inside the " + what);
+        if (p_ >= d_.size()) throw SceneError(path_ + ": truncated: the file ends inside the " + udm1app::quote_raw(what));
         const char *s = d_.c_str() + p_;
         char *end = nullptr;
         errno = 0;
         double v = std::strtod(s, &end);
-        if (end == s || errno == ERANGE) throw SceneError(path_ + ": malformed number in the " + what);
+        if (end == s || errno == ERANGE) throw SceneError(path_ + ": malformed number in the " + udm1app::quote_raw(what));
         p_ += (size_t)(end - s);
         return v;
     }
@@ -146,7 +147,7 @@ void read_ply(const std::string &path, const Mat4 &xf, Shape *shape)
             std::string f;
             in >> f;
             format = f == "ascii" ? 0 : f == "binary_little_endian" ? 1 : f == "binary_big_endian" ? 2 : -1;
-            if (format < 0) throw SceneError(path + ":" + std::to_string(ln) + ": unknown PLY format '" + f + "'");
+            if (format < 0) throw SceneError(path + ":" + std::to_string(ln) + ": unknown PLY format '" + udm1app::quote_raw(f) + "'");
         } else if (word == "element") {
             Element e;
             long long count = -1;
@@ -167,12 +168,12 @@ void read_ply(const std::string &path, const Mat4 &xf, Shape *shape)
                 p.type = type_of(it);
                 if (p.count_type == Type::Bad || p.type == Type::Bad || p.count_type == Type::F32 ||
                     p.count_type == Type::F64)
-                    throw SceneError(path + ":" + std::to_string(ln) + ": unsupported list types '" + ct + " " + it + "'");
+                    throw SceneError(path + ":" + std::to_string(ln) + ": unsupported list types '" + udm1app::quote_raw(ct + " " + it) + "'");
             } else {
                 p.type = type_of(t);
                 in >> p.name;
                 if (p.type == Type::Bad)
-                    throw SceneError(path + ":" + std::to_string(ln) + ": unsupported property type '" + t + "'");
+                    throw SceneError(path + ":" + std::to_string(ln) + ": unsupported property type '" + udm1app::quote_raw(t) + "'");
             }
             elements.back().props.push_back(p);
         }
@@ -282,7 +283,7 @@ void read_obj(const std::string &path, const Mat4 &xf, Shape *shape)
         char *end = nullptr;
         errno = 0;
         double v = std::strtod(t.c_str(), &end);
-        if (*end || errno == ERANGE || !std::isfinite(v)) throw bad("malformed number '" + t + "'");
+        if (*end || errno == ERANGE || !std::isfinite(v)) throw bad("malformed number '" + udm1app::quote_raw(t) + "'");
         return v;
     };
     while (std::getline(in, line)) {
@@ -300,7 +301,7 @@ void read_obj(const std::string &path, const Mat4 &xf, Shape *shape)
             while (s >> tok) {
                 char *end = nullptr;
                 long v = std::strtol(tok.c_str(), &end, 10);
-                if (end == tok.c_str() || (*end && *end != '/')) throw bad("malformed face vertex '" + tok + "'");
+                if (end == tok.c_str() || (*end && *end != '/')) throw bad("malformed face vertex '" + udm1app::quote_raw(tok) + "'");
                 long idx = v > 0 ? v - 1 : (long)vs.size() + v;
                 if (v == 0 || idx < 0 || idx >= (long)vs.size())
                     throw bad("vertex index " + std::to_string(v) + " out of range (" + std::to_string(vs.size()) +

@@ -8,6 +8,7 @@
 
 #include "mesh_io.h"
 #include "spectrum.h"
+#include "udm1app/one_line.h"
 
 #include <algorithm>
 #include <cmath>
@@ -26,6 +27,9 @@ namespace {
 // Refused wherever it would matter: pbrt-v4 applies a matrix's projective part to points but not to
 // directions and normals.
 const char *const PROJECTIVE = "a projective transform (its bottom row is not 0 0 0 1) is not modelled";
+
+// Raw scene text as an error message quotes it: one line, control characters escaped, cut when long.
+std::string quote(const std::string &raw) { return udm1app::quote_raw(raw); }
 
 struct Token {
     enum Kind { Word, String, Number, Open, Close, End } kind = End;
@@ -98,7 +102,7 @@ private:
             errno = 0;
             t.number = std::strtod(t.text.c_str(), &end);
             if (*end != '\0' || errno == ERANGE || !std::isfinite(t.number))
-                throw SceneError(where(line_) + ": malformed number '" + t.text + "'");
+                throw SceneError(where(line_) + ": malformed number '" + quote(t.text) + "'");
             t.kind = Token::Number;
         } else {
             t.kind = Token::Word;
@@ -135,7 +139,7 @@ public:
             Token t = lex.next();
             if (t.kind == Token::End) break;
             if (t.kind != Token::Word)
-                throw SceneError(lex.where(t.line) + ": expected a directive, found '" + t.text + "'");
+                throw SceneError(lex.where(t.line) + ": expected a directive, found '" + quote(t.text) + "'");
             directive(lex, t, dir, depth);
         }
         dir_ = outer_dir;
@@ -163,7 +167,7 @@ private:
     double number(Lexer &lex)
     {
         Token t = lex.next();
-        if (t.kind != Token::Number) throw SceneError(lex.where(t.line) + ": expected a number, found '" + t.text + "'");
+        if (t.kind != Token::Number) throw SceneError(lex.where(t.line) + ": expected a number, found '" + quote(t.text) + "'");
         return t.number;
     }
 
@@ -171,7 +175,7 @@ private:
     {
         Token t = lex.next();
         if (t.kind != Token::String)
-            throw SceneError(lex.where(t.line) + ": " + what + " needs a quoted name, found '" + t.text + "'");
+            throw SceneError(lex.where(t.line) + ": " + what + " needs a quoted name, found '" + quote(t.text) + "'");
         return t.text;
     }
 
@@ -204,34 +208,34 @@ private:
             in >> p.type >> p.name;
             std::string extra;
             if (p.type.empty() || p.name.empty() || (in >> extra))
-                throw SceneError(lex.where(decl.line) + ": parameter \"" + decl.text + "\" is not \"type name\"");
+                throw SceneError(lex.where(decl.line) + ": parameter \"" + quote(decl.text) + "\" is not \"type name\"");
             static const char *types[] = {"integer", "float",  "point2", "vector2", "point3", "vector3", "normal",
                                           "normal3", "point",  "vector", "rgb",     "string", "bool",    "texture",
                                           "spectrum", "blackbody"};
             bool known = false;
             for (const char *k : types) known |= p.type == k;
-            if (!known) throw SceneError(lex.where(decl.line) + ": unknown parameter type '" + p.type + "'");
+            if (!known) throw SceneError(lex.where(decl.line) + ": unknown parameter type '" + quote(p.type) + "'");
             p.where = lex.where(decl.line);
             bool textual = p.type == "string" || p.type == "bool" || p.type == "texture";
             auto take = [&](const Token &v) {
                 if (v.kind == Token::Number) {
-                    if (textual) throw SceneError(lex.where(v.line) + ": '" + p.name + "' needs quoted values");
+                    if (textual) throw SceneError(lex.where(v.line) + ": '" + quote(p.name) + "' needs quoted values");
                     p.numbers.push_back(v.number);
                 } else if (v.kind == Token::String) {
                     if (!textual && p.type != "spectrum")
-                        throw SceneError(lex.where(v.line) + ": '" + p.name + "' needs numbers, found \"" + v.text + "\"");
+                        throw SceneError(lex.where(v.line) + ": '" + quote(p.name) + "' needs numbers, found \"" + quote(v.text) + "\"");
                     p.strings.push_back(v.text);
                 } else if (v.kind == Token::Word && p.type == "bool" && (v.text == "true" || v.text == "false")) {
                     p.strings.push_back(v.text);
                 } else {
-                    throw SceneError(lex.where(v.line) + ": bad value '" + v.text + "' for '" + p.name + "'");
+                    throw SceneError(lex.where(v.line) + ": bad value '" + quote(v.text) + "' for '" + quote(p.name) + "'");
                 }
             };
             Token v = lex.next();
             if (v.kind == Token::Open) {
                 while (lex.peek().kind != Token::Close) {
                     Token e = lex.next();
-                    if (e.kind == Token::End) throw SceneError(lex.where(e.line) + ": '" + p.name + "': missing ']'");
+                    if (e.kind == Token::End) throw SceneError(lex.where(e.line) + ": '" + quote(p.name) + "': missing ']'");
                     take(e);
                 }
                 lex.next();
@@ -379,7 +383,7 @@ private:
             throw SceneError(here + ": " + t.text + " before WorldBegin: pbrt-v4 takes it only after");
         if (geometry_only_ && APPEARANCE.count(t.text)) return skip(lex, t);  // the emitters' shapes stay geometry
         auto it = HANDLERS.find(t.text);
-        if (it == HANDLERS.end()) throw SceneError(here + ": unsupported directive '" + t.text + "'");
+        if (it == HANDLERS.end()) throw SceneError(here + ": unsupported directive '" + quote(t.text) + "'");
         (this->*it->second)(Call{lex, t, here, dir, depth});
     }
 

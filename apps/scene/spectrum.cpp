@@ -1,6 +1,8 @@
 // spectrum.cpp - see spectrum.h.
 #include "spectrum.h"
 
+#include "udm1app/one_line.h"
+
 #include "file_read.h"
 #include "spectral_data.h"
 #include "scene.h"
@@ -123,7 +125,7 @@ Spectrum read_spectrum_file(const std::string &path)
         double x = std::strtod(begin, &end);
         if (end == begin || errno == ERANGE || !std::isfinite(x))
             throw SceneError(path + ": not a spectrum file (a number was expected, found '" +
-                             text.substr(i, std::min<size_t>(12, text.size() - i)) + "')");
+                             udm1app::quote_raw(text.substr(i, text.find('\n', i) - i), 12) + "')");
         v.push_back(x);
         i += (size_t)(end - begin);
     }

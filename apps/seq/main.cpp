@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -72,7 +71,7 @@ Options parse(int argc, char **argv)
         }
     size_t i = 1;
     if (o.command != "list" && o.command != "help" && o.command != "--help") {
-        if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("'" + o.command + "' needs a SAMPLER name");
+        if (i >= args.size() || args[i].rfind("-", 0) == 0) throw Error("'" + udm1app::quote_raw(o.command) + "' needs a SAMPLER name");
         o.sampler = args[i++];
     }
     auto value = [&](const std::string &flag) -> std::string {
@@ -96,11 +95,11 @@ Options parse(int argc, char **argv)
         else if (a == "--dims") {
             std::string v = value(a);
             size_t comma = v.find(',');
-            if (comma == std::string::npos) throw Error("--dims '" + v + "' is not two dimensions A,B");
+            if (comma == std::string::npos) throw Error("--dims '" + udm1app::quote_raw(v) + "' is not two dimensions A,B");
             o.dim_a = (uint32_t)udm1app::parse_u64(v.substr(0, comma), "--dims", 0, UDM1_MAX_DIMENSIONS - 1);
             o.dim_b = (uint32_t)udm1app::parse_u64(v.substr(comma + 1), "--dims", 0, UDM1_MAX_DIMENSIONS - 1);
         } else {
-            throw Error("unknown option '" + a + "'");
+            throw Error("unknown option '" + udm1app::quote_raw(a) + "'");
         }
     }
     return o;
@@ -116,7 +115,7 @@ void make(const Options &o, uint32_t dims, uint64_t points, Seq &seq)
 {
     udm1_preset_info info;
     if (udm1_preset_find(o.sampler.c_str(), &info) != UDM1_OK)
-        throw Error("unknown sampler '" + o.sampler + "' (udm1-seq list shows them)");
+        throw Error("unknown sampler '" + udm1app::quote_raw(o.sampler) + "' (udm1-seq list shows them)");
     udm1_seq_desc desc;
     udm1_seq_desc_init(&desc);
     desc.preset = o.sampler.c_str();
@@ -167,21 +166,18 @@ void cmd_list()
 void write_npy(const std::string &path, const std::vector<double> &p, uint64_t n, uint32_t d)
 {
     udm1app::AtomicFile file(path);
-    std::ofstream f(file.temp_path(), std::ios::binary);
     std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(n) + ", " +
                          std::to_string(d) + "), }";
     size_t total = 10 + header.size() + 1;
     header.append((64 - total % 64) % 64, ' ');
     header += '\n';
     const char magic[] = "\x93NUMPY\x01\x00";
-    f.write(magic, 8);
+    file.write(magic, 8);
     uint16_t len = (uint16_t)header.size();
     unsigned char lenb[2] = {(unsigned char)(len & 0xff), (unsigned char)(len >> 8)};
-    f.write(reinterpret_cast<const char *>(lenb), 2);
-    f << header;
-    f.write(reinterpret_cast<const char *>(p.data()), (std::streamsize)(p.size() * sizeof(double)));
-    f.close();
-    if (!f) throw Error("cannot write '" + path + "'", 1);
+    file.write(lenb, 2);
+    file.write(header);
+    file.write(p.data(), p.size() * sizeof(double));
     file.commit();
 }
 
@@ -206,10 +202,7 @@ void cmd_dump(const Options &o)
         return;
     }
     udm1app::AtomicFile file(o.output);
-    std::ofstream f(file.temp_path());
-    f << text;
-    f.close();
-    if (!f) throw Error("cannot write '" + o.output + "'", 1);
+    file.write(text);
     file.commit();
 }
 
@@ -341,7 +334,7 @@ int main(int argc, char **argv)
         else if (o.command == "spectrum") cmd_spectrum(o);
         else if (o.command == "zoneplate") cmd_zoneplate(o);
         else if (o.command == "check") cmd_check(o);
-        else throw Error("unknown command '" + o.command + "' (udm1-seq help lists them)");
+        else throw Error("unknown command '" + udm1app::quote_raw(o.command) + "' (udm1-seq help lists them)");
         return 0;
     });
 }

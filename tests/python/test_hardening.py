@@ -1,11 +1,18 @@
 """The hardening matrices over every command-line tool:
 
 - bad input: each documented bad input gives a one-line error that names it, a non-zero exit, and no
-  output file (not even a temporary one) in the output folder;
+  output file (not even a temporary one) in the output folder; so do inputs and outputs that make a
+  library fail (damaged images, unwritable outputs, broken meshes) and scene text with control characters;
 - determinism: every tool's output is bit-identical across 1, 2 and 8 threads and across repeated runs."""
 
+import gzip
 import os
+import resource
+import signal
+import stat
+import struct
 import subprocess
+import zlib
 from pathlib import Path
 
 import pytest
@@ -55,6 +62,145 @@ def test_bad_input(tool, args, word, tmp_path):
     assert len(lines) == 1 and word in lines[0], (argv, r.stderr)
     assert "Traceback" not in r.stderr and "terminate called" not in r.stderr
     assert list(tmp_path.iterdir()) == [], (argv, list(tmp_path.iterdir()))  # no output, no temporary file
+
+
+# Errors that come from libraries or quote raw input: what OpenImageIO, libpng, libtiff, OpenEXR, the PLY and
+# OBJ readers, the scene lexer and the C library say reaches the user as the tool's one line, naming the file
+# (and line, for scene files); nothing of it is printed on its own line, no raw byte of the input reaches the
+# terminal, and no output file is left. The inputs are made once (library_inputs); {in} is their folder,
+# {out} a name in the run's own empty folder.
+SCENE_HEAD = 'LookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective"\nWorldBegin\n'
+SCENE_TRI = 'Shape "trianglemesh" "point3 P" [ -1 -1 0  1 -1 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
+
+
+@pytest.fixture(scope="module")
+def library_inputs(tmp_path_factory):
+    d = tmp_path_factory.mktemp("inputs")
+    for name in ("good.png", "good.exr", "good.tif"):
+        subprocess.run([TOOLS["noise"], "--size", "32x32", "-o", str(d / name)], check=True, timeout=120)
+    subprocess.run([TOOLS["seq"], "plot", "wr", "--size", "64", "-o", str(d / "good.jpg")], check=True, timeout=120)
+    subprocess.run([TOOLS["ao"], "--size", "8x8", "--spp", "1", "-o", str(d / "part.exr")], check=True, timeout=120,
+                   capture_output=True)
+    side = 16  # a Radiance HDR by hand: header, then flat RGBE pixels
+    (d / "good.hdr").write_bytes(b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (side, side)
+                                 + bytes([128, 64, 32, 129]) * side * side)
+    for ext in ("png", "exr", "tif", "jpg", "hdr"):  # each cut in the middle of its pixels
+        data = (d / f"good.{ext}").read_bytes()
+        (d / f"cut.{ext}").write_bytes(data[: len(data) // 2])
+    png = bytearray((d / "good.png").read_bytes())
+    png[29] ^= 0xFF  # IHDR's CRC
+    (d / "crc.png").write_bytes(bytes(png))
+    idat = png.find(b"IDAT")  # a whole file whose image data is not a deflate stream (its CRC right)
+    body = bytes(range(50))
+    (d / "deflate.png").write_bytes(bytes(png[: idat - 4]) + struct.pack(">I", len(body)) + b"IDAT" + body
+                                    + struct.pack(">I", zlib.crc32(b"IDAT" + body)) + png[png.find(b"IEND") - 4:])
+    (d / "text.png").write_text("not an image\n")
+    (d / "adir.png").mkdir()
+    (d / "adir.exr").mkdir()
+    (d / "afile").write_text("a file, not a folder\n")
+    os.mkfifo(d / "fifo.npy")
+    (d / "badhead.ply").write_bytes(b"ply\nformat \x1b[2Jbinary\r\nend_header\n")
+    (d / "noend.ply").write_bytes(b"ply\nformat ascii 1.0\nelement vertex 3\n")
+    (d / "ctl.obj").write_bytes(b"v 0 0 0\nv 1 \x1b[0m 0\n")
+    scenes = {
+        "texture.pbrt": SCENE_HEAD + 'Texture "t" "spectrum" "imagemap" "string filename" "cut.png"\n'
+                        'Material "diffuse" "texture reflectance" "t"\n' + SCENE_TRI,
+        "envcut.pbrt": SCENE_HEAD + 'LightSource "infinite" "string filename" "cut.hdr"\n' + SCENE_TRI,
+        "plymesh.pbrt": SCENE_HEAD + 'Shape "plymesh" "string filename" "noend.ply"\n',
+        "cr.pbrt": SCENE_HEAD + 'Shape "sphere\r\t\x1b[31m"\n',
+        "ctl.pbrt": SCENE_HEAD + 'Frob\x01\x7f\x85 3\n' + SCENE_TRI,
+        "type.pbrt": SCENE_HEAD + 'Shape "trianglemesh" "poi\x1bnt3 P" [ 0 0 0 ]\n',
+        "long.pbrt": SCENE_HEAD + "x" * 100000 + "\n",
+        "nul.pbrt": SCENE_HEAD + "Frob\0nicate 1\n",
+        "gz.pbrt": SCENE_HEAD + 'Include "inc.pbrt.gz"\n',
+        "spd.pbrt": SCENE_HEAD + 'AreaLightSource "diffuse" "spectrum L" "spd.txt"\n' + SCENE_TRI,
+    }
+    for name, text in scenes.items():
+        (d / name).write_bytes(text.encode("latin-1"))
+    (d / "inc.pbrt.gz").write_bytes(gzip.compress((SCENE_HEAD + SCENE_TRI).encode()))
+    (d / "spd.txt").write_text("400 1\nabc\ndef\n")
+    return d
+
+
+# (tool, arguments, words the one line must hold, the output file size limit in bytes or None; negative:
+# the limit with SIGXFSZ ignored, so that the write returns EFBIG to the writer)
+LIBRARY_BAD = [
+    # images read: cut short, a bad CRC, a bad deflate stream, not an image at all (libpng, OpenEXR, libtiff,
+    # libjpeg, Radiance)
+    ("pt", ["compare", "{in}/cut.png", "{in}/good.png"], ["cut.png"], None),
+    ("pt", ["compare", "{in}/crc.png", "{in}/good.png"], ["crc.png"], None),
+    ("ao", ["compare", "{in}/good.png", "{in}/cut.tif"], ["cut.tif"], None),
+    ("pt", ["compare", "{in}/cut.jpg", "{in}/good.jpg"], ["cut.jpg"], None),
+    ("pt", ["compare", "{in}/cut.hdr", "{in}/good.hdr"], ["cut.hdr"], None),
+    ("ao", ["sweep", "--against", "{in}/deflate.png", "--size", "8x8", "--spp", "1"], ["deflate.png"], None),
+    ("ao", ["merge", "{in}/cut.exr", "-o", "{out}.exr"], ["cut.exr"], None),
+    ("pt", ["compare", "{in}/good.png", "{in}/text.png"], ["text.png"], None),
+    ("pt", ["--scene", "{in}/texture.pbrt", "--size", "8x8", "-o", "{out}.exr"], ["texture.pbrt:4", "cut.png"], None),
+    ("pt", ["--scene", "{in}/envcut.pbrt", "--size", "8x8", "-o", "{out}.exr"], ["envcut.pbrt:4", "cut.hdr"], None),
+    # images written: a folder or a device named as the file, a folder that cannot be written
+    ("noise", ["--size", "16x16", "-o", "{in}/adir.png"], ["adir.png"], None),
+    ("seq", ["plot", "wr", "-o", "{in}/afile/p.png"], ["afile/p.png"], None),
+    ("seq", ["dump", "wr", "-o", "{in}/fifo.npy"], ["fifo.npy"], None),
+    ("noise", ["figures", "-o", "{in}/afile"], ["afile"], None),
+    ("noise", ["--size", "16x16", "-o", "{out}.png", "--pov", "{in}/afile/tex"], ["afile/tex"], None),
+    ("ao", ["--size", "8x8", "--spp", "1", "-o", "{in}/adir.exr"], ["adir.exr"], None),
+    ("pt", ["--size", "8x8", "--spp", "1", "-o", "{out}.exr", "--png", "{in}/afile/p.png"], ["afile/p.png"], None),
+    ("pt", ["compare", "{in}/good.png", "{in}/good.png", "--diff", "{in}/adir.png"], ["adir.png"], None),
+    ("ao", ["sweep", "--against", "{in}/part.exr", "--size", "8x8", "--spp", "1", "--images", "{in}/afile"],
+     ["afile"], None),
+    # images written past the file size limit (a write fails in the middle of the file)
+    ("noise", ["--size", "128x128", "--pattern", "granite", "-o", "{out}.png"], ["out.png"], 3000),
+    ("noise", ["--size", "128x128", "--pattern", "granite", "-o", "{out}.png"], ["out.png"], -3000),
+    ("seq", ["plot", "wr", "-o", "{out}.hdr"], ["out.hdr"], 3000),
+    ("seq", ["dump", "wr", "-n", "4000", "-o", "{out}.npy"], ["out.npy"], 3000),
+    ("ao", ["--size", "64x64", "--spp", "4", "-o", "{out}.png", "--png", "{out}.exr"], ["out.exr"], 3000),
+    ("pt", ["--size", "32x32", "--spp", "2", "--checkpoints", "1,2", "-o", "{out}.exr"], ["out.1.exr"], 3000),
+    # meshes: a PLY header with control characters, one without end_header, an OBJ with an escape sequence
+    ("ao", ["--scene", "{in}/badhead.ply", "-o", "{out}.exr"], ["badhead.ply:2"], None),
+    ("pt", ["--scene", "{in}/plymesh.pbrt", "-o", "{out}.exr"], ["plymesh.pbrt:4", "noend.ply"], None),
+    ("ao", ["--scene", "{in}/ctl.obj", "-o", "{out}.exr"], ["ctl.obj:2"], None),
+    # scene text quoted in the message: CR, tab, escape sequences, DEL, C1 controls, NUL, a line of 100000
+    # bytes, a gzip file where text is expected, a spectrum file's bad word
+    ("pt", ["--scene", "{in}/cr.pbrt", "-o", "{out}.exr"], ["cr.pbrt:4"], None),
+    ("ao", ["--scene", "{in}/ctl.pbrt", "-o", "{out}.exr"], ["ctl.pbrt:4"], None),
+    ("pt", ["--scene", "{in}/type.pbrt", "-o", "{out}.exr"], ["type.pbrt:4"], None),
+    ("pt", ["--scene", "{in}/long.pbrt", "-o", "{out}.exr"], ["long.pbrt:4"], None),
+    ("ao", ["--scene", "{in}/nul.pbrt", "-o", "{out}.exr"], ["nul.pbrt:4"], None),
+    ("pt", ["--scene", "{in}/gz.pbrt", "-o", "{out}.exr"], ["inc.pbrt.gz:1"], None),
+    ("pt", ["--scene", "{in}/spd.pbrt", "-o", "{out}.exr"], ["spd.pbrt:4", "spd.txt"], None),
+]
+
+
+def file_size_limit(limit):
+    """A preexec_fn: the child may write files of at most abs(limit) bytes (a larger write fails with EFBIG,
+    or SIGXFSZ kills a tool that does not ignore it; a negative limit ignores SIGXFSZ for the tool)."""
+    def apply():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (abs(limit), abs(limit)))
+        if limit < 0:
+            signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    return apply
+
+
+@pytest.mark.parametrize("tool,args,words,fsize", LIBRARY_BAD,
+                         ids=[f"{t}:{' '.join(Path(a).name for a in args)}{f':limit{f}' if f else ''}"
+                              for t, args, _, f in LIBRARY_BAD])
+def test_library_errors_are_one_line(tool, args, words, fsize, library_inputs, tmp_path):
+    out = tmp_path / "out"
+    argv = [TOOLS[tool]] + [a.replace("{in}", str(library_inputs)).replace("{out}", str(out)) for a in args]
+    r = subprocess.run(argv, capture_output=True, cwd=tmp_path, timeout=300,
+                       preexec_fn=file_size_limit(fsize) if fsize else None)
+    err = r.stderr.decode("utf-8")  # strictly: a raw byte of a binary input would not decode
+    lines = err.splitlines()  # splits at CR, VT, FF, the C1 NEL and U+2028 too
+    assert r.returncode not in (0, -signal.SIGXFSZ), (argv, r.returncode, err)
+    assert r.returncode > 0, (argv, r.returncode, err)  # an exit, not a signal
+    assert len(lines) == 1 and lines[0].startswith(f"udm1-{tool}: ") and err.endswith("\n"), (argv, err)
+    assert lines[0].isprintable() and len(lines[0]) < 1000, (argv, err)
+    assert all(w in lines[0] for w in words), (argv, words, err)
+    assert r.stdout == b"", (argv, r.stdout)  # no result printed before the error
+    assert list(tmp_path.iterdir()) == [], (argv, list(tmp_path.iterdir()))  # no output, no temporary file
+    if any("fifo.npy" in a for a in args):
+        assert stat.S_ISFIFO(os.stat(library_inputs / "fifo.npy").st_mode)  # a device or FIFO is never replaced
+    assert [p.name for p in (library_inputs / "adir.png").iterdir()] == []  # nor written into as a folder
 
 
 # (tool, arguments writing {out}); each run with --threads 1, 2 and 8, and twice with the default

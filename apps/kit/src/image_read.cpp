@@ -1,6 +1,7 @@
 // image_read.cpp - see image_read.h.
 #include "udm1app/image_read.h"
 
+#include "image_calls.h"
 #include "udm1app/cli.h"
 
 #include <OpenImageIO/imageio.h>
@@ -9,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 
 namespace udm1app {
 
@@ -20,9 +22,7 @@ void require_regular_file(const std::string &path)
 
 LoadedImage read_image(const std::string &path)
 {
-    require_regular_file(path);
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw Error("cannot read '" + path + "': " + OIIO::geterror(), 1);
+    auto in = open_image(path);
     const OIIO::ImageSpec &spec = in->spec();
     LoadedImage img;
     img.width = spec.width;
@@ -32,9 +32,14 @@ LoadedImage read_image(const std::string &path)
     for (const OIIO::ParamValue &pv : spec.extra_attribs)
         if (pv.name().string().rfind("udm1:", 0) == 0 && pv.type() == OIIO::TypeDesc::STRING)
             img.attributes[pv.name().string()] = pv.get_string();
-    img.pixels.resize((size_t)img.width * img.height * img.channels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-        throw Error("cannot read '" + path + "': " + in->geterror(), 1);
+    try {
+        img.pixels.resize(image_values(*in, path));
+    } catch (const std::bad_alloc &) {
+        throw Error("cannot read '" + path + "': not enough memory for its " + std::to_string(img.width) + "x" +
+                        std::to_string(img.height) + " pixels",
+                    1);
+    }
+    read_pixels(*in, path, OIIO::TypeDesc::FLOAT, img.pixels.data());
     in->close();
     return img;
 }

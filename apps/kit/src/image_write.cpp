@@ -1,6 +1,7 @@
 // image_write.cpp - see image_write.h.
 #include "udm1app/image_write.h"
 
+#include "image_calls.h"
 #include "udm1app/atomic_file.h"
 #include "udm1app/cli.h"
 
@@ -8,12 +9,15 @@
 
 namespace udm1app {
 
-void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
-                 bool srgb, int bits, const std::vector<std::pair<std::string, std::string>> &attributes)
+void write_image(AtomicFile &file, const std::vector<float> &pixels, int width, int height, int channels, bool srgb,
+                 int bits, const std::vector<std::pair<std::string, std::string>> &attributes)
 {
-    AtomicFile file(path);
-    auto out = OIIO::ImageOutput::create(file.temp_path());
-    if (!out) throw Error("cannot write '" + path + "': no image format for its extension", 2);
+    const std::string &path = file.path();
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out) {
+        OIIO::geterror();  // "could not find a format writer": said below, in one line
+        throw Error("cannot write '" + path + "': no image format for its extension", 2);
+    }
     OIIO::TypeDesc type = OIIO::TypeDesc::FLOAT;
     std::string fmt = out->format_name();
     if (fmt == "png" || fmt == "jpeg" || fmt == "bmp" || fmt == "targa") type = OIIO::TypeDesc::UINT8;
@@ -28,9 +32,14 @@ void write_image(const std::string &path, const std::vector<float> &pixels, int 
         spec.attribute("oiio:ColorSpace", srgb ? "sRGB" : "linear");
         if (!srgb) spec.attribute("oiio:Gamma", 1.0f);
     }
-    if (!out->open(file.temp_path(), spec) ||
-        !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
-        throw Error("cannot write '" + path + "': " + out->geterror(), 1);
+    encode_image(*out, spec, OIIO::TypeDesc::FLOAT, pixels.data(), file);
+}
+
+void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
+                 bool srgb, int bits, const std::vector<std::pair<std::string, std::string>> &attributes)
+{
+    AtomicFile file(path);
+    write_image(file, pixels, width, height, channels, srgb, bits, attributes);
     file.commit();
 }
 

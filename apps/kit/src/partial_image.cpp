@@ -1,6 +1,7 @@
 // partial_image.cpp - see partial_image.h.
 #include "udm1app/partial_image.h"
 
+#include "image_calls.h"
 #include "udm1app/atomic_file.h"
 #include "udm1app/cli.h"
 #include "udm1app/image_read.h"
@@ -40,12 +41,14 @@ std::vector<float> PartialImage::rgb() const
     return out;
 }
 
-void write_partial(const std::string &path, const PartialImage &p)
+void write_partial(AtomicFile &file, const PartialImage &p)
 {
-    AtomicFile file(path);
-    auto out = OIIO::ImageOutput::create(file.temp_path());
-    if (!out || std::string(out->format_name()) != "openexr")
+    const std::string &path = file.path();
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out || std::string(out->format_name()) != "openexr") {
+        OIIO::geterror();
         throw Error("cannot write '" + path + "': images with exact sums are OpenEXR (.exr)", 2);
+    }
     const size_t nsum = p.channels.size();
     OIIO::ImageSpec spec(p.width, p.height, 3 + 2 * (int)nsum, OIIO::TypeDesc::FLOAT);
     spec.x = p.x0, spec.y = p.y0;
@@ -83,16 +86,19 @@ void write_partial(const std::string &path, const PartialImage &p)
             std::memcpy(px + 16 + 8 * c, &lo, 4);
         }
     }
-    if (!out->open(file.temp_path(), spec) || !out->write_image(OIIO::TypeDesc::UNKNOWN, buf.data()) || !out->close())
-        throw Error("cannot write '" + path + "': " + out->geterror(), 1);
+    encode_image(*out, spec, OIIO::TypeDesc::UNKNOWN, buf.data(), file);
+}
+
+void write_partial(const std::string &path, const PartialImage &p)
+{
+    AtomicFile file(path);
+    write_partial(file, p);
     file.commit();
 }
 
 PartialImage read_partial(const std::string &path)
 {
-    require_regular_file(path);
-    auto in = OIIO::ImageInput::open(path);
-    if (!in) throw Error("cannot read '" + path + "': " + OIIO::geterror(), 1);
+    auto in = open_image(path);
     const OIIO::ImageSpec &spec = in->spec();
     const std::string not_ours = "'" + path + "' is not an udm1 image with exact sums";
     PartialImage p;
@@ -136,9 +142,8 @@ PartialImage read_partial(const std::string &path)
     std::vector<size_t> offset(spec.nchannels + 1, 0);  // byte offset of each channel in a native pixel
     for (int c = 0; c < spec.nchannels; ++c) offset[c + 1] = offset[c] + spec.channelformats[c].size();
     const size_t pixel_bytes = offset[spec.nchannels], nsum = p.channels.size();
-    std::vector<unsigned char> buf((size_t)p.width * p.height * pixel_bytes);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, buf.data()))
-        throw Error("cannot read '" + path + "': " + in->geterror(), 1);
+    std::vector<unsigned char> buf(image_values(*in, path) / spec.nchannels * pixel_bytes);
+    read_pixels(*in, path, OIIO::TypeDesc::UNKNOWN, buf.data());
     p.sum.resize((size_t)p.width * p.height * nsum);
     for (size_t i = 0; i < (size_t)p.width * p.height; ++i)
         for (size_t c = 0; c < nsum; ++c) {

@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <unistd.h>
 
@@ -83,14 +84,14 @@ RenderSettings parse(Renderer &r, int argc, char **argv)
             for (const std::string &n : parse_list(value(a), a)) s.spps.push_back((uint32_t)parse_u64(n, a, 1, d.max_spp));
         } else if (a == "--seeds") only("sweep", a), s.seeds = (uint32_t)parse_u64(value(a), a, 1, 100000);
         else if (r.option(a, [&] { return value(a); }, s)) continue;
-        else if (!a.empty() && a[0] == '-') throw Error("unknown option '" + a + "'");
+        else if (!a.empty() && a[0] == '-') throw Error("unknown option '" + quote_raw(a) + "'");
         else s.positional.push_back(a);
     }
     const bool own = std::find(d.commands.begin(), d.commands.end(), s.command) != d.commands.end();
     if (s.command == "compare" && s.positional.size() != 2) throw Error("compare needs IMAGE and REFERENCE");
     if (s.command == "merge" && s.positional.empty()) throw Error("merge needs the images to merge");
     if (s.command != "compare" && s.command != "merge" && !own && !s.positional.empty())
-        throw Error("unexpected argument '" + s.positional[0] + "'");
+        throw Error("unexpected argument '" + quote_raw(s.positional[0], 80) + "'");
     if (s.command == "merge" && s.output.empty()) throw Error("merge needs -o OUT.exr");
     if (s.command == "reference") {
         if (s.output.empty()) throw Error("reference needs -o REF.exr");
@@ -110,18 +111,35 @@ RenderSettings parse(Renderer &r, int argc, char **argv)
     return s;
 }
 
-void write_display(const Renderer &r, const std::string &path, const PartialImage &image)
+void write_display(const Renderer &r, AtomicFile &file, const PartialImage &image)
 {
     bool srgb = false;
     std::vector<float> rgb = r.display(image, &srgb);
-    write_image(path, rgb, image.width, image.height, 3, srgb, 8, {{"udm1:render", image.made_by}});
+    write_image(file, rgb, image.width, image.height, 3, srgb, 8, {{"udm1:render", image.made_by}});
+}
+
+// The run's output files, created at once (a path that cannot be written fails before any work); the
+// empty paths left out.
+std::vector<AtomicFile> open_outputs(std::initializer_list<std::string> paths)
+{
+    std::vector<AtomicFile> files;
+    for (const std::string &path : paths)
+        if (!path.empty()) files.emplace_back(path);
+    return files;
 }
 
 int run_compare(const RenderSettings &s)
 {
+    std::vector<AtomicFile> diff_file = open_outputs({s.diff});
     LoadedImage a = read_image(s.positional[0]), ref = read_image(s.positional[1]);
     std::vector<float> diff;
     Comparison c = compare(a, ref, true, s.diff.empty() ? nullptr : &diff);
+    if (!s.diff.empty()) {  // ten times the difference, grey; written before anything is printed
+        std::vector<float> rgb(diff.size() * 3);
+        for (size_t i = 0; i < diff.size(); ++i) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = std::min(1.0f, 10.0f * diff[i]);
+        write_image(diff_file[0], rgb, a.width, a.height, 3, true);
+        commit_all(diff_file);
+    }
     std::printf("mse %.6g rmse %.6g psnr %.4f\n", c.mse, c.rmse, c.psnr);
     if (s.exact) {  // every value of every channel, unclamped, bit for bit (the metadata may differ)
         size_t differ = 0;
@@ -138,23 +156,18 @@ int run_compare(const RenderSettings &s)
         if (differ) std::printf("different: %zu of %zu values, largest difference %.6g\n", differ, a.pixels.size(), largest);
         else std::printf("identical: %zu values bit for bit\n", a.pixels.size());
     }
-    if (!s.diff.empty()) {  // ten times the difference, grey
-        std::vector<float> rgb(diff.size() * 3);
-        for (size_t i = 0; i < diff.size(); ++i) rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = std::min(1.0f, 10.0f * diff[i]);
-        write_image(s.diff, rgb, a.width, a.height, 3, true);
-    }
     return 0;
 }
 
 int run_merge(const Renderer &r, const RenderSettings &s)
 {
-    for (const std::string &path : {s.output, s.png})
-        if (!path.empty()) AtomicFile probe(path);
     if (!is_exr_path(s.output)) throw Error("-o '" + s.output + "': merge writes OpenEXR (.exr)", 2);
+    std::vector<AtomicFile> files = open_outputs({s.output, s.png});
     PartialImage p = merge_partials(s.positional);
     if (!r.owns(p)) throw Error("'" + s.positional[0] + "' is not an " + r.defaults().tool + " image", 2);
-    write_partial(s.output, p);
-    if (!s.png.empty()) write_display(r, s.png, p);
+    write_partial(files[0], p);
+    if (!s.png.empty()) write_display(r, files[1], p);
+    commit_all(files);
     std::printf("merged %zu image(s): samples [%llu, %llu) of %llu, pixels [%d, %d) x [%d, %d)\n", s.positional.size(),
                 (unsigned long long)p.first, (unsigned long long)(p.first + p.count), (unsigned long long)p.spp, p.x0,
                 p.x0 + p.width, p.y0, p.y0 + p.height);
@@ -182,6 +195,7 @@ int run_sweep(Renderer &r, const RenderSettings &s)
     if (!s.images.empty() && (!std::filesystem::is_directory(s.images) || access(s.images.c_str(), W_OK) != 0))
         throw Error("--images '" + s.images + "' is not a writable folder", 1);
     bool header = false;
+    std::vector<AtomicFile> images;  // committed together after the last render: an error leaves none
     for (const std::string &name : usable)
         for (uint32_t spp : s.spps)
             for (uint32_t seed = 1; seed <= s.seeds; ++seed) {
@@ -207,9 +221,13 @@ int run_sweep(Renderer &r, const RenderSettings &s)
                 for (const auto &col : st.after) std::printf(",%s", col.second.c_str());
                 std::printf("\n");
                 std::fflush(stdout);
-                if (!s.images.empty() && seed == 1)
-                    write_display(r, s.images + "/" + name + "-" + std::to_string(spp) + "spp.png", img);
+                if (!s.images.empty() && seed == 1) {
+                    images.emplace_back(s.images + "/" + name + "-" + std::to_string(spp) + "spp.png");
+                    write_display(r, images.back(), img);
+                    images.back().finish();
+                }
             }
+    commit_all(images);
     return 0;
 }
 
@@ -224,8 +242,13 @@ bool reuse_reference(const Renderer &r, const RenderSettings &s, const std::stri
         return false;
     }
     if (old.made_by != made_by || old.first != 0 || old.count != old.spp || !old.whole()) return false;
+    if (!s.png.empty()) {
+        std::vector<AtomicFile> png = open_outputs({s.png});
+        write_display(r, png[0], old);
+        commit_all(png);
+    }
     std::printf("reference %s reused (%s)\n", s.output.c_str(), made_by.c_str());
-    if (!s.png.empty()) write_display(r, s.png, old), std::printf("wrote %s\n", s.png.c_str());
+    if (!s.png.empty()) std::printf("wrote %s\n", s.png.c_str());
     return true;
 }
 
@@ -261,6 +284,7 @@ int run_checkpoints(Renderer &r, const RenderSettings &s, const std::string &mad
     const std::vector<uint64_t> ks = parse_checkpoints(s);
     PartialImage total;
     uint64_t done = 0;
+    std::vector<AtomicFile> files;  // committed together after the last checkpoint: an error leaves none
     for (uint64_t k : ks) {
         RenderSettings slice = s;
         slice.first = done, slice.count = k - done;
@@ -273,14 +297,16 @@ int run_checkpoints(Renderer &r, const RenderSettings &s, const std::string &mad
             total.count += part.count, total.nonfinite += part.nonfinite, total.clamped += part.clamped;
         }
         total.made_by = made_by;
-        const std::string path = checkpoint_path(s.output, k);
-        write_partial(path, total);
+        files.emplace_back(checkpoint_path(s.output, k));
+        write_partial(files.back(), total);
+        files.back().finish();
         if (isatty(2))
             std::fprintf(stderr, "\r%s: %llu of %llu spp", r.defaults().tool, (unsigned long long)k,
                          (unsigned long long)ks.back());
         done = k;
     }
     if (isatty(2)) std::fprintf(stderr, "\n");
+    commit_all(files);
     std::printf("wrote %zu checkpoints, %s .. %s\n", ks.size(), checkpoint_path(s.output, ks.front()).c_str(),
                 checkpoint_path(s.output, ks.back()).c_str());
     return 0;
@@ -305,18 +331,21 @@ int run_render(Renderer &r, RenderSettings s)
         if (s.part())
             throw Error("-o '" + s.output + "': a sample range or tile is written as OpenEXR (.exr), whose counts merge", 2);
     }
-    for (const std::string &path : {s.output, s.png})  // a bad output path fails before the render
-        if (!path.empty()) AtomicFile probe(path);
     if (s.command == "sweep") return run_sweep(r, s);
-    if (!s.checkpoints.empty()) return run_checkpoints(r, s, made_by);
+    if (!s.checkpoints.empty()) {
+        open_outputs({s.output, s.png});  // a bad output path fails before the render
+        return run_checkpoints(r, s, made_by);
+    }
+    std::vector<AtomicFile> files = open_outputs({s.output, s.png});  // a bad path fails before the render
     RenderStats stats;
     PartialImage image = r.render(s, &stats);
     image.made_by = made_by;
     if (!s.output.empty()) {
-        if (is_exr_path(s.output)) write_partial(s.output, image);  // exact sums: ranges and tiles merge
-        else write_display(r, s.output, image);
+        if (is_exr_path(s.output)) write_partial(files[0], image);  // exact sums: ranges and tiles merge
+        else write_display(r, files[0], image);
     }
-    if (!s.png.empty()) write_display(r, s.png, image);
+    if (!s.png.empty()) write_display(r, files.back(), image);
+    commit_all(files);
     r.report(s, image, stats);
     for (const std::string &path : {s.output, s.png})
         if (!path.empty()) std::printf("wrote %s\n", path.c_str());

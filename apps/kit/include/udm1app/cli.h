@@ -2,6 +2,9 @@
 // names strictly, and one-line errors that name the bad input.
 #pragma once
 
+#include "udm1app/one_line.h"
+
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <exception>
@@ -49,20 +52,23 @@ T parse_choice(const std::string &text, const std::string &flag, std::initialize
         names += (k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ") + std::string(c.first);
         ++k;
     }
-    throw Error(flag + " '" + text + "' is not " + names);
+    throw Error(flag + " '" + quote_raw(text) + "' is not " + names);
 }
 
 // A tool's main: run `body` (returning the exit code); an Error prints "<tool>: <message>" and exits
-// with its code, any other exception prints the same and exits 1.
+// with its code, any other exception prints the same and exits 1. The message is printed as one line
+// whatever it holds (fold_lines: a library's lines joined, control characters escaped). A file grown past
+// the process's size limit is a write error (SIGXFSZ ignored), not a kill that leaves a temporary file.
 template <class F> int run_tool(const char *tool, F &&body)
 {
+    std::signal(SIGXFSZ, SIG_IGN);
     try {
         return body();
     } catch (const Error &e) {
-        std::fprintf(stderr, "%s: %s\n", tool, e.what());
+        std::fprintf(stderr, "%s: %s\n", tool, fold_lines(e.what()).c_str());
         return e.code;
     } catch (const std::exception &e) {
-        std::fprintf(stderr, "%s: %s\n", tool, e.what());
+        std::fprintf(stderr, "%s: %s\n", tool, fold_lines(e.what()).c_str());
         return 1;
     }
 }

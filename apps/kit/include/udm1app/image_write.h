@@ -2,6 +2,8 @@
 // atomically (no partial file on failure).
 #pragma once
 
+#include "udm1app/atomic_file.h"
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,5 +19,10 @@ namespace udm1app {
 void write_image(const std::string &path, const std::vector<float> &pixels, int width, int height, int channels,
                  bool srgb = false, int bits = 8,
                  const std::vector<std::pair<std::string, std::string>> &attributes = {});
+
+// The same image written into `file` (the format from the extension of file.path()), left for the caller
+// to commit with the run's other outputs.
+void write_image(AtomicFile &file, const std::vector<float> &pixels, int width, int height, int channels,
+                 bool srgb = false, int bits = 8, const std::vector<std::pair<std::string, std::string>> &attributes = {});
 
 }  // namespace udm1app

@@ -10,6 +10,8 @@
 // exactly: any split merged gives the whole render bit for bit (merge_partials).
 #pragma once
 
+#include "udm1app/atomic_file.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -36,6 +38,8 @@ struct PartialImage {
 
 // Write atomically (no partial file on failure); throws Error naming the path.
 void write_partial(const std::string &path, const PartialImage &p);
+// Write into `file`, left for the caller to commit with the run's other outputs.
+void write_partial(AtomicFile &file, const PartialImage &p);
 // Read; throws Error naming the path (unreadable, or not such an image).
 PartialImage read_partial(const std::string &path);
 // Add parts of one render: the same description and spp; sorted by range, every pixel of the
