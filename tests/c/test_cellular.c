@@ -126,6 +126,7 @@ static void against_brute_force(const char *table, uint32_t px, uint32_t py, uin
     for (uint32_t dims = 2; dims <= 3; ++dims)
         for (uint32_t metric = 0; metric <= 3; ++metric)
             for (int j = 0; j < 3; ++j) {
+                if (!check_sampled()) continue; /* (UDM1_TEST_SAMPLE: a part of the matrix) */
                 for (int i = 0; i < N; ++i) {
                     brute_f64(&T, (int)dims, pts + 4 * i, (int)metric, jitters[j], 3.0, ref[i]);
                     brute_f32(&T, (int)dims, ptsf + 4 * i, (int)metric, jitters[j], 3.0, reff[i]);

@@ -2,10 +2,12 @@
  * draws, so that two builds - the unsigned __int128 one and the portable 128-bit one (UDM1_PORTABLE_INT128,
  * what MSVC builds), or the x86-64 build and an arm64 or Windows one - can be compared bit for bit.
  *
- *   test_draw_digest [--draws N] [--seed S] [--out FILE] [--expect FILE]
+ *   test_draw_digest [--draws N] [--seed S] [--small-sets 1] [--out FILE] [--expect FILE]
  *
  * Every preset, also with "+tent", in every randomization it takes (screen-space both fixed and
- * progressive), sequences of 24 dimensions and point sets of 12 (K from 64 to 65537); N draws (default 10^7) in groups of 16 that
+ * progressive), sequences of 24 dimensions and point sets of 12 (K from 64 to 65537, or to 1000 with
+ * --small-sets 1: the emulators' quick run, whose time goes to the lattices' construction); N draws
+ * (default 10^7) in groups of 16 that
  * share a sequence, a stream id and a first dimension. Each draw takes a random index (a third of them
  * below 2^16, a third below 2^32, a third anywhere in 2^64 - or below K for a point set) and a random
  * dimension, and folds into the digest: the per-sample value (udm1_seq_sample_u64), the inline draw of
@@ -59,9 +61,10 @@ static void add(const char *name, uint32_t dims, uint64_t k, uint32_t randomize)
     if (nseqs < MAX_SEQS && udm1_seq_create_desc(&d, &s) == UDM1_OK) seqs[nseqs].seq = s, seqs[nseqs].dims = dims, seqs[nseqs++].k = k;
 }
 
-static void make_sequences(void)
+static void make_sequences(int small_sets)
 {
-    static const uint64_t point_counts[] = {64, 1000, 4099, 65537};
+    static const uint64_t all_counts[] = {64, 1000, 4099, 65537}, small_counts[] = {64, 100, 257, 1000};
+    const uint64_t *point_counts = small_sets ? small_counts : all_counts;
     for (size_t p = 0; p < udm1_preset_count(); ++p) {
         udm1_preset_info info;
         udm1_preset_get(p, &info);
@@ -121,11 +124,16 @@ static void group(void)
 
 int main(int argc, char **argv)
 {
-    uint64_t draws = 10000000, seed = 1;
+    uint64_t draws = 10000000, seed = 1, small_sets = 0;
     const char *out = NULL, *expect = NULL;
-    for (int a = 1; a + 1 < argc; a += 2) {
+    for (int a = 1; a < argc; a += 2) {
+        if (a + 1 == argc) {
+            fprintf(stderr, "test_draw_digest: option '%s' has no value\n", argv[a]);
+            return 2;
+        }
         if (strcmp(argv[a], "--draws") == 0) draws = strtoull(argv[a + 1], NULL, 10);
         else if (strcmp(argv[a], "--seed") == 0) seed = strtoull(argv[a + 1], NULL, 10);
+        else if (strcmp(argv[a], "--small-sets") == 0) small_sets = strtoull(argv[a + 1], NULL, 10);
         else if (strcmp(argv[a], "--out") == 0) out = argv[a + 1];
         else if (strcmp(argv[a], "--expect") == 0) expect = argv[a + 1];
         else {
@@ -134,7 +142,7 @@ int main(int argc, char **argv)
         }
     }
     rng_state = seed * 0xD1B54A32D192ED03ull;
-    make_sequences();
+    make_sequences(small_sets != 0);
     CHECKF(nseqs > 100 && nseqs < MAX_SEQS, "%llu sequences made", (unsigned long long)nseqs);
 
     char lines[17][160];

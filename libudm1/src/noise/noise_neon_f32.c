@@ -47,11 +47,13 @@ static inline int finite4(float32x4_t x) /* every lane finite */
 }
 
 /* floor, the offset in the cell (exact, -0 made +0) and the lower corner's index mod 256: from the floor
- * where it is below 2^24 (an exact conversion), else 0 (a multiple of 256, as the scalar code's index) */
+ * converted where it is below 2^31 in magnitude (exact: a whole number that fits an int32), else 0 (past
+ * 2^31 a float is a multiple of 256, as the scalar code's index; the conversion would saturate to
+ * 0x7FFFFFFF, whose low byte is not 0) */
 static inline float32x4_t axis4(float32x4_t x, int32x4_t *i0)
 {
     float32x4_t f = vrndmq_f32(x);
-    float32x4_t small = vbslq_f32(vcltq_f32(vabsq_f32(f), vdupq_n_f32(0x1p24f)), f, vdupq_n_f32(0.0f));
+    float32x4_t small = vbslq_f32(vcltq_f32(vabsq_f32(f), vdupq_n_f32(0x1p31f)), f, vdupq_n_f32(0.0f));
     *i0 = vandq_s32(vcvtq_s32_f32(small), vdupq_n_s32(255));
     return vaddq_f32(vsubq_f32(x, f), vdupq_n_f32(0.0f));
 }
