@@ -10,6 +10,8 @@
 #   ./run.sh wheel    the Python wheel, libudm1 inside it (scikit-build-core), into dist/ (manylinux tag)
 #   ./run.sh fuzz [S] every libFuzzer target for S seconds (default 60), clang + ASan + UBSan (TESTING.md)
 #   ./run.sh arm64    the library and every C test cross-built for 64-bit Arm Linux, run under qemu-user
+#   ./run.sh windows  the DLL and every C test cross-built with MinGW-w64 (no unsigned __int128, as MSVC
+#                     builds it), run under wine64; the DLL's exports; a consumer project's find_package
 #
 # ./run.sh test also builds the library without unsigned __int128 (build-portable/) and for 64-bit Arm
 # (build-arm64/) and runs a part of their tests beside the sanitizer runs (README.md, "Platforms").
@@ -45,6 +47,8 @@ build_targets() { # build_targets <dir> "<targets>" [cmake options...]: only tho
 DIGEST_REFERENCE="$ROOT/build/tests/test_draw_digest"
 ARM64=(-DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchains/aarch64-linux-gnu.cmake" -DCMAKE_BUILD_TYPE=Release
        -DUDM1_BUILD_TOOLS=OFF -DUDM1_DIGEST_REFERENCE="$DIGEST_REFERENCE" -DUDM1_DIGEST_DRAWS=1000000)
+WINDOWS=(-DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchains/x86_64-w64-mingw32.cmake" -DUDM1_PORTABLE_INT128=ON
+         -DCMAKE_BUILD_TYPE=Release -DUDM1_BUILD_TOOLS=OFF -DUDM1_DIGEST_REFERENCE="$DIGEST_REFERENCE")
 HEADER_TESTS="test_header_c99 test_header_cxx test_header_c99_no128_vector test_header_c99_no128_scalar
               test_header_cxx_no128_vector test_header_cxx_no128_scalar"
 
@@ -213,8 +217,20 @@ arm64)
     udm1_log "every C test under qemu-user, and the exported symbols (about 10 minutes on 2 cores)"
     ctest --test-dir build-arm64 -j "$JOBS" --output-on-failure -L '^(c|abi)$'
     ;;
+windows)
+    UDM1_DEBIAN_PACKAGES+=(gcc-mingw-w64-x86-64 g++-mingw-w64-x86-64 wine64)
+    udm1_bootstrap "$ROOT"
+    udm1_log "the host build's test_draw_digest (build/), the reference of the values at random draws"
+    build_targets build test_draw_digest -DCMAKE_BUILD_TYPE=Release
+    udm1_log "the DLL and every C test cross-built with MinGW-w64 without unsigned __int128 (build-windows/)"
+    build build-windows "${WINDOWS[@]}"
+    udm1_log "a Wine prefix of its own (build-windows/wineprefix), then every C test under wine64, the DLL's"
+    udm1_log "exports against libudm1/udm1.symbols, and a consumer project's find_package(udm1) with the import library"
+    WINEPREFIX="$ROOT/build-windows/wineprefix" WINEDEBUG=-all cmake/toolchains/wine64-run.sh wineboot --init
+    ctest --test-dir build-windows -j "$JOBS" --output-on-failure -L '^(c|abi|install)$'
+    ;;
 *)
-    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench|wheel|fuzz|arm64])" >&2
+    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench|wheel|fuzz|arm64|windows])" >&2
     exit 2
     ;;
 esac

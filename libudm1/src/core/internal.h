@@ -10,7 +10,11 @@
 #include <stdint.h>
 
 #if defined(__GNUC__)
-#  define UDM1_HIDDEN __attribute__((visibility("hidden")))
+#  if defined(_WIN32) /* (a DLL exports only what is dllexport: nothing to hide) */
+#    define UDM1_HIDDEN
+#  else
+#    define UDM1_HIDDEN __attribute__((visibility("hidden")))
+#  endif
 #  define UDM1_LIKELY(x) __builtin_expect(!!(x), 1)
 #  define UDM1_UNLIKELY(x) __builtin_expect(!!(x), 0)
 #  define UDM1_NOINLINE_COLD __attribute__((noinline, cold))
@@ -24,7 +28,9 @@
 /* ---- error reporting (status.c) ---- */
 /* Record a one-line message for udm1_last_error() and return status. */
 UDM1_HIDDEN udm1_status udm1_fail(udm1_status status, const char *fmt, ...)
-#if defined(__GNUC__)
+#if defined(__MINGW32__) /* (its C99 formatting, __USE_MINGW_ANSI_STDIO: CMakeLists.txt) */
+    __attribute__((format(gnu_printf, 2, 3)))
+#elif defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
