@@ -11,8 +11,8 @@
  */
 #include "check.h"
 
-/* the transcription's fused multiply-add: the C library's, but on Windows, whose C library (MinGW-w64's)
- * rounds it twice, the library's emulation (tests/c/test_fma.c checks it against the FMA instruction) */
+/* the transcription's fused multiply-add: the C library's, but on Windows, whose C library's (MinGW-w64's)
+ * is not rounded once, the library's emulation (tests/c/test_fma.c checks it against the FMA instruction) */
 #include "core/fma.h"
 
 #include <udm1/udm1.h>

@@ -4,7 +4,7 @@
  * double and float: random bit patterns (every exponent, subnormals, overflow), products whose rounding is
  * a tie broken by a tiny addend or not, cancellations (c = -RN(a b): the product's rounding error),
  * results in and near the subnormals, signed zeros, infinities and NaN. Skips (77) on Windows without FMA:
- * its C library's fma rounds twice, no reference. */
+ * its C library's fma is not rounded once, no reference. */
 #include "check.h"
 
 #define UDM1_FMA_EMULATED 1
@@ -80,7 +80,7 @@ static void checkf(float a, float b, float c)
 int main(void)
 {
     if (!have_reference()) {
-        printf("SKIP: no FMA instruction and a C library whose fma rounds twice: no reference\n");
+        printf("SKIP: no FMA instruction and a C library whose fma is not rounded once: no reference\n");
         return 77;
     }
     /* random bit patterns: every exponent, subnormals, overflow, infinities and NaN now and then */
