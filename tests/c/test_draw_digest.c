@@ -13,6 +13,12 @@
  * dimension, and folds into the digest: the per-sample value (udm1_seq_sample_u64), the inline draw of
  * udm1/stream.h (compiled into this program: its own 128-bit code) of 1 to 4 dimensions, and a child
  * domain's draw of udm1/domain.h; each group also a small bulk fill (udm1_seq_fill_u64) and every status.
+ * Every 16th group also folds noise at 21 random points (near the origin or up to 1e9 away; 2D or 3D):
+ * improved noise of four tables and Perlin's classic noise, in double (per call and batch, with gradients)
+ * and float (batch: the vector kernels), and cellular noise in the Euclidean, Manhattan and Chebyshev
+ * metrics, every output, double and float. (Not the classic kind of a table from a sequence or drand48,
+ * whose gradients come from the C library's cos and sin, nor the Minkowski metric, its pow: C libraries
+ * round those differently - README.md, "Platforms".)
  * The digest h <- (h xor v) * P (P odd) changes with any one value, so equal digests mean equal values but
  * for chance (2^-64 a pair). It prints one line per sixteenth of the draws and a total: a difference names
  * the sixteenth where it is. --out writes those lines to FILE; --expect compares them with FILE's and fails
@@ -24,6 +30,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#define NOISE_EVERY 16u /* groups per noise group */
+#define NOISE_POINTS 21u
+#define NOISES 5
 
 #define SCREEN_PROGRESSIVE (UDM1_RANDOMIZE_SCREEN + 1u)
 #define GROUP 16u
@@ -81,6 +91,65 @@ static void make_sequences(int small_sets)
             }
         }
     }
+}
+
+static udm1_noise *noises[NOISES];
+
+static void make_noises(void)
+{
+    static const char *tables[NOISES] = {NULL, "drand48", "wr", "sobol-owen", NULL};
+    for (int k = 0; k < NOISES; ++k) {
+        udm1_noise_desc d;
+        udm1_noise_desc_init(&d);
+        d.table = tables[k], d.seed = next64() & 0xFFFF, d.kind = k == NOISES - 1 ? UDM1_NOISE_CLASSIC : UDM1_NOISE_IMPROVED;
+        CHECK_STATUS(udm1_noise_create(&d, &noises[k]), UDM1_OK);
+    }
+}
+
+static void fold_doubles(const double *v, size_t n)
+{
+    for (size_t i = 0; i < n; ++i) {
+        uint64_t b;
+        memcpy(&b, &v[i], sizeof b);
+        fold(b);
+    }
+}
+
+static void fold_floats(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; ++i) {
+        uint32_t b;
+        memcpy(&b, &v[i], sizeof b);
+        fold(b);
+    }
+}
+
+static void noise_group(void)
+{
+    const udm1_noise *n = noises[next64() % NOISES];
+    uint32_t dims = 2 + (uint32_t)(next64() % 2);
+    double scale = next64() % 4 ? 64.0 : 2e9, p[3 * NOISE_POINTS], v[NOISE_POINTS], g[3 * NOISE_POINTS];
+    float pf[3 * NOISE_POINTS], vf[NOISE_POINTS], gf[3 * NOISE_POINTS];
+    for (size_t i = 0; i < 3 * NOISE_POINTS; ++i) {
+        p[i] = ((double)(next64() >> 11) * 0x1p-53 - 0.5) * scale;
+        pf[i] = (float)p[i];
+    }
+    const double *axes[3] = {p, p + 1, p + 2};
+    const float *axesf[3] = {pf, pf + 1, pf + 2};
+    fold((uint64_t)udm1_noise_eval(n, dims, axes, 3, NOISE_POINTS, v, g));
+    fold_doubles(v, NOISE_POINTS), fold_doubles(g, dims * NOISE_POINTS);
+    fold((uint64_t)udm1_noise_eval_f32(n, dims, axesf, 3, NOISE_POINTS, vf, gf));
+    fold_floats(vf, NOISE_POINTS), fold_floats(gf, dims * NOISE_POINTS);
+    double one = udm1_noise_3d(n, p[0], p[1], p[2]);
+    fold_doubles(&one, 1);
+    udm1_cellular_params c;
+    udm1_cellular_params_init(&c);
+    c.metric = (uint32_t)(next64() % 3), c.output = (uint32_t)(next64() % 5);
+    c.jitter = next64() % 2 ? 1.0 : (double)(next64() % 256) / 256.0;
+    fold((uint64_t)udm1_cellular_eval(n, &c, dims, axes, 3, NOISE_POINTS, v));
+    fold_doubles(v, NOISE_POINTS);
+    fold((uint64_t)udm1_cellular_eval_f32(n, &c, dims, axesf, 3, NOISE_POINTS, vf));
+    fold_floats(vf, NOISE_POINTS);
 }
 
 static uint64_t random_index(const config *c)
@@ -143,13 +212,17 @@ int main(int argc, char **argv)
     }
     rng_state = seed * 0xD1B54A32D192ED03ull;
     make_sequences(small_sets != 0);
+    make_noises();
     CHECKF(nseqs > 100 && nseqs < MAX_SEQS, "%llu sequences made", (unsigned long long)nseqs);
 
     char lines[17][160];
     uint64_t groups = (draws + GROUP - 1) / GROUP, done = 0;
     for (int part = 0; part < 16; ++part) {
         uint64_t until = groups * (uint64_t)(part + 1) / 16;
-        for (; done < until; ++done) group();
+        for (; done < until; ++done) {
+            group();
+            if (done % NOISE_EVERY == 0) noise_group();
+        }
         snprintf(lines[part], sizeof lines[part], "draws below %llu: %016llx\n",
                  (unsigned long long)(done * GROUP), (unsigned long long)digest);
     }
@@ -157,6 +230,7 @@ int main(int argc, char **argv)
              (unsigned long long)(done * GROUP), (unsigned long long)nseqs, (unsigned long long)seed, (unsigned long long)digest);
     for (int l = 0; l < 17; ++l) fputs(lines[l], stdout);
     for (size_t i = 0; i < nseqs; ++i) udm1_seq_destroy(seqs[i].seq);
+    for (int k = 0; k < NOISES; ++k) udm1_noise_destroy(noises[k]);
 
     if (out) {
         FILE *f = fopen(out, "w");
