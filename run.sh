@@ -9,6 +9,12 @@
 #   ./run.sh bench    the benchmarks recorded in BENCHMARKS.md
 #   ./run.sh wheel    the Python wheel, libudm1 inside it (scikit-build-core), into dist/ (manylinux tag)
 #   ./run.sh fuzz [S] every libFuzzer target for S seconds (default 60), clang + ASan + UBSan (TESTING.md)
+#   ./run.sh arm64    the library and every C test cross-built for 64-bit Arm Linux, run under qemu-user
+#   ./run.sh windows  the DLL and every C test cross-built with MinGW-w64 (no unsigned __int128, as MSVC
+#                     builds it), run under wine64; the DLL's exports; a consumer project's find_package
+#
+# ./run.sh test also builds the library without unsigned __int128 (build-portable/) and for 64-bit Arm
+# (build-arm64/) and runs a part of their tests beside the sanitizer runs (README.md, "Platforms").
 #
 # Each command installs what is missing (Debian packages, Python packages into
 # .venv) and skips what is there.
@@ -28,6 +34,49 @@ build() { # build <dir> [cmake options...]
     cmake --build "$dir" -j "$JOBS"
 }
 
+build_targets() { # build_targets <dir> "<targets>" [cmake options...]: only those targets
+    local dir="$1" targets="$2"
+    shift 2
+    cmake -S . -B "$dir" -G Ninja -DUDM1_PYTHON="$PY" "$@" >/dev/null
+    # shellcheck disable=SC2086
+    cmake --build "$dir" -j "$JOBS" --target $targets
+}
+
+# ---- the platforms (README.md, "Platforms") ----
+# The host build's test_draw_digest: the reference the other builds' values at random draws are compared with.
+DIGEST_REFERENCE="$ROOT/build/tests/test_draw_digest"
+ARM64=(-DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchains/aarch64-linux-gnu.cmake" -DCMAKE_BUILD_TYPE=Release
+       -DUDM1_BUILD_TOOLS=OFF -DUDM1_DIGEST_REFERENCE="$DIGEST_REFERENCE" -DUDM1_DIGEST_DRAWS=1000000)
+WINDOWS=(-DCMAKE_TOOLCHAIN_FILE="$ROOT/cmake/toolchains/x86_64-w64-mingw32.cmake" -DUDM1_PORTABLE_INT128=ON
+         -DCMAKE_BUILD_TYPE=Release -DUDM1_BUILD_TOOLS=OFF -DUDM1_DIGEST_REFERENCE="$DIGEST_REFERENCE")
+HEADER_TESTS="test_header_c99 test_header_cxx test_header_c99_no128_vector test_header_c99_no128_scalar
+              test_header_cxx_no128_vector test_header_cxx_no128_scalar"
+
+# The part of ./run.sh test run beside the Python tests under the sanitizers (with one build and test job),
+# its output into the file $1:
+#  - build-portable/: the library and its value tests without unsigned __int128 (UDM1_PORTABLE_INT128, as
+#    MSVC builds it): golden values, the 128-bit arithmetic, fills against per-sample values (a sampled
+#    eighth of the matrix), streams and domains (the inline code too), API errors, the headers compiled
+#    without __int128, and 10^7 random draws against the __int128 build's (test_draw_digest);
+#  - build-arm64/: the library cross-built for 64-bit Arm and its quick subset under qemu-user (label
+#    quick: golden values, fills, streams, NEON noise and cellular against the scalar references, API
+#    errors, the NEON kernels in use, random draws against the host build's) and the headers as C99 and
+#    C++ for AArch64.
+platform_checks() {
+    local log="$1" JOBS=1 # (one job: the sanitized tests run beside it)
+    {
+        build_targets build-portable "test_golden test_golden_static test_u128 test_fill test_stream test_stream_scalar
+            test_api_errors test_draw_digest $HEADER_TESTS" -DCMAKE_BUILD_TYPE=Release -DUDM1_PORTABLE_INT128=ON \
+            -DUDM1_BUILD_TOOLS=OFF -DUDM1_DIGEST_REFERENCE="$DIGEST_REFERENCE" &&
+        UDM1_TEST_SAMPLE=8 ctest --test-dir build-portable -j "$JOBS" --output-on-failure \
+            -R '^c[.](golden|golden_static|u128|fill|stream|stream_inline_scalar|api_errors|draw_digest_reference|draw_digest|header_.*)$' &&
+        build_targets build-arm64 "test_golden test_api_errors test_fill test_stream test_noise_eval test_cellular
+            test_isa test_draw_digest $HEADER_TESTS" "${ARM64[@]}" &&
+        ctest --test-dir build-arm64 -j "$JOBS" --output-on-failure -L '^quick$' &&
+        ctest --test-dir build-arm64 -j "$JOBS" --output-on-failure -R '^c[.]header_'
+    } >"$log" 2>&1
+}
+
 cmd="${1:-report}"
 case "$cmd" in
 report | --*)
@@ -43,12 +92,17 @@ report | --*)
 test)
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
-    udm1_log "running every test (ctest in build/; the report tests run once, below, against the sanitized tools)"
-    ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_(reports|main_report)$'
+    udm1_log "running every test (ctest in build/; the report steps' tests run once, below, against the sanitized tools)"
+    ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_reports$'
     udm1_log "building and running the C and C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
     build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         ctest --test-dir build-asan -j "$JOBS" -L "^(c|cpp)$" --output-on-failure
+    udm1_log "beside what follows: the build without unsigned __int128 (build-portable/) and the arm64 build's quick"
+    udm1_log "subset under qemu-user (build-arm64/), their results printed at the end"
+    platform_log="$(mktemp)"
+    platform_checks "$platform_log" &
+    platform_pid=$!
     udm1_log "the Python tests of the package against the sanitized library (libasan and libubsan preloaded;"
     udm1_log "leak detection off there: the interpreter itself keeps memory until exit)"
     (cd tests/python && LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" \
@@ -56,7 +110,7 @@ test)
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
         "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --dist loadfile \
         $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study)'))
-    udm1_log "the tools' tests again and the report tests, against the sanitized tools and benchmarks of build-asan"
+    udm1_log "the tools' tests again and the report steps' tests, against the sanitized tools and benchmarks of build-asan"
     udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library; two pytest runs side by side)"
     asan_tools_pytest() { # asan_tools_pytest <log> <test files...>: one pytest run, its own temporary folder
         local log="$1"
@@ -70,7 +124,7 @@ test)
             "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --basetemp="$(mktemp -d)" "$@") >"$log" 2>&1
     }
     logs="$(mktemp -d)"
-    asan_tools_pytest "$logs/reports" test_reports.py test_main_report.py &
+    asan_tools_pytest "$logs/reports" test_reports.py &
     reports_pid=$!
     tools_status=0 reports_status=0
     asan_tools_pytest "$logs/tools" test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py \
@@ -78,8 +132,13 @@ test)
     wait "$reports_pid" || reports_status=$?
     cat "$logs/tools" "$logs/reports"
     rm -rf "$logs"
-    if [[ $tools_status -ne 0 || $reports_status -ne 0 ]]; then
-        udm1_log "tests failed (tools: exit $tools_status, reports: exit $reports_status)"
+    platform_status=0
+    wait "$platform_pid" || platform_status=$?
+    udm1_log "the build without unsigned __int128 and the arm64 build's quick subset (started before the Python tests):"
+    cat "$platform_log"
+    rm -f "$platform_log"
+    if [[ $tools_status -ne 0 || $reports_status -ne 0 || $platform_status -ne 0 ]]; then
+        udm1_log "tests failed (tools: exit $tools_status, reports: exit $reports_status, platforms: exit $platform_status)"
         exit 1
     fi
     udm1_log "all tests passed"
@@ -150,8 +209,29 @@ fuzz)
     udm1_log "fuzzing every target (tools/fuzz_run.py; ${1:-60} s each)"
     "$PY" tools/fuzz_run.py --build "$ROOT/build-fuzz" --seconds "${1:-60}" "${@:2}"
     ;;
+arm64)
+    udm1_bootstrap "$ROOT"
+    udm1_log "the host build's test_draw_digest (build/), the reference of the values at random draws"
+    build_targets build test_draw_digest -DCMAKE_BUILD_TYPE=Release
+    udm1_log "the library and every C test cross-built for 64-bit Arm Linux (build-arm64/, gcc-aarch64-linux-gnu)"
+    build build-arm64 "${ARM64[@]}"
+    udm1_log "every C test under qemu-user, and the exported symbols (about 10 minutes on 2 cores)"
+    ctest --test-dir build-arm64 -j "$JOBS" --output-on-failure -L '^(c|abi)$'
+    ;;
+windows)
+    UDM1_DEBIAN_PACKAGES+=(gcc-mingw-w64-x86-64 g++-mingw-w64-x86-64 wine64)
+    udm1_bootstrap "$ROOT"
+    udm1_log "the host build's test_draw_digest (build/), the reference of the values at random draws"
+    build_targets build test_draw_digest -DCMAKE_BUILD_TYPE=Release
+    udm1_log "the DLL and every C test cross-built with MinGW-w64 without unsigned __int128 (build-windows/)"
+    build build-windows "${WINDOWS[@]}"
+    udm1_log "a Wine prefix of its own (build-windows/wineprefix), then every C test under wine64, the DLL's"
+    udm1_log "exports against libudm1/udm1.symbols, and a consumer project's find_package(udm1) with the import library"
+    WINEPREFIX="$ROOT/build-windows/wineprefix" WINEDEBUG=-all cmake/toolchains/wine64-run.sh wineboot --init
+    ctest --test-dir build-windows -j "$JOBS" --output-on-failure -L '^(c|abi|install)$'
+    ;;
 *)
-    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench|wheel|fuzz])" >&2
+    echo "run.sh: unknown command '$cmd' (use: ./run.sh [report|test|bench|wheel|fuzz|arm64|windows])" >&2
     exit 2
     ;;
 esac

@@ -5,8 +5,23 @@
 #define UDM1_TEST_CHECK_H
 
 #include <stdio.h>
+#include <stdlib.h>
 
 static int check_failures = 0;
+
+/* A sampled run of a test's matrix (the emulated platforms' quick subset of ./run.sh test): with the
+ * environment variable UDM1_TEST_SAMPLE=k, check_sampled() is true for one call in k (calls 0, k, 2k, ...:
+ * the cases a loop runs spread over its matrix, the same in every run); without it, for every call. */
+static inline int check_sampled(void)
+{
+    static long every = 0, calls = 0;
+    if (every == 0) {
+        const char *v = getenv("UDM1_TEST_SAMPLE");
+        every = v ? atol(v) : 1;
+        if (every < 1) every = 1;
+    }
+    return calls++ % every == 0;
+}
 
 #define CHECK(cond)                                                                   \
     do {                                                                              \

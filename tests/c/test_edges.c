@@ -12,20 +12,62 @@
 #include <udm1/udm1.h>
 
 #include <math.h>
-#include <signal.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(_WIN32)
+#include <windows.h>
+#else
+#include <signal.h>
 #include <unistd.h>
+#endif
 
 #include "check.h"
 
+static const char too_slow_msg[] = "test_edges: a call with a huge work parameter ran for 20 s instead of being refused\n";
+
+/* The alarm: the process ends with status 2 unless alarm_stop() comes within `seconds` (POSIX: alarm(),
+ * Windows: a thread waiting on an event). */
+#if defined(_WIN32)
+static HANDLE alarm_event;
+
+static DWORD WINAPI alarm_thread(LPVOID seconds)
+{
+    if (WaitForSingleObject(alarm_event, (DWORD)(uintptr_t)seconds * 1000u) == WAIT_TIMEOUT) {
+        fputs(too_slow_msg, stderr);
+        fflush(stderr);
+        ExitProcess(2);
+    }
+    return 0;
+}
+
+static void alarm_start(unsigned seconds)
+{
+    alarm_event = CreateEventA(NULL, TRUE, FALSE, NULL);
+    HANDLE t = alarm_event ? CreateThread(NULL, 0, alarm_thread, (LPVOID)(uintptr_t)seconds, 0, NULL) : NULL;
+    CHECK(t != NULL);
+    if (t) CloseHandle(t);
+}
+
+static void alarm_stop(void)
+{
+    if (alarm_event) SetEvent(alarm_event);
+}
+#else
 static void too_slow(int sig)
 {
     (void)sig;
-    static const char msg[] = "test_edges: a call with a huge work parameter ran for 20 s instead of being refused\n";
-    if (write(2, msg, sizeof msg - 1) < 0) _exit(3);
+    if (write(2, too_slow_msg, sizeof too_slow_msg - 1) < 0) _exit(3);
     _exit(2);
 }
+
+static void alarm_start(unsigned seconds)
+{
+    signal(SIGALRM, too_slow);
+    alarm(seconds);
+}
+
+static void alarm_stop(void) { alarm(0); }
+#endif
 
 /* ---- index arithmetic ------------------------------------------------------------------------ */
 
@@ -195,8 +237,7 @@ static void work_limits(void)
     CHECK_STATUS(udm1_seq_create("wr", 2, 0, 1, &seq), UDM1_OK);
     double rmse = 0, spec[4];
     float img[4];
-    signal(SIGALRM, too_slow);
-    alarm(20);
+    alarm_start(20);
     CHECK_STATUS(udm1_integration_error(seq, UDM1_INTEGRAND_DISK, 2, 1ull << 62, 1, &rmse, NULL),
                  UDM1_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(udm1_last_error(), "limit") != NULL);
@@ -206,7 +247,7 @@ static void work_limits(void)
     CHECK(strstr(udm1_last_error(), "limit") != NULL);
     CHECK_STATUS(udm1_zoneplate(seq, 0, 2, 1, 0xFFFFFFFFu, img), UDM1_ERROR_INVALID_ARGUMENT);
     CHECK(strstr(udm1_last_error(), "limit") != NULL);
-    alarm(0);
+    alarm_stop();
     /* inside the limits: still computed */
     CHECK_STATUS(udm1_integration_error(seq, UDM1_INTEGRAND_DISK, 2, 1024, 4, &rmse, NULL), UDM1_OK);
     CHECK(rmse > 0 && rmse < 0.05);

@@ -110,6 +110,7 @@ static void check_preset(const char *name, uint32_t D, uint64_t K, uint32_t rand
     static const uint64_t firsts[] = {0, 999, 1ull << 63, 1, (1ull << 32) - 1, 1ull << 53};
     static const size_t counts[] = {0, 17, 1031, 1, 2, 7, 16, 255};
     size_t nf = thorough ? 6 : 3, nc = thorough ? 8 : 3;
+    if (!check_sampled()) return; /* (UDM1_TEST_SAMPLE: a part of the matrix) */
     udm1_seq *s = try_make(name, D, K, 42, randomize);
     if (!s && randomize >= UDM1_RANDOMIZE_SCREEN) return; /* screen-space: the Weyl presets only */
     CHECKF(s != NULL, "%s randomize %u: %s", name, randomize, udm1_last_error());
@@ -222,6 +223,7 @@ static void test_cursor_fill(void)
         udm1_preset_info info;
         udm1_preset_get(p, &info);
         for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_OWEN; ++r) {
+            if (!check_sampled()) continue;
             udm1_seq *s = variant(&info, r);
             if (!s) continue; /* a randomization the preset lacks */
             for (uint64_t idx = 0; idx < 64; idx += 7) {
@@ -309,6 +311,7 @@ static void test_never_one(void)
     static float big[1 << 20];
     float mx = 0.0f;
     for (uint64_t stream = 0; stream < 64; ++stream) {
+        if (!check_sampled()) continue;
         CHECK_STATUS(udm1_seq_fill_f32(s, stream, stream << 40, (1 << 20) / 4, 0, 4, big, 4), UDM1_OK);
         for (size_t i = 0; i < (1 << 20); ++i) {
             if (big[i] > mx) mx = big[i];
@@ -337,6 +340,7 @@ static void test_fill_points(void)
         udm1_preset_info info;
         udm1_preset_get(p, &info);
         for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= SCREEN_PROGRESSIVE; ++r) {
+            if (!check_sampled()) continue;
             udm1_seq *s = variant(&info, r);
             if (!s) continue; /* a randomization the preset lacks */
             for (uint32_t first = 0; first < 12; first += 5) {

@@ -11,7 +11,7 @@
 int main(int argc, char **argv)
 {
     if (argc != 2) {
-        fprintf(stderr, "usage: test_isa avx512|avx2|baseline (with UDM1_ISA set to the same)\n");
+        fprintf(stderr, "usage: test_isa avx512|avx2|neon|baseline (with UDM1_ISA set to the same)\n");
         return 2;
     }
     const char *want = argv[1], *env = getenv("UDM1_ISA"), *got = udm1_isa();
@@ -24,9 +24,9 @@ int main(int argc, char **argv)
         return 0;
     }
     /* a lower level than asked: only where the processor (or a build without the copies) lacks it */
-    static const char *order[] = {"baseline", "avx2", "avx512"};
+    static const char *order[] = {"baseline", "neon", "avx2", "avx512"}; /* (neon: on Arm, above baseline) */
     int w = 0, g = 0;
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 4; ++i) {
         if (strcmp(order[i], want) == 0) w = i;
         if (strcmp(order[i], got) == 0) g = i;
     }

@@ -3,10 +3,11 @@
  *  - range, mean and variance; determinism; tileability with any period;
  *  - continuity of the derivative across lattice planes;
  *  - far coordinates (past 2^31, 1e12, 1e300): finite, correct, no overflow;
- *  - tables from sequences have the spectrum of random permutations;
+ *  - tables from sequences have the spectrum of random permutations; drand48's are the C library's;
  *  - patterns in [0, 1], POV-Ray's closed forms, colour maps, bad inputs.
  */
-#define _DEFAULT_SOURCE /* setenv */
+#include "posix_drand48.h"
+
 #include "check.h"
 
 #include <udm1/udm1.h>
@@ -193,6 +194,36 @@ static void test_determinism_and_seeds(void)
     udm1_noise_destroy(a);
     udm1_noise_destroy(b);
     udm1_noise_destroy(c);
+}
+
+/* The "drand48" table is the paper's construction from the C library's srand48(seed) and drand48() (the
+ * library draws them from its own drand48): 256 gradients from two draws each, then the swap shuffle. */
+static void test_drand48_table(void)
+{
+    static const uint64_t seeds[] = {0, 11, 20261122, 0xFFFFFFFFu, 0x1234567800000005ull /* (low 32 bits: 5) */};
+    for (size_t s = 0; s < sizeof seeds / sizeof *seeds; ++s) {
+        udm1_noise *n = make("drand48", seeds[s], 0, 0, 0, 0);
+        uint8_t perm[256], want_perm[256];
+        double grad[768], want_grad[768];
+        CHECK_STATUS(udm1_noise_tables(n, perm, grad), UDM1_OK);
+        ref_srand48((long)(seeds[s] & 0xFFFFFFFFu));
+        for (int k = 0; k < 256; ++k) {
+            double u = ref_drand48(), v = ref_drand48();
+            double z = 1.0 - 2.0 * u, r = sqrt(fmax(0.0, 1.0 - z * z)), phi = 2.0 * PI * v;
+            want_grad[3 * k] = r * cos(phi), want_grad[3 * k + 1] = r * sin(phi), want_grad[3 * k + 2] = z;
+        }
+        for (int i = 0; i < 256; ++i) want_perm[i] = (uint8_t)i;
+        for (int i = 0; i < 256; ++i) {
+            int j = (int)(ref_drand48() * 256.0);
+            uint8_t t = want_perm[i];
+            want_perm[i] = want_perm[j], want_perm[j] = t;
+        }
+        CHECKF(memcmp(perm, want_perm, sizeof perm) == 0, "seed %llu: the permutation differs from srand48's",
+               (unsigned long long)seeds[s]);
+        CHECKF(memcmp(grad, want_grad, sizeof grad) == 0, "seed %llu: the gradients differ from srand48's",
+               (unsigned long long)seeds[s]);
+        udm1_noise_destroy(n);
+    }
 }
 
 static void test_tileable(void)
@@ -543,6 +574,7 @@ int main(void)
     test_equals_transcription();
     test_range_and_moments();
     test_determinism_and_seeds();
+    test_drand48_table();
     test_tileable();
     test_derivative_continuity();
     test_far_coordinates();

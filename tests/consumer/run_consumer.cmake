@@ -1,6 +1,8 @@
-# Installs the build into a temporary prefix, then builds and runs the
-# consumer project against it twice: with find_package(udm1 CONFIG) and with
-# pkg-config. Variables: BUILD_DIR, SOURCE_DIR, WORK, C_COMPILER.
+# Installs the build into a temporary prefix, then builds and runs the consumer project against it: with
+# find_package(udm1 CONFIG), shared and static, and (native builds) with pkg-config.
+# Variables: BUILD_DIR, SOURCE_DIR, WORK, C_COMPILER; for a cross build TOOLCHAIN (its toolchain file, for
+# the consumer too), EMULATOR (what runs its programs) and OBJDUMP (the target's, to read a Windows
+# program's imports).
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(prefix "${WORK}/prefix")
@@ -15,16 +17,52 @@ endfunction()
 
 run(${CMAKE_COMMAND} --install "${BUILD_DIR}" --prefix "${prefix}")
 
-# find_package
+# find_package (a cross toolchain searches only its own root for packages: there the package's folder is
+# named, udm1_DIR)
+set(cross "")
+if(TOOLCHAIN)
+  file(GLOB_RECURSE config "${prefix}/*/udm1Config.cmake")
+  get_filename_component(config_dir "${config}" DIRECTORY)
+  set(cross -DCMAKE_TOOLCHAIN_FILE=${TOOLCHAIN} -Dudm1_DIR=${config_dir})
+endif()
 run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK}/cmake-build"
-    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_C_COMPILER=${C_COMPILER})
+    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_C_COMPILER=${C_COMPILER} ${cross})
 run(${CMAKE_COMMAND} --build "${WORK}/cmake-build")
-run("${WORK}/cmake-build/consumer_shared")
+file(GLOB dlls "${prefix}/bin/*.dll")
+if(dlls)
+  # Windows: the DLL beside the program that loads it; the program linked through the import library
+  # imports it, the static one does not
+  file(COPY ${dlls} DESTINATION "${WORK}/cmake-build")
+  get_filename_component(dll_name "${dlls}" NAME)
+  foreach(program consumer_shared consumer_static)
+    run(${OBJDUMP} -p "${WORK}/cmake-build/${program}.exe")
+    string(FIND "${last_output}" "DLL Name: ${dll_name}" at)
+    if(program STREQUAL "consumer_shared" AND at LESS 0)
+      message(FATAL_ERROR "consumer_shared.exe does not import ${dll_name}:\n${last_output}")
+    elseif(program STREQUAL "consumer_static" AND NOT at LESS 0)
+      message(FATAL_ERROR "consumer_static.exe imports ${dll_name}")
+    endif()
+  endforeach()
+  set(exe .exe)
+  file(GLOB import_lib "${prefix}/lib/*.dll.a" "${prefix}/lib/*.lib")
+  if(NOT import_lib)
+    message(FATAL_ERROR "no import library was installed under ${prefix}/lib")
+  endif()
+endif()
+run(${EMULATOR} "${WORK}/cmake-build/consumer_shared${exe}")
 if(NOT last_output MATCHES "consumer ok")
   message(FATAL_ERROR "consumer_shared printed: ${last_output}")
 endif()
-run("${WORK}/cmake-build/consumer_static")
+set(shared_out "${last_output}")
+run(${EMULATOR} "${WORK}/cmake-build/consumer_static${exe}")
 set(static_out "${last_output}")
+if(TOOLCHAIN)
+  if(NOT static_out STREQUAL shared_out)
+    message(FATAL_ERROR "consumer_static printed:\n${static_out}\nconsumer_shared printed:\n${shared_out}")
+  endif()
+  message(STATUS "consumer builds (find_package shared through the import library, static) agree:\n${last_output}")
+  return()
+endif()
 
 # pkg-config
 file(GLOB_RECURSE pcfile "${prefix}/*/udm1.pc")

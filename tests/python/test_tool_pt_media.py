@@ -7,36 +7,17 @@ blocks and Imports, Attribute defaults, the default integrator and bdpt), the fi
 volpath, the test scenes and the Crown as distributed rendering (tests/cpp/test_pt_media.cpp checks the closed
 forms)."""
 
-import os
 import re
-import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 from cli_checks import fails_cleanly
+from pt_tool import TOOL, ok, read_exr, run
 
-TOOL = os.environ.get("UDM1_PT_TOOL", "")
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
 ROOT = Path(__file__).resolve().parents[2]
 CROWN = ROOT.parent / "shared" / "scenes" / "crown" / "crown-volpath.pbrt"
-
-
-def run(*args, cwd=None):
-    return subprocess.run([TOOL, *args], capture_output=True, text=True, cwd=cwd, timeout=600)
-
-
-def ok(*args, cwd=None):
-    r = run(*args, cwd=cwd)
-    assert r.returncode == 0, r.stderr
-    return r
-
-
-def read_exr(path):
-    import mitsuba as mi
-
-    mi.set_variant("scalar_rgb")
-    return np.array(mi.Bitmap(str(path)), dtype=np.float64)[..., :3]
 
 
 def render(tmp_path, text, *args, name="s"):

@@ -6,34 +6,15 @@ texture filters and clamped albedos), the integrators that find fewer lights or 
 pbrt-v4 refuses or renders inconsistently refused, and every scene parameter udm1-pt reads changing the
 image (tests/cpp/test_pt_scene.cpp checks the same at the level of rays)."""
 
-import os
 import re
-import subprocess
 
 import numpy as np
 import pytest
 from cli_checks import fails_cleanly
+from pt_tool import TOOL, ok, read_exr, run
 
-TOOL = os.environ.get("UDM1_PT_TOOL", "")
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
 MEAN = re.compile(r" mean (\S+) (\S+) (\S+)\n")
-
-
-def run(*args, cwd=None):
-    return subprocess.run([TOOL, *args], capture_output=True, text=True, cwd=cwd, timeout=600)
-
-
-def ok(*args, cwd=None):
-    r = run(*args, cwd=cwd)
-    assert r.returncode == 0, r.stderr
-    return r
-
-
-def read_exr(path):
-    import mitsuba as mi
-
-    mi.set_variant("scalar_rgb")
-    return np.array(mi.Bitmap(str(path)), dtype=np.float64)[..., :3]
 
 
 def render(tmp_path, name, text, *args):

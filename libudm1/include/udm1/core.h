@@ -72,10 +72,10 @@ UDM1_API const char *udm1_version_string(void);
  * storage; never NULL, also for unknown codes. */
 UDM1_API const char *udm1_status_string(udm1_status status);
 /* The instruction set of the library's kernels in this process - the Weyl bulk fills and the noise
- * batches: "avx512", "avx2" or "baseline". The best the processor has (x86-64; "baseline" elsewhere),
- * capped by the environment variable UDM1_ISA=avx512|avx2|baseline, read once, when a kernel is first
- * needed. Every kernel gives the same values bit for bit; the cap lets tests run each one and
- * benchmarks compare them. Static storage. (1.6) */
+ * batches: "avx512", "avx2" or "baseline" on x86-64, "neon" or "baseline" on 64-bit Arm ("baseline"
+ * elsewhere). The best the processor has, capped by the environment variable UDM1_ISA=avx512|avx2|baseline
+ * (neon|baseline on Arm), read once, when a kernel is first needed. Every kernel gives the same values bit
+ * for bit; the cap lets tests run each one and benchmarks compare them. Static storage. (1.6) */
 UDM1_API const char *udm1_isa(void);
 /* The one-line message of the last failing udm1 call on this thread, such as
  * "udm1_seq_create: unknown preset 'wrr'". Empty if none failed yet.

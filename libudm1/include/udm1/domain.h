@@ -216,6 +216,10 @@ static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint
         }
         uint64_t r[4];
         _mm256_storeu_si256((__m256i *)r, v);
+#elif defined(UDM1_NEON_)
+        uint64_t r[4], o[4]; /* the shifts one by one (NEON has no 64-bit product), the values in two vectors */
+        for (uint32_t j = 0; j < 4; ++j) o[j] = st->base[dim + j] + udm1_mix64(key + st->dim_key[dim + j]);
+        udm1_weyl4_32(st->a_hi + dim, st->a_lo + dim, o, low, r);
 #else
         uint64_t r[4];
         for (uint32_t j = 0; j < n; ++j)

@@ -51,14 +51,28 @@
 #endif
 
 /* The inline draws use x86 vector instructions where the compiler targets them (SSE2, x86-64's baseline;
- * SSSE3, SSE4.1, AVX2, AVX-512 where enabled). Defined before udm1/udm1.h is included, UDM1_INLINE_SCALAR
- * gives the portable scalar code instead: the same values (the tests build both). */
+ * SSSE3, SSE4.1, AVX2, AVX-512 where enabled) and NEON on 64-bit Arm (AArch64's baseline). Defined before
+ * udm1/udm1.h is included, UDM1_INLINE_SCALAR gives the portable scalar code instead: the same values (the
+ * tests build both). The header compiles as C99 and C++ with GCC, Clang and MSVC. */
 #if !defined(UDM1_INLINE_SCALAR) && (defined(__x86_64__) || defined(_M_X64)) && (defined(__SSE2__) || defined(_MSC_VER))
 #define UDM1_X86_ 1
 #include <immintrin.h>
 #if defined(__AVX2__)
 #define UDM1_AVX2_ 1
 #endif
+#elif !defined(UDM1_INLINE_SCALAR) && (defined(__aarch64__) || defined(_M_ARM64)) && !defined(_M_ARM64EC)
+#define UDM1_NEON_ 1
+#include <arm_neon.h>
+#endif
+
+/* The top half of a 64 x 64-bit product: the compiler's unsigned __int128 where it has one, __umulh on
+ * MSVC (x64, ARM64), 32-bit halves elsewhere; defined before udm1/udm1.h is included,
+ * UDM1_PORTABLE_INT128 gives the code without __int128 (what MSVC compiles) with any compiler. */
+#if defined(__SIZEOF_INT128__) && !defined(UDM1_PORTABLE_INT128)
+#define UDM1_MULHI_INT128_ 1
+#elif defined(_MSC_VER) && (defined(_M_X64) || defined(_M_ARM64))
+#define UDM1_MULHI_UMULH_ 1
+#include <intrin.h>
 #endif
 
 /* The dimensions one udm1_stream holds (more: several streams, or draws through the library). */
@@ -132,9 +146,11 @@ UDM1_API udm1_status udm1_stream_fill_f32(const udm1_stream *st, uint64_t index,
 /* The top 64 bits of a * b. */
 static inline uint64_t udm1_mulhi64(uint64_t a, uint64_t b)
 {
-#if defined(__SIZEOF_INT128__)
+#if defined(UDM1_MULHI_INT128_)
     __extension__ typedef unsigned __int128 udm1_u128_;
     return (uint64_t)(((udm1_u128_)a * b) >> 64);
+#elif defined(UDM1_MULHI_UMULH_)
+    return __umulh(a, b);
 #else
     uint64_t a0 = a & 0xFFFFFFFFu, a1 = a >> 32, b0 = b & 0xFFFFFFFFu, b1 = b >> 32;
     uint64_t mid = (a0 * b0 >> 32) + (a1 * b0 & 0xFFFFFFFFu) + (a0 * b1 & 0xFFFFFFFFu);
@@ -186,6 +202,23 @@ static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, con
         _mm_storeu_si128((__m128i *)(out + k), _mm_add_epi64(r, carry));
     }
 }
+#elif defined(UDM1_NEON_)
+static inline uint64x2_t udm1_weyl2_32_neon_(uint32x2_t N, const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o)
+{
+    uint64x2_t H = vld1q_u64(a_hi), L = vld1q_u64(a_lo);
+    uint64x2_t h0 = vmull_u32(N, vmovn_u64(H)), h1 = vmull_u32(N, vshrn_n_u64(H, 32));
+    uint64x2_t l0 = vmull_u32(N, vmovn_u64(L)), l1 = vmull_u32(N, vshrn_n_u64(L, 32));
+    uint64x2_t carry = vshrq_n_u64(vaddq_u64(l1, vshrq_n_u64(l0, 32)), 32);
+    return vaddq_u64(vaddq_u64(vld1q_u64(o), vaddq_u64(h0, vshlq_n_u64(h1, 32))), carry);
+}
+
+static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                 uint64_t *out)
+{
+    uint32x2_t N = vdup_n_u32(n);
+    vst1q_u64(out, udm1_weyl2_32_neon_(N, a_hi, a_lo, o));
+    vst1q_u64(out + 2, udm1_weyl2_32_neon_(N, a_hi + 2, a_lo + 2, o + 2));
+}
 #else
 static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
@@ -194,7 +227,7 @@ static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, con
 }
 #endif
 
-/* Two dimensions at once for n < 2^32 (SSE2 on x86-64), as udm1_weyl4_32. */
+/* Two dimensions at once for n < 2^32 (SSE2 on x86-64, NEON on AArch64), as udm1_weyl4_32. */
 #if defined(UDM1_X86_)
 static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
@@ -206,6 +239,12 @@ static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, con
     __m128i carry = _mm_srli_epi64(_mm_add_epi64(l1, _mm_srli_epi64(l0, 32)), 32);
     __m128i r = _mm_add_epi64(_mm_loadu_si128((const __m128i *)o), _mm_add_epi64(h0, _mm_slli_epi64(h1, 32)));
     _mm_storeu_si128((__m128i *)out, _mm_add_epi64(r, carry));
+}
+#elif defined(UDM1_NEON_)
+static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+                                 uint64_t *out)
+{
+    vst1q_u64(out, udm1_weyl2_32_neon_(vdup_n_u32(n), a_hi, a_lo, o));
 }
 #else
 static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
@@ -305,9 +344,10 @@ static inline uint64_t udm1_sobol_value_(const udm1_stream *st, uint32_t index, 
 
 /* Floats of n (1..4) Owen-scrambled Sobol dimensions first + dim .. at Gray code g, the scrambles keyed by
  * the low halves of words[0 .. n - 1] (four readable). Where the compiler targets SSE4.1 and SSSE3 (32-bit
- * vector products, byte shuffles) the four lanes are scrambled, reversed and converted in one register;
- * the same values as the scalar code. (SSE2 alone, emulating both, measured slower than scalar code.) */
-#if defined(UDM1_X86_) && defined(__SSE4_1__) && defined(__SSSE3__)
+ * vector products, byte shuffles; MSVC: AVX), and with NEON, the four lanes are scrambled, reversed and
+ * converted in one register; the same values as the scalar code. (SSE2 alone, emulating both, measured
+ * slower than scalar code.) */
+#if defined(UDM1_X86_) && ((defined(__SSE4_1__) && defined(__SSSE3__)) || defined(__AVX__))
 #define UDM1_SOBOL_OWEN_SSE_ 1
 static inline __m128i udm1_reverse32x4_(__m128i x)
 {
@@ -338,6 +378,20 @@ static inline void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint3
     float f[4];
     _mm_storeu_ps(f, _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)));
     for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = f[j];
+#elif defined(UDM1_NEON_)
+    uint32_t r[4] = {0, 0, 0, 0};
+    for (uint32_t j = 0; j < n && j < 4; ++j) r[j] = udm1_sobol_rev_(st, d + j, g);
+    uint32x4_t x = vld1q_u32(r);
+    uint32x4_t seed = vcombine_u32(vmovn_u64(vld1q_u64(words)), vmovn_u64(vld1q_u64(words + 2))); /* low halves */
+    x = veorq_u32(x, vmulq_u32(x, vdupq_n_u32(0x3d20adeau)));
+    x = vaddq_u32(x, seed);
+    x = vmulq_u32(x, vorrq_u32(vshrq_n_u32(seed, 16), vdupq_n_u32(1u)));
+    x = veorq_u32(x, vmulq_u32(x, vdupq_n_u32(0x05526c56u)));
+    x = veorq_u32(x, vmulq_u32(x, vdupq_n_u32(0x53a22864u)));
+    x = vreinterpretq_u32_u8(vrbitq_u8(vrev32q_u8(vreinterpretq_u8_u32(x)))); /* bits reversed in each lane */
+    float f[4];
+    vst1q_f32(f, vmulq_f32(vcvtq_f32_u32(vshrq_n_u32(x, 8)), vdupq_n_f32(1.0f / 16777216.0f)));
+    for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = f[j];
 #else
     for (uint32_t j = 0; j < n; ++j)
         out[j] = (float)(udm1_reverse32(udm1_owen_hash32(udm1_sobol_rev_(st, d + j, g), (uint32_t)words[j])) >> 8) *
@@ -367,6 +421,18 @@ static inline void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uin
         }
         float f[4];
         _mm_storeu_ps(f, _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)));
+        for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f[j];
+        return;
+    }
+#elif defined(UDM1_NEON_)
+    uint32_t d = st->first + dim;
+    if (out_kind == 1 && n <= 4 && d % 4 == 0 && dim <= UDM1_STREAM_DIMS - 4) {
+        /* floats of a point's block of four coordinates, as above */
+        uint32x4_t x = vld1q_u32((const uint32_t *)st->table + ((d / 4) * st->point_count + index) * 4);
+        if (xor_words)
+            x = veorq_u32(x, vcombine_u32(vshrn_n_u64(vld1q_u64(words), 32), vshrn_n_u64(vld1q_u64(words + 2), 32)));
+        float f[4];
+        vst1q_f32(f, vmulq_f32(vcvtq_f32_u32(vshrq_n_u32(x, 8)), vdupq_n_f32(1.0f / 16777216.0f)));
         for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f[j];
         return;
     }

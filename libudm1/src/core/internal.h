@@ -1,15 +1,20 @@
 /* core/internal.h - what every libudm1 source shares: visibility and branch hints, the error report,
- * 64x64 -> 128-bit multiplication and the conversions of a raw 0.64 value. Not installed. */
+ * the conversions of a raw 0.64 value, and (core/u128.h) the 128-bit arithmetic. Not installed. */
 #ifndef UDM1_INTERNAL_H
 #define UDM1_INTERNAL_H
 
+#include "core/u128.h"
 #include "udm1/udm1.h"
 
 #include <stddef.h>
 #include <stdint.h>
 
 #if defined(__GNUC__)
-#  define UDM1_HIDDEN __attribute__((visibility("hidden")))
+#  if defined(_WIN32) /* (a DLL exports only what is dllexport: nothing to hide) */
+#    define UDM1_HIDDEN
+#  else
+#    define UDM1_HIDDEN __attribute__((visibility("hidden")))
+#  endif
 #  define UDM1_LIKELY(x) __builtin_expect(!!(x), 1)
 #  define UDM1_UNLIKELY(x) __builtin_expect(!!(x), 0)
 #  define UDM1_NOINLINE_COLD __attribute__((noinline, cold))
@@ -23,7 +28,9 @@
 /* ---- error reporting (status.c) ---- */
 /* Record a one-line message for udm1_last_error() and return status. */
 UDM1_HIDDEN udm1_status udm1_fail(udm1_status status, const char *fmt, ...)
-#if defined(__GNUC__)
+#if defined(__MINGW32__) /* (its C99 formatting, __USE_MINGW_ANSI_STDIO: CMakeLists.txt) */
+    __attribute__((format(gnu_printf, 2, 3)))
+#elif defined(__GNUC__)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
@@ -42,23 +49,6 @@ UDM1_HIDDEN udm1_status udm1_read_struct(const char *fn, const char *what, const
 static inline int udm1_work_above(uint64_t a, uint64_t b, uint64_t c, uint64_t limit)
 {
     return (double)a * (double)b * (double)c > (double)limit;
-}
-
-/* ---- 64x64 -> 128 multiply ---- */
-static inline void udm1_mul64(uint64_t a, uint64_t b, uint64_t *hi, uint64_t *lo)
-{
-#if defined(__SIZEOF_INT128__)
-    __extension__ typedef unsigned __int128 u128;
-    u128 p = (u128)a * b;
-    *hi = (uint64_t)(p >> 64);
-    *lo = (uint64_t)p;
-#else
-    uint64_t a0 = a & 0xffffffffu, a1 = a >> 32, b0 = b & 0xffffffffu, b1 = b >> 32;
-    uint64_t p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0, p11 = a1 * b1;
-    uint64_t mid = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);
-    *lo = (mid << 32) | (p00 & 0xffffffffu);
-    *hi = p11 + (p01 >> 32) + (p10 >> 32) + (mid >> 32);
-#endif
 }
 
 /* Conversions of a raw 0.64 value. Both are < 1 for every input. */

@@ -6,9 +6,13 @@
 #include <string.h>
 
 /* What the processor and this build support: the kernels exist for x86-64 with GCC or Clang when the
- * build compiles them (UDM1_MULTIVERSION, UDM1_HAVE_ISA_KERNELS). */
+ * build compiles them (UDM1_MULTIVERSION, UDM1_HAVE_ISA_KERNELS), and for 64-bit Arm, where NEON is part
+ * of the architecture (UDM1_HAVE_NEON_KERNELS). */
 static int supported(void)
 {
+#if defined(UDM1_HAVE_NEON_KERNELS)
+    return UDM1_ISA_NEON;
+#endif
 #if defined(UDM1_HAVE_ISA_KERNELS) && defined(__x86_64__) && defined(__GNUC__)
     __builtin_cpu_init();
     /* each level includes the one below (the AVX-512 level may run AVX2 + FMA code) */
@@ -38,7 +42,7 @@ int udm1_isa_level(void)
     int l = atomic_load_explicit(&level, memory_order_relaxed);
     if (UDM1_LIKELY(l >= 0)) return l;
     int s = supported(), c = cap();
-    l = s < c ? s : c;
+    l = s == UDM1_ISA_NEON ? (c == UDM1_ISA_BASELINE ? c : s) : s < c ? s : c; /* (NEON: "baseline" caps it) */
     atomic_store_explicit(&level, l, memory_order_relaxed); /* every thread computes the same value */
     return l;
 }
@@ -60,6 +64,6 @@ int udm1_isa_vbmi(void)
 
 const char *udm1_isa(void)
 {
-    static const char *const names[] = {"baseline", "avx2", "avx512"};
+    static const char *const names[] = {"baseline", "avx2", "avx512", "neon"};
     return names[udm1_isa_level()];
 }

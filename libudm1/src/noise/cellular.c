@@ -33,6 +33,7 @@
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
 #define CELLULAR_REUSE_TYPES
+#define CELLULAR_FMA_INSTRUCTION
 #define REAL double
 #define R(f) f##_f64_fma
 #define RT(f) f##_f64
@@ -52,6 +53,7 @@
 #undef RT
 #undef RF
 #undef CELLULAR_REUSE_TYPES
+#undef CELLULAR_FMA_INSTRUCTION
 #pragma GCC pop_options
 #include "core/isa.h"
 /* (the AVX2 and AVX-512 levels imply AVX2 and FMA: core/isa.c) */

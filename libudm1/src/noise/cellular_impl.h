@@ -6,6 +6,8 @@
  *   RT(f)  the name of type f in that precision (f##_f32 or f##_f64; with CELLULAR_REUSE_TYPES defined,
  *          the types are already defined)
  *   RF(f)  the libm function f in that precision (floorf / floor, ...)
+ * and, in the copy compiled for processors with FMA, CELLULAR_FMA_INSTRUCTION (its fused multiply-adds the
+ * C library's fma, one instruction there; elsewhere core/fma.h's, rounded once whatever the C library).
  * A candidate feature point's distance is measured in the metric's "power" form (Euclidean: the sum of
  * squares, fused: fma(v2, v2, fma(v1, v1, v0 v0)); Minkowski: the sum of |v|^e; Manhattan and Chebyshev:
  * the distance), compared there, and turned into a distance at the end (a square root, a root). A cell's candidate vector on axis a is
@@ -13,6 +15,14 @@
  * it, b the feature point's 8-bit offset, c1 = jitter / 256 and c0 = 1/2 - 127.5 c1, so that the feature
  * point sits at 1/2 + jitter ((b + 1/2) / 256 - 1/2) in its cell. Since rounding is monotone, v lies
  * between its values for b = 0 and 255 as computed: the bounds the search prunes with. */
+
+#include "core/fma.h"
+
+#if defined(CELLULAR_FMA_INSTRUCTION)
+#define CELLULAR_FMA RF(fma)
+#else
+#define CELLULAR_FMA RF(udm1_fma)
+#endif
 
 /* The point's cell on one axis: its offset t in [0, 1) (exact) and its index wrapped to 0..P-1, P the
  * period (0: 256); a neighbour d cells away then has index (index + d) mod P, & 255. */
@@ -50,8 +60,8 @@ static inline REAL R(power_sum)(const REAL *v, uint32_t dims, uint32_t metric, R
     REAL s = 0;
     switch (metric) {
     case UDM1_CELLULAR_EUCLIDEAN: /* fused: one rounding per term */
-        s = RF(fma)(v[1], v[1], v[0] * v[0]);
-        if (dims == 3) s = RF(fma)(v[2], v[2], s);
+        s = CELLULAR_FMA(v[1], v[1], v[0] * v[0]);
+        if (dims == 3) s = CELLULAR_FMA(v[2], v[2], s);
         return s;
     case UDM1_CELLULAR_MANHATTAN:
         s = RF(fabs)(v[0]) + RF(fabs)(v[1]);
@@ -130,7 +140,7 @@ static inline void R(cellular_setup_init)(RT(cellular_setup) *u, const udm1_nois
 /* The gap on one axis between the point and the feature points of cells with K = c0 - (t - d) */
 static inline REAL R(axis_gap)(const RT(cellular_setup) *u, REAL K)
 {
-    REAL top = RF(fma)(u->c1, (REAL)255, K);
+    REAL top = CELLULAR_FMA(u->c1, (REAL)255, K);
     return K > 0 ? K : (top < 0 ? -top : 0);
 }
 
@@ -169,9 +179,9 @@ static void R(cellular_search)(const udm1_noise *n, const RT(cellular_setup) *u,
             }
         for (int cc = 0; cc < cells; ++cc) {
             const int h = hs[cc], jx = cc % 3, jy = cc / 3 % 3, jz = cc / 9;
-            REAL v[3] = {RF(fma)(u->c1, (REAL)n->feature[0][h], K[0][jx]),
-                         RF(fma)(u->c1, (REAL)n->feature[1][h], K[1][jy]), 0};
-            if (dims == 3) v[2] = RF(fma)(u->c1, (REAL)n->feature[2][h], K[2][jz]);
+            REAL v[3] = {CELLULAR_FMA(u->c1, (REAL)n->feature[0][h], K[0][jx]),
+                         CELLULAR_FMA(u->c1, (REAL)n->feature[1][h], K[1][jy]), 0};
+            if (dims == 3) v[2] = CELLULAR_FMA(u->c1, (REAL)n->feature[2][h], K[2][jz]);
             Ds[cc] = R(power_sum)(v, dims, u->metric, u->e);
         }
         for (int cc = 0; cc < cells; ++cc) {
@@ -208,7 +218,7 @@ static void R(cellular_search)(const udm1_noise *n, const RT(cellular_setup) *u,
                                                 R(wrap)(idx[2], dz, P[2])]
                                       : n->perm[n->perm[R(wrap)(idx[0], dx, P[0])] + R(wrap)(idx[1], dy, P[1])];
                     REAL v[3] = {0, 0, 0};
-                    for (uint32_t a = 0; a < dims; ++a) v[a] = RF(fma)(u->c1, (REAL)n->feature[a][h], K[a]);
+                    for (uint32_t a = 0; a < dims; ++a) v[a] = CELLULAR_FMA(u->c1, (REAL)n->feature[a][h], K[a]);
                     R(offer)(s, (int)k, R(power_sum)(v, dims, u->metric, u->e), h, d);
                 }
     }
@@ -227,3 +237,4 @@ static inline REAL R(cellular_output)(const RT(nearest3) *s, const RT(cellular_s
     default: return (REAL)s->nearest / (REAL)255;
     }
 }
+#undef CELLULAR_FMA

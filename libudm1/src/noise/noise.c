@@ -1,7 +1,6 @@
 /* noise.c - lattice gradient noise (Perlin 1985 and 2002) whose tables come
  * from Perlin's reference permutation, from drand48 (the paper's baseline) or
  * from any udm1 sequence; see udm1.h for the definitions. */
-#define _DEFAULT_SOURCE /* drand48 for the baseline tables */
 #include "core/hash.h"
 #include "noise/noise_tables.h"
 
@@ -105,22 +104,34 @@ static udm1_status tables_from_sequence(udm1_noise *n, const char *preset, uint6
     return UDM1_OK;
 }
 
-static void tables_from_drand48(udm1_noise *n, uint64_t seed)
+/* The draws of srand48(seed) and drand48(), from the library's own drand48 preset (bit-identical to the C
+ * library's, which not every platform has): its one-dimensional sequence without randomization. */
+#define DRAND48_DRAWS (2 * 256 + 256 + 3 * 256)
+
+static udm1_status tables_from_drand48(udm1_noise *n, uint64_t seed)
 {
-    srand48((long)(seed & 0xFFFFFFFFu));
-    for (int k = 0; k < 256; ++k) {
-        double u = drand48(), v = drand48();
-        sphere(u, v, n->grad[k]);
-    }
+    udm1_seq_desc d;
+    udm1_seq_desc_init(&d);
+    d.preset = "drand48", d.dimensions = 1, d.seed = seed & 0xFFFFFFFFu, d.randomize = UDM1_RANDOMIZE_NONE;
+    udm1_seq *seq = NULL;
+    double r[DRAND48_DRAWS];
+    udm1_status st = udm1_seq_create_desc(&d, &seq);
+    if (st != UDM1_OK) return st;
+    st = udm1_seq_fill_f64(seq, 0, 0, DRAND48_DRAWS, 0, 1, r, 1);
+    udm1_seq_destroy(seq);
+    if (st != UDM1_OK) return st;
+    const double *next = r;
+    for (int k = 0; k < 256; ++k, next += 2) sphere(next[0], next[1], n->grad[k]);
     for (int i = 0; i < 256; ++i) n->perm[i] = (uint8_t)i;
     for (int i = 0; i < 256; ++i) { /* the paper's (scratchapixel's) swap shuffle */
-        int j = (int)(drand48() * 256.0);
+        int j = (int)(*next++ * 256.0);
         uint8_t t = n->perm[i];
         n->perm[i] = n->perm[j];
         n->perm[j] = t;
     }
     for (int k = 0; k < 256; ++k) /* feature point offsets: the next draws */
-        for (int c = 0; c < 3; ++c) n->feature[c][k] = (uint8_t)(drand48() * 256.0);
+        for (int c = 0; c < 3; ++c) n->feature[c][k] = (uint8_t)(*next++ * 256.0);
+    return UDM1_OK;
 }
 
 /* Perlin's gradient of Improved Noise is +-u +-v: u is x (h < 8) or y; v is y (h < 4), x (h = 12,
@@ -177,7 +188,7 @@ udm1_status udm1_noise_create(const udm1_noise_desc *caller_desc, udm1_noise **o
                 n->feature[c][k] = (uint8_t)(udm1_mix64(UDM1_SEED_SALT + 3u * (uint64_t)k + (uint64_t)c) >> 56);
         }
     } else if (strcmp(desc->table, "drand48") == 0) {
-        tables_from_drand48(n, desc->seed);
+        st = tables_from_drand48(n, desc->seed);
     } else {
         st = tables_from_sequence(n, desc->table, desc->seed);
     }

@@ -460,7 +460,7 @@ size_t udm1_noise_eval_fast_f32(const udm1_noise *n, uint32_t dims, const float 
     return 0;
 }
 
-#else
+#elif !defined(UDM1_HAVE_NEON_KERNELS) /* (noise_neon_f32.c has them) */
 size_t udm1_noise_eval_group_f32(const udm1_noise *n, uint32_t dims, const float *const *axes, size_t stride,
                                  const float *value, const float *gradient)
 {

@@ -57,11 +57,11 @@ static uint64_t cmj_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, 
         uint32_t sx = udm1_permute(s % m, m, p * 0x68bc21ebu);
         uint32_t sy = udm1_permute(s / m, n, p * 0x02e5be93u);
         uint32_t jx = jitter(s, p * 0x967a889bu);
-        udm1_u128 num = ((udm1_u128)((uint64_t)sx * n + sy) << 32) | jx;
-        v = udm1_frac64(num, (udm1_u128)((uint64_t)m * n) << 32);
+        udm1_u128 num = udm1_u128_or64(udm1_u128_shl(udm1_u128_make(0, (uint64_t)sx * n + sy), 32), jx);
+        v = udm1_frac64(num, udm1_u128_shl(udm1_u128_make(0, (uint64_t)m * n), 32));
     } else {
         uint32_t jy = jitter(s, p * 0x368cc8b7u);
-        v = udm1_frac64(((udm1_u128)s << 32) | jy, (udm1_u128)N << 32);
+        v = udm1_frac64(udm1_u128_make(0, (uint64_t)s << 32 | jy), udm1_u128_make(0, (uint64_t)N << 32));
     }
     return udm1_randomize_base2(seq->mode, v + seq->offset[dim], udm1_word(seq, skey, dim));
 }

@@ -15,7 +15,7 @@
 
 typedef struct hammersley { uint64_t primes[1]; } hammersley; /* dims - 1 bases */
 
-static uint64_t n_over_k(uint64_t n, uint64_t k) { return udm1_frac64(n, k); }
+static uint64_t n_over_k(uint64_t n, uint64_t k) { return udm1_frac64(udm1_u128_make(0, n), udm1_u128_make(0, k)); }
 
 static uint64_t hammersley_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {

@@ -22,7 +22,7 @@
 static inline uint32_t digit_key(uint64_t r, uint32_t k, udm1_u128 prefix, int nested)
 {
     uint32_t key = (uint32_t)r + (k + 1u) * 0x9E3779B9u;
-    if (nested) key ^= (uint32_t)((((uint64_t)prefix ^ (uint64_t)(prefix >> 64)) * 0xD6E8FEB86659FD93ull) >> 32);
+    if (nested) key ^= (uint32_t)(((udm1_u128_lo(prefix) ^ udm1_u128_hi(prefix)) * 0xD6E8FEB86659FD93ull) >> 32);
     return key;
 }
 
@@ -30,9 +30,8 @@ uint64_t udm1_radical_inverse(uint64_t n, uint32_t b, uint32_t mode, uint64_t r)
 {
     if (b == 2) return udm1_randomize_base2(mode, udm1_reverse64(n), r);
     int scramble = mode == UDM1_MODE_PERMUTE || mode == UDM1_MODE_OWEN;
-    udm1_u128 R = 0, D = 1;
-    const udm1_u128 enough = (udm1_u128)1 << 64;
-    for (uint32_t k = 0; D < enough; ++k) {
+    udm1_u128 R = udm1_u128_make(0, 0), D = udm1_u128_make(0, 1);
+    for (uint32_t k = 0; udm1_u128_hi(D) == 0; ++k) { /* until D = b^k reaches 2^64 */
         uint32_t d = 0;
         if (n) {
             if (n <= UINT32_MAX) { /* 32-bit division is several times faster */
@@ -46,8 +45,8 @@ uint64_t udm1_radical_inverse(uint64_t n, uint32_t b, uint32_t mode, uint64_t r)
             break; /* the remaining digits are zeros */
         }
         if (scramble) d = udm1_permute(d, b, digit_key(r, k, R, mode == UDM1_MODE_OWEN));
-        R = R * b + d;
-        D *= b;
+        R = udm1_u128_muladd64(R, b, d);
+        D = udm1_u128_muladd64(D, b, 0);
     }
     uint64_t v = udm1_frac64(R, D);
     return mode == UDM1_MODE_SHIFT ? v + r : v;

@@ -235,19 +235,9 @@ static void epis_generator(uint64_t k, udm1_generator *g)
         g->hi = g->lo = 0;
         return;
     }
-    /* floor((2^128 - 1) / K) + 1, by long division of two 64-bit words */
-    uint64_t qhi = UINT64_MAX / k, rhi = UINT64_MAX % k;
-#if defined(__SIZEOF_INT128__)
-    __extension__ typedef unsigned __int128 u128;
-    u128 num = ((u128)rhi << 64) | UINT64_MAX;
-    uint64_t qlo = (uint64_t)(num / k);
-#else
-    /* K < 2^32: divide in 32-bit halves */
-    uint64_t mid = (rhi << 32) | 0xFFFFFFFFull;
-    uint64_t q1 = mid / k, r1 = mid % k;
-    uint64_t low = (r1 << 32) | 0xFFFFFFFFull;
-    uint64_t qlo = (q1 << 32) | (low / k);
-#endif
+    /* floor((2^128 - 1) / K) + 1 */
+    udm1_u128 q = udm1_u128_div(udm1_u128_make(UINT64_MAX, UINT64_MAX), udm1_u128_make(0, k));
+    uint64_t qhi = udm1_u128_hi(q), qlo = udm1_u128_lo(q);
     qlo += 1;
     if (qlo == 0) ++qhi;
     g->hi = qhi;

@@ -109,19 +109,14 @@ static inline uint64_t udm1_pair_index(const udm1_seq_t *seq, uint32_t pair, uin
     return udm1_permute((uint32_t)index, (uint32_t)seq->point_count, udm1_key32(seq->seed_key, 0x50414952u, pair));
 }
 
-#if !defined(__SIZEOF_INT128__)
-#  error "libudm1 needs a compiler with unsigned __int128 (GCC or Clang on a 64-bit target)"
-#endif
-__extension__ typedef unsigned __int128 udm1_u128;
-
 /* floor(num 2^64 / den) exactly, for a fraction num / den < 1 with den < 2^96:
  * two long-division steps of 32 bits each, so nothing overflows 128 bits. */
 static inline uint64_t udm1_frac64(udm1_u128 num, udm1_u128 den)
 {
-    udm1_u128 a = num << 32;
-    udm1_u128 q1 = a / den, r1 = a % den;
-    udm1_u128 q0 = (r1 << 32) / den;
-    return (uint64_t)((q1 << 32) | q0);
+    udm1_u128 r1;
+    udm1_u128 q1 = udm1_u128_divmod(udm1_u128_shl(num, 32), den, &r1);
+    udm1_u128 q0 = udm1_u128_div(udm1_u128_shl(r1, 32), den);
+    return (udm1_u128_lo(q1) << 32) | udm1_u128_lo(q0);
 }
 
 #endif /* UDM1_SCRAMBLE_H */

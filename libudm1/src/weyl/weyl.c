@@ -5,7 +5,8 @@
  * modulo 2^128, so the result equals udm1_weyl_raw() of every (n, j) bit for
  * bit: bulk and per-sample calls, and any split of a range, agree. The inner
  * loop is a plain loop over arrays that compilers vectorize; on x86-64 it is
- * compiled for AVX-512, AVX2 and baseline, and core/isa.h picks one (UDM1_ISA
+ * compiled for AVX-512, AVX2 and baseline, on 64-bit Arm its flat kernel also
+ * written with NEON (weyl/weyl_neon.h), and core/isa.h picks one (UDM1_ISA
  * caps it, so that the tests run each).
  */
 #include "weyl/weyl.h"
@@ -147,8 +148,17 @@ DEFINE_KERNELS(avx2, __attribute__((target("arch=x86-64-v3"))))
 DEFINE_KERNELS(avx512, __attribute__((target("arch=x86-64-v4"))))
 #endif
 
+#if defined(UDM1_HAVE_NEON_KERNELS)
+#include "weyl/weyl_neon.h"
+static const kernels kernels_neon = {{kernel_u64_baseline, kernel_f64_baseline, kernel_f32_baseline},
+                                     {flat_u64_neon, flat_f64_neon, flat_f32_neon}};
+#endif
+
 static const kernels *kernels_in_use(void)
 {
+#if defined(UDM1_HAVE_NEON_KERNELS)
+    if (udm1_isa_level() == UDM1_ISA_NEON) return &kernels_neon;
+#endif
 #if defined(UDM1_HAVE_ISA_KERNELS)
     switch (udm1_isa_level()) {
     case UDM1_ISA_AVX512: return &kernels_avx512;
