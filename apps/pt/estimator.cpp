@@ -37,6 +37,10 @@ Estimator::Estimator(const udm1scene::Scene &scene, const Lights &lights, const 
     interface_ = interface_shapes(scene);
     media_ = uses_media(scene);
     volumetric_ = media_ || std::find(interface_.begin(), interface_.end(), 1) != interface_.end();
+    grids_.resize(scene.media.size());
+    if (media_)
+        for (size_t i = 0; i < scene.media.size(); ++i)
+            if (scene.media[i].kind != udm1scene::Medium::Homogeneous) grids_[i] = std::make_unique<GridMedium>(scene.media[i]);
     Vec3 lo, hi;
     scene.bounds(&lo, &hi);
     scene_radius_ = udm1scene::length(hi - lo) / 2;
@@ -129,8 +133,14 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
 void Estimator::arrive(PathState &p, const ShadowTest &s) const
 {
     if (s.walk) {  // the volumetric estimator's (ShadowTest::T_u)
-        double pdf = s.pdf + (s.weighted ? (s.scatter_pdf >= 0 ? s.scatter_pdf : s.bsdf.pdf(s.wo_l, s.wi_l)) : 0);
-        double avg = (s.r_p.x * s.T_u.x + s.r_p.y * s.T_u.y + s.r_p.z * s.T_u.z) * pdf / 3;
+        double pdf_s = s.weighted ? (s.scatter_pdf >= 0 ? s.scatter_pdf : s.bsdf.pdf(s.wo_l, s.wi_l)) : 0;
+        double avg;
+        if (s.tracked) {  // the strategies' densities with their own factors from the grid media
+            Vec3 r = mul(mul(s.r_p, s.T_u), s.F_l * s.pdf + s.F_u * pdf_s);
+            avg = (r.x + r.y + r.z) / 3;
+        } else {
+            avg = (s.r_p.x * s.T_u.x + s.r_p.y * s.T_u.y + s.r_p.z * s.T_u.z) * (s.pdf + pdf_s) / 3;
+        }
         if (avg > 0) p.L = p.L + mul(mul(s.beta_f, s.Li), s.T) * (s.T_u[p.hero] / avg);
         return;
     }
@@ -206,6 +216,7 @@ void Estimator::volumetric_miss(PathState &p) const
 // the transmittance relative to the hero's.
 bool Estimator::medium_step(PathState &p, double t_end, ShadowTest *shadow, bool *scattered) const
 {
+    if (grids_[p.medium]) return grid_step(p, *grids_[p.medium], t_end, shadow, scattered);
     const udm1scene::Medium &m = scene_.media[p.medium];
     const Vec3 st = m.sigma_a + m.sigma_s;
     if (p.depth < max_depth_ && nonzero(m.Le)) {  // (pbrt-v4 adds a medium's emission below the maximum depth)
@@ -233,27 +244,33 @@ bool Estimator::medium_step(PathState &p, double t_end, ShadowTest *shadow, bool
     const Vec3 ratio = mul(T, m.sigma_s) * (1 / (T[c] * m.sigma_s[c]));  // each channel's density over the hero's
     p.beta = mul(p.beta, ratio), p.r_u = mul(p.r_u, ratio);
     if (!(max_component(p.beta) > 0) || !(max_component(p.r_u) > 0)) return false;
-    // a vertex in the medium: its values as a surface vertex's (integrator.h)
+    return medium_vertex(p, p.o + p.d * t, m.g, shadow, scattered);
+}
+
+// A vertex in a medium at x (p.beta and p.r_u already hold the sampled interaction): its values as a surface
+// vertex's (integrator.h), light sampling through the phase function, the phase function's direction.
+bool Estimator::medium_vertex(PathState &p, Vec3 x, double g, ShadowTest *shadow, bool *scattered) const
+{
     double v[6];
     vertex_values(p.pixel, p.index, p.depth, v);
-    const Vec3 x = p.o + p.d * t, wo = -p.d;
+    const Vec3 wo = -p.d;
     double importance_sum = NAN;
     if (strategy_ != Strategy::Bsdf) {
         LightSample ls;
         bool sampled = lights_.sample(x, Vec3(), v[0], v[1], &ls);
         importance_sum = ls.importance_sum;
         if (sampled && !ls.uniform) {
-            double ph = hg_phase(dot(wo, ls.wi), m.g);
+            double ph = hg_phase(dot(wo, ls.wi), g);
             udm1scene::Segment sg = ls.infinite ? udm1scene::segment_to_infinity(x, Vec3(), 0, ls.wi)
                                                 : udm1scene::shadow_segment(x, Vec3(), 0, ls.q, ls.n);
             if (sg.len > 0 && ph > 0) {
-                walking_shadow(p, ls, sg, p.medium, Vec3(ph, ph, ph), shadow);
+                walking_shadow(p, ls, sg, p.medium, Vec3(ph, ph, ph), v, shadow);
                 shadow->scatter_pdf = ph;
             }
         }
     }
     double pdf;
-    Vec3 wi = sample_hg(wo, m.g, v[4], v[5], &pdf);
+    Vec3 wi = sample_hg(wo, g, v[4], v[5], &pdf);
     if (!(pdf > 0)) return false;
     p.r_l = p.r_u * (1 / pdf);  // (the phase function is sampled exactly: beta unchanged)
     p.prev_p = x, p.prev_n = Vec3(), p.importance_sum = importance_sum;
@@ -264,8 +281,136 @@ bool Estimator::medium_step(PathState &p, double t_end, ShadowTest *shadow, bool
     return true;
 }
 
+// The ray's piece in a grid medium up to t_end, by delta tracking as pbrt-v4's VolPathIntegrator samples it
+// (SampleT_maj): tentative collisions drawn by the hero channel's majorant, segment by segment (the first
+// distance from the piece's first sampler value, the rest and each collision's kind from a TrackingRandom
+// seeded by its second); at each, the medium's emission (estimated: sigma_a Le over the majorant's density),
+// then absorption (the path ends), scattering (a vertex in the medium) or a null collision (the walk goes
+// on), chosen by the hero channel's coefficients over its majorant; every channel weighted by its own
+// majorant and coefficients over the hero's, as pbrt-v4 weights its wavelengths.
+bool Estimator::grid_step(PathState &p, const GridMedium &g, double t_end, ShadowTest *shadow, bool *scattered) const
+{
+    double u[2];
+    segment_values(p.pixel, p.index, p.depth, p.crossings, u);
+    TrackingRandom rng(tracking_seed(&u[1], 1));
+    const int c = p.hero;
+    const bool emits = g.emissive() && p.depth < max_depth_;
+    MajorantIterator it = g.majorants(p.o, p.d, t_end);
+    MajorantSegment seg;
+    Vec3 T_maj(1, 1, 1);
+    double uu = u[0];
+    while (it.next(&seg)) {
+        const Vec3 sm = seg.sigma_maj;
+        if (sm[c] == 0) {  // (the hero sees nothing here: the other channels' majorants still attenuate)
+            for (int k = 0; k < 3; ++k) T_maj[k] *= std::exp(-sm[k] * (seg.t1 - seg.t0));
+            continue;
+        }
+        double t0 = seg.t0;
+        for (;;) {
+            double t = t0 - std::log1p(-uu) / sm[c];
+            uu = rng.uniform();
+            if (!(t < seg.t1)) {
+                for (int k = 0; k < 3; ++k) T_maj[k] *= std::exp(-sm[k] * (seg.t1 - t0));
+                break;
+            }
+            for (int k = 0; k < 3; ++k) T_maj[k] *= std::exp(-sm[k] * (t - t0));
+            const Vec3 x = p.o + p.d * t;
+            const GridMedium::Point mp = g.at(x);
+            if (emits && nonzero(mp.Le)) {
+                double pdf = sm[c] * T_maj[c];
+                Vec3 r_e = mul(p.r_u, mul(sm, T_maj)) * (1 / pdf);
+                if (nonzero(r_e))
+                    p.L = p.L + mul(mul(p.beta, T_maj), mul(mp.sigma_a, mp.Le)) * (1 / (pdf * average(r_e)));
+            }
+            const double p_absorb = mp.sigma_a[c] / sm[c], p_scatter = mp.sigma_s[c] / sm[c];
+            const double p_null = std::max(0.0, 1 - p_absorb - p_scatter);
+            const double um = rng.uniform() * (p_absorb + p_scatter + p_null);
+            if (um < p_absorb) return false;  // absorbed
+            if (um < p_absorb + p_scatter) {
+                if (p.depth == max_depth_) return false;
+                double pdf = T_maj[c] * mp.sigma_s[c];
+                Vec3 ratio = mul(T_maj, mp.sigma_s) * (1 / pdf);
+                p.beta = mul(p.beta, ratio), p.r_u = mul(p.r_u, ratio);
+                if (!(max_component(p.beta) > 0) || !(max_component(p.r_u) > 0)) return false;
+                return medium_vertex(p, x, scene_.media[p.medium].g, shadow, scattered);
+            }
+            // a null collision
+            Vec3 sigma_n;
+            for (int k = 0; k < 3; ++k) sigma_n[k] = std::max(0.0, sm[k] - mp.sigma_a[k] - mp.sigma_s[k]);
+            double pdf = T_maj[c] * sigma_n[c];
+            if (!(pdf > 0)) return false;
+            p.beta = mul(p.beta, mul(T_maj, sigma_n)) * (1 / pdf);
+            p.r_u = mul(p.r_u, mul(T_maj, sigma_n)) * (1 / pdf);
+            p.r_l = mul(p.r_l, mul(T_maj, sm)) * (1 / pdf);
+            if (!(max_component(p.beta) > 0) || !(max_component(p.r_u) > 0)) return false;
+            T_maj = Vec3(1, 1, 1);
+            t0 = t;
+        }
+    }
+    if (!(T_maj[c] > 0)) return false;
+    const double inv = 1 / T_maj[c];
+    p.beta = mul(p.beta, T_maj) * inv, p.r_u = mul(p.r_u, T_maj) * inv, p.r_l = mul(p.r_l, T_maj) * inv;
+    return max_component(p.beta) > 0;
+}
+
+// A shadow ray's piece of length len in a grid medium, by ratio tracking (pbrt-v4's TraceTransmittance): at
+// each tentative collision (the hero channel's majorant) the estimate takes the null coefficient over the
+// majorant's density, the strategies' factors theirs; Russian roulette where the estimate falls below 0.05.
+// Its random values from a TrackingRandom seeded by the light sample's sampler values and the piece (pbrt-v4
+// seeds it by the piece's ray: a seed that rounding in the ray's origin would change between the loops).
+bool Estimator::track_shadow(ShadowTest &s, const GridMedium &g, double len) const
+{
+    TrackingRandom rng(s.seed + (uint64_t)s.crossings * UDM1_GOLDEN_GAMMA);
+    const int c = s.hero;
+    s.tracked = true;
+    MajorantIterator it = g.majorants(s.o, s.d, len);
+    MajorantSegment seg;
+    Vec3 T_maj(1, 1, 1), T = s.T;
+    while (it.next(&seg)) {
+        const Vec3 sm = seg.sigma_maj;
+        if (sm[c] == 0) {
+            for (int k = 0; k < 3; ++k) T_maj[k] *= std::exp(-sm[k] * (seg.t1 - seg.t0));
+            continue;
+        }
+        double t0 = seg.t0;
+        for (;;) {
+            double t = t0 - std::log1p(-rng.uniform()) / sm[c];
+            if (!(t < seg.t1)) {
+                for (int k = 0; k < 3; ++k) T_maj[k] *= std::exp(-sm[k] * (seg.t1 - t0));
+                break;
+            }
+            for (int k = 0; k < 3; ++k) T_maj[k] *= std::exp(-sm[k] * (t - t0));
+            const GridMedium::Point mp = g.at(s.o + s.d * t);
+            Vec3 sigma_n;
+            for (int k = 0; k < 3; ++k) sigma_n[k] = std::max(0.0, sm[k] - mp.sigma_a[k] - mp.sigma_s[k]);
+            const double pdf = T_maj[c] * sm[c];
+            T = mul(T, mul(T_maj, sigma_n)) * (1 / pdf);
+            s.F_l = mul(s.F_l, mul(T_maj, sm)) * (1 / pdf);
+            s.F_u = mul(s.F_u, mul(T_maj, sigma_n)) * (1 / pdf);
+            const Vec3 Tr = T * (1 / average(mul(s.r_p, s.F_l)));
+            if (max_component(Tr) < 0.05) {  // Russian roulette
+                if (rng.uniform() < 0.75) T = Vec3();
+                else T = T * (1 / 0.25);
+            }
+            if (!nonzero(T)) {
+                s.T = T;
+                return false;
+            }
+            T_maj = Vec3(1, 1, 1);
+            t0 = t;
+        }
+    }
+    const double inv = 1 / T_maj[c];
+    if (!std::isfinite(inv)) {
+        s.T = Vec3();
+        return false;
+    }
+    s.T = mul(T, T_maj) * inv, s.F_l = mul(s.F_l, T_maj) * inv, s.F_u = mul(s.F_u, T_maj) * inv;
+    return nonzero(s.T);
+}
+
 void Estimator::walking_shadow(const PathState &p, const LightSample &ls, const udm1scene::Segment &sg, int medium,
-                               Vec3 f, ShadowTest *s) const
+                               Vec3 f, const double u_light[2], ShadowTest *s) const
 {
     s->active = s->walk = true;
     s->sphere = ls.sphere, s->shape = ls.shape;
@@ -277,11 +422,15 @@ void Estimator::walking_shadow(const PathState &p, const LightSample &ls, const 
     s->beta_f = mul(p.beta, f), s->Li = ls.L, s->pdf = ls.pdf, s->r_p = p.r_u;
     s->weighted = strategy_ == Strategy::Mis && !ls.delta;
     s->scatter_pdf = -1;
+    s->tracked = false, s->F_l = s->F_u = Vec3(1, 1, 1), s->hero = p.hero;
+    s->seed = tracking_seed(u_light, 2);
 }
 
 Crossing Estimator::cross(ShadowTest &s, const Hit *h) const
 {
-    if (s.medium >= 0) {
+    if (s.medium >= 0 && grids_[s.medium]) {
+        if (!track_shadow(s, *grids_[s.medium], h ? h->t : s.len)) return Crossing::Blocked;
+    } else if (s.medium >= 0) {
         const udm1scene::Medium &m = scene_.media[s.medium];
         Vec3 T = transmittance(m, h ? h->t : s.len);
         s.T = mul(s.T, T);
@@ -339,7 +488,7 @@ bool Estimator::surface_step(PathState &p, const Hit &h, ShadowTest *shadow) con
                 udm1scene::Segment sg = ls.infinite ? udm1scene::segment_to_infinity(h.p, h.ng, h.t, ls.wi)
                                                     : udm1scene::shadow_segment(h.p, h.ng, h.t, ls.q, ls.n);
                 if (sg.len > 0) {
-                    walking_shadow(p, ls, sg, medium_after(p.medium, h, sg.d), f, shadow);
+                    walking_shadow(p, ls, sg, medium_after(p.medium, h, sg.d), f, u_lp, shadow);
                     if (shadow->weighted) shadow->bsdf = bsdf, shadow->wo_l = wo_l, shadow->wi_l = wi_l;
                 }
             }

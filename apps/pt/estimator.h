@@ -24,7 +24,10 @@
 // do paths through media that only absorb, and a medium's emission along a segment is integrated exactly.
 #pragma once
 
+#include "grid_medium.h"
 #include "integrator.h"
+
+#include <memory>
 
 namespace udm1pt {
 
@@ -74,6 +77,12 @@ struct ShadowTest {
     Vec3 T_u{1, 1, 1};
     Vec3 r_p;               // the path's r_u at the vertex
     double scatter_pdf = -1;  // the phase function's density of the direction (-1: the BSDF's, from bsdf)
+    // its pieces in grid media, ratio tracked (pbrt-v4's): T holds the tracking's estimate, F_l and F_u the
+    // factors of the light sample's and the path's rescaled densities (relative to the hero channel's)
+    bool tracked = false;
+    Vec3 F_l{1, 1, 1}, F_u{1, 1, 1};
+    int hero = 0;
+    uint64_t seed = 0;      // of the tracking's random values (from the light sample's sampler values)
 };
 
 // What a shadow ray's piece found (Estimator::cross).
@@ -107,12 +116,15 @@ public:
 private:
     // the volumetric estimator's parts
     bool medium_step(PathState &p, double t_end, ShadowTest *shadow, bool *scattered) const;
+    bool grid_step(PathState &p, const GridMedium &g, double t_end, ShadowTest *shadow, bool *scattered) const;
+    bool medium_vertex(PathState &p, Vec3 x, double g, ShadowTest *shadow, bool *scattered) const;
+    bool track_shadow(ShadowTest &s, const GridMedium &g, double len) const;  // false: blocked
     bool surface_step(PathState &p, const udm1scene::Hit &h, ShadowTest *shadow) const;
     void volumetric_miss(PathState &p) const;
     int medium_after(int medium, const udm1scene::Hit &h, Vec3 w) const;  // of a ray leaving h along w
     // light sampling's shadow test from x towards ls (the rest of it the caller's)
     void walking_shadow(const PathState &p, const LightSample &ls, const udm1scene::Segment &sg, int medium,
-                        Vec3 f, ShadowTest *s) const;
+                        Vec3 f, const double u_light[2], ShadowTest *s) const;
 
     const udm1scene::Scene &scene_;
     const Lights &lights_;
@@ -124,6 +136,7 @@ private:
     int rr_depth_;
     bool volumetric_ = false, media_ = false;  // the volumetric estimator; media rendered (Integrator "volpath")
     std::vector<char> interface_;              // per shape: the interface material
+    std::vector<std::unique_ptr<GridMedium>> grids_;  // per medium: its grid (uniformgrid, cloud) or null
     double scene_radius_ = 0;                  // of the scene's bounding sphere
 };
 

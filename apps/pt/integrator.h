@@ -18,7 +18,10 @@
 //   child(next(root, 1 + d), 1 + k)   2 values: the distance to an interaction and its kind (absorption or
 //                        scattering) along the k-th piece (k = 0, 1, ... : the interface surfaces passed
 //                        before it) of the ray that finds vertex d; a vertex in a medium takes the vertex's
-//                        four values as a surface does (light, then the phase function's direction)
+//                        four values as a surface does (light, then the phase function's direction). In a grid
+//                        medium the first is the first tentative collision's distance and the second seeds the
+//                        delta tracking's further values (grid_medium.h, TrackingRandom), as pbrt-v4 seeds its
+//                        RNG; a shadow ray's ratio tracking is seeded by its light sample's two values
 // The chain of next() is one jointly low-discrepancy pattern: the sequence's dimensions 0 .. 4 + 4 d + 3
 // at the sample's index, as a cursor would hand them out (a Kronecker sequence's point of the whole
 // path); the lobe and roulette values are decorrelated children, which draw the sequence's first two
@@ -46,7 +49,7 @@ namespace udm1pt {
 
 // Changes whenever the estimator or the dimension layout above changes (cached references are
 // reused only when it matches).
-constexpr int LAYOUT_VERSION = 8;
+constexpr int LAYOUT_VERSION = 9;
 
 // The dimensions a path of a maximum depth draws: the chain of next() (the lobe and roulette are children).
 inline uint32_t path_dims(int max_depth) { return 4 + 4 * (uint32_t)max_depth; }

@@ -20,7 +20,7 @@ bool emissive_media(const udm1scene::Scene &scene)
 {
     if (!uses_media(scene)) return false;
     for (const udm1scene::Medium &m : scene.media)
-        if (m.Le.x > 0 || m.Le.y > 0 || m.Le.z > 0) return true;
+        if (m.emissive()) return true;
     return false;
 }
 

@@ -21,7 +21,7 @@ namespace udm1pt {
 // transition. (Integrator "path" leaves media out, as pbrt-v4's PathIntegrator does.)
 bool uses_media(const udm1scene::Scene &scene);
 
-// Whether a medium that uses_media() renders glows (Le > 0): a scene without lights is not black then.
+// Whether a medium that uses_media() renders glows (Medium::emissive): a scene without lights is not black then.
 bool emissive_media(const udm1scene::Scene &scene);
 
 // Whether a shape has the "interface" material (or its deprecated names "" and "none"): per shape.

@@ -162,6 +162,9 @@ private:
     bool has_peek_ = false;
 };
 
+// Why a "nanovdb" medium is refused: its files need a NanoVDB reader, which the build does not have.
+const std::string NANOVDB_REFUSAL = " (its .nvdb file needs a NanoVDB reader, which udm1-pt's build does not have)";
+
 // The targets of pbrt-v4's Attribute directive, whose parameters are defaults for the directives of that kind.
 enum Target { SHAPE, LIGHT, MATERIAL, MEDIUM, TEXTURE, TARGETS };
 const char *const TARGET_NAMES[TARGETS] = {"shape", "light", "material", "medium", "texture"};
@@ -1261,9 +1264,10 @@ private:
         return TextureInput();
     }
 
-    // MakeNamedMedium: a "homogeneous" medium with pbrt-v4's parameters and defaults (sigma_a and sigma_s 1,
-    // scale 1, g 0, no emission; a preset in place of sigma_a and sigma_s), in linear sRGB. pbrt-v4's grid
-    // media are recorded by name: refused where Integrator "volpath" renders a shape or the camera in one.
+    // MakeNamedMedium: pbrt-v4's "homogeneous", "uniformgrid" and "cloud" media with its parameters and defaults
+    // (sigma_a and sigma_s 1, scale 1, g 0, no emission; a homogeneous medium's preset in place of sigma_a and
+    // sigma_s), in linear sRGB; a grid medium placed by the transform in force. pbrt-v4's "rgbgrid" and
+    // "nanovdb" are recorded by name: refused where Integrator "volpath" renders a shape or the camera in one.
     void on_MakeNamedMedium(const Call &c)
     {
         Lexer &lex = c.lex;
@@ -1276,20 +1280,31 @@ private:
         std::string type = ps.get_string("type", "");
         if (type.empty()) throw SceneError(here + ": MakeNamedMedium \"" + name + "\" has no \"string type\"");
         if (scene_.media_where.empty()) scene_.media_where = here;
-        if (type == "uniformgrid" || type == "rgbgrid" || type == "cloud" || type == "nanovdb") {
+        if (type == "rgbgrid" || type == "nanovdb") {
             media_[name] = {-1, type, here};
             return;
         }
-        if (type != "homogeneous")
+        if (type != "homogeneous" && type != "uniformgrid" && type != "cloud")
             throw SceneError(here + ": MakeNamedMedium \"" + name + "\": type \"" + type +
-                             "\" is not supported (homogeneous; pbrt-v4's grid media uniformgrid, rgbgrid, cloud and "
-                             "nanovdb are not modelled)");
-        only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "preset"}, "MakeNamedMedium");
+                             "\" is not supported (homogeneous, uniformgrid and cloud; pbrt-v4's rgbgrid and nanovdb are not "
+                             "modelled)");
         Medium m;
         m.name = name, m.where = here;
         m.sigma_a = m.sigma_s = Vec3(1, 1, 1);
+        if (type == "homogeneous") {
+            only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "preset"}, "MakeNamedMedium");
+        } else if (type == "uniformgrid") {
+            only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "Le", "Lescale", "density", "temperature", "nx", "ny", "nz",
+                      "p0", "p1", "temperatureoffset", "temperaturecutoff", "temperaturescale"},
+                 "MakeNamedMedium \"" + type + "\"");
+            m.kind = Medium::UniformGrid;
+        } else {
+            only(ps, {"type", "sigma_a", "sigma_s", "g", "density", "wispiness", "frequency", "p0", "p1"},
+                 "MakeNamedMedium \"" + type + "\"");
+            m.kind = Medium::Cloud;
+        }
         bool preset = false;
-        if (const Param *p = ps.find("preset", "string")) {
+        if (const Param *p = m.kind == Medium::Homogeneous ? ps.find("preset", "string") : nullptr) {
             std::string which = ps.get_string("preset", "");
             preset = medium_preset(which, &m.sigma_a, &m.sigma_s);
             if (!preset)  // pbrt-v4 warns and takes sigma_a and sigma_s from the parameters
@@ -1306,15 +1321,87 @@ private:
                                  "' with a preset: pbrt-v4 takes the preset's and refuses '" + k + "' as unused");
             (k[6] == 'a' ? m.sigma_a : m.sigma_s) = coefficient(*p, "MakeNamedMedium");
         }
-        double scale = ps.get_float("scale", 1.0);
-        if (!(scale >= 0)) throw SceneError(ps.find("scale")->where + ": MakeNamedMedium: scale must not be negative");
-        m.sigma_a = m.sigma_a * scale, m.sigma_s = m.sigma_s * scale;
+        if (m.kind != Medium::Cloud) {  // (pbrt-v4's cloud has no scale)
+            double scale = ps.get_float("scale", 1.0);
+            if (!(scale >= 0)) throw SceneError(ps.find("scale")->where + ": MakeNamedMedium: scale must not be negative");
+            m.sigma_a = m.sigma_a * scale, m.sigma_s = m.sigma_s * scale;
+        }
         m.g = ps.get_float("g", 0.0);
-        double le_scale = ps.get_float("Lescale", 1.0);
-        if (ps.find("Le")) m.Le = emission(ps, "Le", "MakeNamedMedium") * le_scale;
-        if (!(le_scale >= 0)) throw SceneError(ps.find("Lescale")->where + ": MakeNamedMedium: Lescale must not be negative");
+        if (m.kind == Medium::Homogeneous) {
+            double le_scale = ps.get_float("Lescale", 1.0);
+            if (ps.find("Le")) m.Le = emission(ps, "Le", "MakeNamedMedium") * le_scale;
+            if (!(le_scale >= 0)) throw SceneError(ps.find("Lescale")->where + ": MakeNamedMedium: Lescale must not be negative");
+        } else {
+            grid_medium(ps, &m);
+        }
         media_[name] = {(int)scene_.media.size(), type, here};
-        scene_.media.push_back(m);
+        scene_.media.push_back(std::move(m));
+    }
+
+    // A grid medium's own parameters (MakeNamedMedium "uniformgrid" or "cloud"), checked as pbrt-v4 checks them
+    // and more: its box, the transform in force, the uniform grid's values.
+    void grid_medium(const ParamSet &ps, Medium *m)
+    {
+        const std::string what = "MakeNamedMedium \"" + m->name + "\"";
+        Vec3 a = ps.get_point("p0", Vec3(0, 0, 0)), b = ps.get_point("p1", Vec3(1, 1, 1));
+        m->p0 = Vec3(std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z));  // (pbrt-v4's Bounds3f of the two)
+        m->p1 = Vec3(std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z));
+        for (int k = 0; k < 3; ++k)
+            if (!(m->p1[k] > m->p0[k]) || !std::isfinite(m->p1[k] - m->p0[k]))
+                throw SceneError((ps.find("p0") ? ps.find("p0") : ps.find("p1") ? ps.find("p1") : &ps.params[0])->where +
+                                 ": " + what + ": the box p0 p1 is empty along an axis");
+        if (!st_.ctm[0].affine() || !st_.ctm[0].inverse(&m->medium_from_world))
+            throw SceneError(m->where + ": " + what + ": the transform in force is singular or projective");
+        if (!same(st_.ctm[0], st_.ctm[1]))  // pbrt-v4 warns and takes the start transform
+            scene_.notes.push_back(m->where + ": " + what + ": an animated transform; the medium takes the start "
+                                   "transform, as pbrt-v4 takes it");
+        if (m->kind == Medium::Cloud) {
+            m->cloud_density = ps.get_float("density", 1.0);
+            m->wispiness = ps.get_float("wispiness", 1.0);
+            m->frequency = ps.get_float("frequency", 5.0);
+            for (const char *k : {"density", "wispiness", "frequency"})
+                if (const Param *p = ps.find(k); p && !std::isfinite(ps.get_float(k, 0)))
+                    throw SceneError(p->where + ": " + what + ": '" + k + "' must be finite");
+            return;
+        }
+        int n[3];
+        const char *axes[3] = {"nx", "ny", "nz"};
+        for (int k = 0; k < 3; ++k) {
+            n[k] = ps.get_int(axes[k], 1);
+            if (n[k] < 1) throw SceneError(ps.find(axes[k])->where + ": " + what + ": '" + axes[k] + "' must be at least 1");
+        }
+        m->nx = n[0], m->ny = n[1], m->nz = n[2];
+        const uint64_t count = (uint64_t)n[0] * (uint64_t)n[1] * (uint64_t)n[2];
+        const std::string expect = std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " + std::to_string(n[2]) +
+                                   " = " + std::to_string(count);
+        // a grid of floats: count values, each finite and, but for temperatures, not negative
+        auto grid = [&](const char *k, bool negative_ok, std::vector<float> *out) -> const Param * {
+            const Param *p = ps.find(k, "float");
+            if (!p) return nullptr;
+            if (p->numbers.size() != count)
+                throw SceneError(p->where + ": " + what + ": '" + k + "' has " + std::to_string(p->numbers.size()) +
+                                 " values; nx ny nz need " + expect);
+            out->resize(count);
+            for (size_t i = 0; i < count; ++i) {
+                double v = p->numbers[i];
+                if (!std::isfinite(v) || (!negative_ok && v < 0) || std::fabs(v) > 3.4e38)
+                    throw SceneError(p->where + ": " + what + ": '" + k + "' value " + std::to_string(i) + " (" + std::to_string(v) +
+                                     ") must be " + (negative_ok ? "finite" : "finite and not negative"));
+                (*out)[i] = (float)v;
+            }
+            return p;
+        };
+        if (!grid("density", false, &m->density))
+            throw SceneError(m->where + ": " + what + ": no \"float density\" values (pbrt-v4 needs them)");
+        const Param *temperature = grid("temperature", true, &m->temperature);
+        if (ps.find("Le") && temperature)
+            throw SceneError(temperature->where + ": " + what + ": both \"Le\" and \"temperature\" (pbrt-v4 refuses them together)");
+        if (ps.find("Le")) m->Le = emission(ps, "Le", "MakeNamedMedium");
+        if (ps.find("Lescale")) grid("Lescale", false, &m->le_scale);
+        m->temperature_offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.0));
+        m->temperature_scale = ps.get_float("temperaturescale", 1.0);
+        if (!std::isfinite(m->temperature_offset) || !std::isfinite(m->temperature_scale))
+            throw SceneError(m->where + ": " + what + ": the temperature's offset and scale must be finite");
     }
 
     // An absorption or scattering coefficient as linear sRGB: an rgb triple as it is (pbrt-v4's unbounded RGB
@@ -1395,8 +1482,8 @@ private:
                 throw SceneError(mi_where + ": MediumInterface: medium \"" + name + "\" was not made (used by " + user + ")");
             if (it->second.index < 0 && volpath && rendered)
                 throw SceneError(it->second.where + ": MakeNamedMedium \"" + name + "\": type \"" + it->second.type +
-                                 "\" (a grid medium) is not modelled, and " + user +
-                                 " is in it under Integrator \"volpath\" (homogeneous media only)");
+                                 "\" is not modelled" + (it->second.type == "nanovdb" ? NANOVDB_REFUSAL : std::string()) +
+                                 ", and " + user + " is in it under Integrator \"volpath\" (homogeneous, uniformgrid and cloud media only)");
             return it->second.index;
         };
         scene_.camera.medium = find(camera_media_[0], camera_media_[1], "the Camera at " + camera_media_[2], true);
@@ -1867,7 +1954,7 @@ private:
     bool geometry_only_ = false;
     std::set<std::string> ignored_kinds_;
     struct NamedMedium {
-        int index;  // Scene::media, or -1 for a grid medium (not modelled)
+        int index;  // Scene::media, or -1 for a medium not modelled (rgbgrid, nanovdb)
         std::string type, where;
     };
     std::map<std::string, NamedMedium> media_;           // MakeNamedMedium's, by name

@@ -99,15 +99,41 @@ struct Material {
     ParamSet params;
 };
 
-// A pbrt-v4 "homogeneous" medium in linear sRGB (the parser reduces its spectra, pbrt_parser.h): absorption and
-// scattering coefficients per unit length with "scale" applied, the Henyey-Greenstein asymmetry g (clamped to
+// A pbrt-v4 medium in linear sRGB (the parser reduces its spectra, pbrt_parser.h): absorption and scattering
+// coefficients per unit length with "scale" applied, the Henyey-Greenstein asymmetry g (clamped to
 // [-0.99, 0.99] where it is evaluated, as pbrt-v4 clamps it), the emitted radiance Le with "Lescale" applied
-// (a medium emits sigma_a Le per unit length).
+// (a medium emits sigma_a Le per unit length). Of three kinds:
+//   Homogeneous  sigma_a, sigma_s and Le everywhere.
+//   UniformGrid  pbrt-v4's "uniformgrid": sigma_a and sigma_s times the density at the point, the nx x ny x nz
+//                samples of `density` (x fastest) at the centres of the cells of the box [p0, p1] of the
+//                medium's space, trilinear between them and falling to 0 across the outer half cells (pbrt-v4's
+//                SampledGrid); 0 outside the box. Emission: Le (already normalized to luminance 1, as pbrt-v4
+//                normalizes it) times the grid le_scale (one value: everywhere), or, with a temperature grid,
+//                le_scale times the RGB of pbrt-v4's blackbody (normalized to 1 at its peak) at the temperature
+//                (t - temperature_offset) * temperature_scale, none at or below 100 K.
+//   Cloud        pbrt-v4's procedural "cloud": sigma_a and sigma_s times a density in [0, 1] made of Perlin
+//                noise (cloud_density, wispiness, frequency) in the box [p0, p1]; no emission.
+// A grid medium is placed by medium_from_world, the inverse of the transform at its MakeNamedMedium.
 struct Medium {
+    enum Kind { Homogeneous, UniformGrid, Cloud } kind = Homogeneous;
     std::string name;
     Vec3 sigma_a, sigma_s, Le;
     double g = 0;
     std::string where;  // its MakeNamedMedium's file:line
+    // the grid media's
+    Mat4 medium_from_world;
+    Vec3 p0{0, 0, 0}, p1{1, 1, 1};
+    int nx = 1, ny = 1, nz = 1;
+    std::vector<float> density, le_scale{1.0f}, temperature;  // le_scale: 1 value or nx ny nz; temperature: none or nx ny nz
+    double temperature_offset = 0, temperature_scale = 1;
+    double cloud_density = 1, wispiness = 1, frequency = 5;
+    // Whether it may glow (the rendering adds its emission).
+    bool emissive() const
+    {
+        if (kind == Cloud) return false;
+        if (kind == UniformGrid && !temperature.empty()) return true;
+        return Le.x > 0 || Le.y > 0 || Le.z > 0;
+    }
 };
 
 struct AreaLight {
