@@ -129,6 +129,9 @@ def cases() -> list[Case]:
                    "sigma varies across a channel's wavelengths); with grey media the two agree",
              variants=[Variant("grey media", grey_media=True)]),
         Case("fog", TEST_SCENES / "fog.pbrt", (80, 60), 256),
+        Case("grid", TEST_SCENES / "grid.pbrt", (96, 72), 256),
+        Case("grid-fire", TEST_SCENES / "grid-fire.pbrt", (96, 72), 256),
+        Case("cloud", TEST_SCENES / "cloud.pbrt", (96, 72), 256),
         Case("format", TEST_SCENES / "format.pbrt", (160, 120), 1024),
         Case("clamp", TEST_SCENES / "clamp.pbrt", (160, 120), 1024,
              cause="the film's maxcomponentvalue acts on each sample's sensor values: pbrt-v4's are a spectral "
