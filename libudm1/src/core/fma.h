@@ -14,6 +14,7 @@
 #ifndef UDM1_FMA_H
 #define UDM1_FMA_H
 
+#include "core/bits.h"
 #include "core/u128.h"
 
 #include <math.h>
@@ -41,13 +42,7 @@ static inline uint64_t udm1_fma_split_(double x, int *e)
 static inline int udm1_fma_top_(uint64_t hi, uint64_t lo)
 {
     uint64_t x = hi ? hi : lo;
-#if defined(__GNUC__)
-    int n = 63 - __builtin_clzll(x);
-#else
-    int n = 0;
-    for (int s = 32; s; s >>= 1)
-        if (x >> s) x >>= s, n += s;
-#endif
+    int n = udm1_top_bit64(x);
     return hi ? 64 + n : n;
 }
 

@@ -9,6 +9,7 @@
  * every n < 2^64. z is the table of tools/lattice_search.py (component by component on the wrap-around
  * L2 discrepancy, the worst ratio to the best candidate over the sizes 2^6 .. 2^20; past 2^20 points the
  * sequence goes on, exact, as lattices of 2^21, 2^22, ... points not searched for). */
+#include "core/bits.h"
 #include "samplers/samplers.h"
 #include "seq/scramble.h"
 
@@ -42,7 +43,7 @@ static void lattice_seq_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t firs
     for (size_t i = 0; i < count; ++i) {
         if (i) {
             uint64_t prev = first + i - 1; /* its trailing ones: below 64 (prev + 1 does not wrap: checked range) */
-            phi ^= ~0ull << (63 - __builtin_ctzll(~prev));
+            phi ^= ~0ull << (63 - udm1_ctz64(~prev));
         }
         uint64_t *row = raw + i * nd;
         if (shift) {

@@ -11,6 +11,7 @@
  * n ^ (n >> 1): the order of scipy.stats.qmc.Sobol, whose doubles with
  * bits=53 and scramble=False equal ours with UDM1_RANDOMIZE_NONE.
  */
+#include "core/bits.h"
 #include "samplers/samplers.h"
 #include "seq/scramble.h"
 
@@ -56,7 +57,7 @@ static uint64_t sobol_raw(const sobol *t, uint32_t dim, uint64_t n)
         x = t->low[dim][g & 255u];
         g &= ~(uint64_t)255u;
     }
-    for (; g; g &= g - 1) x ^= v[__builtin_ctzll(g)]; /* one step per (remaining) set bit */
+    for (; g; g &= g - 1) x ^= v[udm1_ctz64(g)]; /* one step per (remaining) set bit */
     return x;
 }
 
@@ -75,7 +76,7 @@ static void sobol_raw_dims(const sobol *t, uint64_t n, uint32_t dim0, uint32_t m
     if (dim0 + m <= t->byte_dims) {
         for (uint32_t k = 0; k < m; ++k) raw[k] = sobol_bytes(t, dim0 + k, g);
         for (uint64_t b = g & ~(uint64_t)0xFFFFFFFFu; b; b &= b - 1) {
-            unsigned bit = (unsigned)__builtin_ctzll(b);
+            unsigned bit = (unsigned)udm1_ctz64(b);
             for (uint32_t k = 0; k < m; ++k) raw[k] ^= t->v[dim0 + k][bit];
         }
         return;
@@ -83,7 +84,7 @@ static void sobol_raw_dims(const sobol *t, uint64_t n, uint32_t dim0, uint32_t m
     if (dim0 + m <= t->table_dims) {
         for (uint32_t k = 0; k < m; ++k) raw[k] = t->low[dim0 + k][g & 255u];
         for (uint64_t b = g & ~(uint64_t)255u; b; b &= b - 1) {
-            unsigned bit = (unsigned)__builtin_ctzll(b);
+            unsigned bit = (unsigned)udm1_ctz64(b);
             for (uint32_t k = 0; k < m; ++k) raw[k] ^= t->v[dim0 + k][bit];
         }
         return;
@@ -120,7 +121,7 @@ static void sobol_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, siz
         for (size_t i = 0; i < count; ++i) {
             raw[i * nd + j] = owen ? x + o : udm1_randomize_base2(seq->mode, x + o, r);
             uint64_t next = first + i + 1; /* Gray(next) = Gray(next - 1) ^ 2^ctz(next) */
-            if (next) x ^= v[__builtin_ctzll(next)];
+            if (next) x ^= v[udm1_ctz64(next)];
         }
     }
     if (!owen || !nd || !count) return;
@@ -182,13 +183,13 @@ udm1_status udm1_init_sobol(udm1_seq_t *seq)
     }
     for (uint32_t j = 0; j < td; ++j) { /* the subsets of the first 8 direction numbers */
         t->low[j][0] = 0;
-        for (uint32_t b = 1; b < 256; ++b) t->low[j][b] = t->low[j][b & (b - 1)] ^ t->v[j][__builtin_ctz(b)];
+        for (uint32_t b = 1; b < 256; ++b) t->low[j][b] = t->low[j][b & (b - 1)] ^ t->v[j][udm1_ctz32(b)];
     }
     for (uint32_t j = 0; j < bd; ++j) /* ... and of numbers 0..7, 8..15, 16..23, 24..31 */
         for (int k = 0; k < 4; ++k) {
             t->bytes[j][k][0] = 0;
             for (uint32_t b = 1; b < 256; ++b)
-                t->bytes[j][k][b] = t->bytes[j][k][b & (b - 1)] ^ t->v[j][8 * k + __builtin_ctz(b)];
+                t->bytes[j][k][b] = t->bytes[j][k][b & (b - 1)] ^ t->v[j][8 * k + udm1_ctz32(b)];
             for (uint32_t b = 0; b < 256; ++b) t->rev[j][k][b] = udm1_reverse32((uint32_t)(t->bytes[j][k][b] >> 32));
         }
     seq->data = t;
