@@ -327,10 +327,15 @@ AVX2 static inline __m256d flip4d(__m256d v, __m128i h, int bit) /* negate the l
 /* Perlin's gradient: u = x (h < 8) or y; v = y (h < 4), x (h = 12, 14) or z; +-u +-v (low 4 bits of h) */
 AVX2 static inline __m256d grad3_4d(__m128i h, __m256d x, __m256d y, __m256d z)
 {
-    __m256d below8 = mask4d(h, 8, 0), below4 = mask4d(h, 12, 0), is12or14 = mask4d(h, 13, 12);
-    __m256d u = _mm256_blendv_pd(y, x, below8);
+    /* the hash in 64-bit lanes, its bits moved to the sign bit, which blendv reads and the sign flips
+     * take: bit 3 picks u, bits 0 and 1 negate u and v */
+    __m256i w = _mm256_cvtepu32_epi64(h);
+    __m256d below4 = mask4d(h, 12, 0), is12or14 = mask4d(h, 13, 12);
+    __m256d u = _mm256_blendv_pd(x, y, _mm256_castsi256_pd(_mm256_slli_epi64(w, 60)));
     __m256d v = _mm256_blendv_pd(_mm256_blendv_pd(z, x, is12or14), y, below4);
-    return _mm256_add_pd(flip4d(u, h, 1), flip4d(v, h, 2));
+    u = _mm256_xor_pd(u, _mm256_castsi256_pd(_mm256_slli_epi64(w, 63)));
+    v = _mm256_xor_pd(v, _mm256_and_pd(_mm256_castsi256_pd(_mm256_slli_epi64(w, 62)), _mm256_set1_pd(-0.0)));
+    return _mm256_add_pd(u, v);
 }
 
 /* its vector: +-1 on the axes of u and v, +0 on the third */
