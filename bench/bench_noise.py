@@ -23,6 +23,7 @@ SIMD_LEVEL, udm1_isa()). Prints a table and writes --json.
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import ctypes
 import json
 import os
@@ -80,10 +81,12 @@ ROOT = Path(__file__).resolve().parent.parent
 FNS_VERSION = "0.4.2"
 
 
-def fastnoisesimd_build(build: Path, level: str) -> Path | None:
+def fastnoisesimd_build(build: Path, level: str, installed: bool = False) -> Path | None:
     """pyfastnoisesimd built from its PyPI sdist with its kernels up to `level` ("native": all that its
     setup compiles; "avx2": --with-avx512=no) into build/bench_noise/fastnoisesimd-LEVEL/lib, reused once
     built: the folder to put on sys.path, or None (with the reason on stderr) where it cannot be built."""
+    if installed and level == "native" and importlib.util.find_spec("pyfastnoisesimd") is not None:
+        return Path()  # the installed wheel, as it is (--installed-anchor: no build)
     top = build / "bench_noise" / f"fastnoisesimd-{level}"
     lib = top / "lib"
     if list(lib.glob("pyfastnoisesimd/extension*.so")):
@@ -166,16 +169,16 @@ def level_rows(level: str, reps: int) -> list:
     return rows
 
 
-def run_level(level: str, build: Path, reps: int) -> list:
+def run_level(level: str, build: Path, reps: int, installed: bool = False) -> list:
     """level_rows in a child process: UDM1_ISA and FastNoiseSIMD's build for the level."""
     env = dict(os.environ)
     env.pop("UDM1_ISA", None)
     if level != "native":
         env["UDM1_ISA"] = level
-    lib = fastnoisesimd_build(build, level)
+    lib = fastnoisesimd_build(build, level, installed)
     if lib is None:
         print(f"bench_noise: no FastNoiseSIMD at {level}: FastNoise Lite is the anchor of those rows", file=sys.stderr)
-    else:
+    elif lib != Path():
         env["PYTHONPATH"] = os.pathsep.join([str(lib)] + [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p])
     r = subprocess.run([sys.executable, __file__, "--child", level, "--reps", str(reps)], env=env,
                        capture_output=True, text=True)
@@ -215,6 +218,9 @@ def main(argv=None) -> int:
     ap.add_argument("--json", default="")
     ap.add_argument("--levels", default="native,avx2", help="comma-separated: native, avx2, baseline")
     ap.add_argument("--build", default=str(ROOT / "build"), help="where FastNoiseSIMD's builds go")
+    ap.add_argument("--installed-anchor", action="store_true",
+                    help="native level: the installed pyfastnoisesimd wheel, no build (for quick runs and tests: the "
+                         "wheel measured slower than its sdist built here, so not the anchor of quoted figures)")
     ap.add_argument("--child", default="", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
@@ -222,7 +228,7 @@ def main(argv=None) -> int:
         return 0
     rows = []
     for level in args.levels.split(","):
-        rows += run_level(level, Path(args.build), args.reps)
+        rows += run_level(level, Path(args.build), args.reps, args.installed_anchor)
     print(f"{'level':<8} {'group':<12} {'method':<70} {'evals/s':>10} {'x anchor':>9}")
     for r in rows:
         print(f"{r['level']:<8} {r['group']:<12} {r['method']:<70} {r['rate']:10.4g} {r['x_anchor']:9.2f}")
