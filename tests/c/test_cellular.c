@@ -2,7 +2,7 @@
  * udm1_isa() names (CTest runs this test under each UDM1_ISA level):
  *  - every output, metric, jitter, table, dimension and precision equals an independent brute-force
  *    transcription (all cells within 3 of the point, the documented arithmetic) bit for bit, near the
- *    origin and far from it (to 1e9), packed, one array per axis and strided, counts that leave tails;
+ *    origin and far from it (to 3e12, past 2^31), packed, one array per axis and strided, counts that leave tails;
  *  - Minkowski with exponent 2 and 1 equals Euclidean and Manhattan bit for bit; exponent 3 equals the
  *    transcription;
  *  - periodic textures repeat exactly, on every axis with a period;
@@ -295,6 +295,7 @@ int main(void)
     against_brute_force("drand48", 0, 0, 0, 0);
     against_brute_force("rd", 0, 0, 0, 0);
     against_brute_force("cmj", 0, 0, 0, 1e9);
+    against_brute_force("rd", 0, 0, 0, 3e12); /* past 2^31: a double's index from its floor mod 256 */
     against_brute_force("golden", 5, 7, 300, 0);
     against_brute_force("sobol-owen", 2, 1, 3, 0);
     layouts_and_identities();

@@ -90,6 +90,10 @@ def plan(args, out: Path) -> list[Step]:
     reps = "4" if args.quick else ("64" if args.full else "32")
     seconds = "0.01" if args.quick else ("0.5" if args.full else "0.1")
     noise_reps = "1" if args.quick else "5"
+    # this processor's instruction set; --full adds FastNoiseSIMD and udm1 capped at AVX2 (FastNoiseSIMD built
+    # from its sdist for it)
+    noise_levels = "native,avx2" if args.full else "native"
+    noise_anchor = ["--installed-anchor"] if args.quick else []  # (--quick: no FastNoiseSIMD build)
     tolerance_args = (["--trials", "1", "--dims", "2,8", "--families", "oscillatory,gaussian"] if args.quick else
                       ["--trials", "50"] if args.full else ["--trials", "10"])
     if args.quick:
@@ -116,7 +120,8 @@ def plan(args, out: Path) -> list[Step]:
         Step("noise", "Noise: the paper's Figures 2 and 3, evaluations per second, spectra",
              [[tools["noise"], "figures", "-o", str(out / "noise")],
               [tools["bench_noise"], "--reps", noise_reps],
-              [py, str(ROOT / "bench" / "bench_noise.py"), "--reps", noise_reps, "--json", str(out / "noise_simd.json")],
+              [py, str(ROOT / "bench" / "bench_noise.py"), "--reps", noise_reps, "--levels", noise_levels,
+               *noise_anchor, "--json", str(out / "noise_simd.json")],
               [py, str(HERE / "noise_report.py"), *o, *q]],
              ["noise/figures.md", "noise_libnoise.txt", "noise_simd.json", "noise_spectra.json"], "noise/figures.md",
              stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),

@@ -1,4 +1,4 @@
-/* cellular_simd.c - the cellular noise on 16 points at a time with AVX-512 VBMI, in float and in double.
+/* cellular_simd.c - the cellular noise on 16 points at a time with AVX-512 VBMI (8 with AVX2), in float and double.
  * The 3^dims cells around the points are hashed 16 points x 4 cells at a time: the permutation and the
  * three tables of 8-bit feature offsets are held in registers (four each) and looked up 64 bytes at a
  * time (perm[perm[perm[X] + Y] + Z] with byte additions, the permutation being periodic in 256). Each
@@ -6,8 +6,9 @@
  * scalar search's operations (noise/cellular_impl.h), so the same values. The scalar search is exact by
  * visiting further shells while they could hold a nearer point; here a lane whose next shell could
  * (rare: a feature point may lie anywhere in its cell) is recomputed by that scalar search, so every
- * value is the exact one, bit for bit. Metrics Euclidean, Manhattan and Chebyshev; Minkowski and the
- * processors without AVX-512 VBMI are left to the scalar code. */
+ * value is the exact one, bit for bit. Metrics Euclidean, Manhattan and Chebyshev; Minkowski is left to
+ * the scalar code. Processors with AVX2 and FMA but not AVX-512 VBMI (or UDM1_ISA=avx2) take the AVX2
+ * kernels below, on 8 points at a time, with the same arithmetic. */
 #include "core/isa.h"
 #include "noise/noise_tables.h"
 
@@ -385,22 +386,362 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
     return i;
 }
 
+/* ---- AVX2 + FMA: 8 points ----
+ * The cells' hashes by gathers: perm[X + dx] (3), perm[. + Y + dy] (9 in 3D) and the last level from the
+ * table cell4 (noise_tables.h), whose word holds a cell's hash and its feature point's three offsets, so
+ * that each cell costs one gather. The arithmetic is the AVX-512 kernels' (the scalar search's
+ * operations), in 8 floats or two halves of 4 doubles; lanes whose next shell could hold one of the k
+ * nearest are redone by the scalar search. */
+#define AVX2 __attribute__((target("avx2,fma")))
+
+/* The lattice index (0..255) of the cells at d = -1, 0, 1 of 8 points from their indices m, which are
+ * in 0..P-1 on a periodic axis (P its period) and any integer otherwise */
+AVX2 static inline void index8(__m256i m, uint32_t period, __m256i out[3])
+{
+    const __m256i mask = _mm256_set1_epi32(255), one = _mm256_set1_epi32(1);
+    __m256i lo = _mm256_sub_epi32(m, one), hi = _mm256_add_epi32(m, one);
+    if (period) {
+        __m256i P = _mm256_set1_epi32((int)period);
+        lo = _mm256_blendv_epi8(lo, _mm256_sub_epi32(P, one), _mm256_cmpeq_epi32(m, _mm256_setzero_si256()));
+        hi = _mm256_andnot_si256(_mm256_cmpeq_epi32(hi, P), hi);
+    }
+    out[0] = _mm256_and_si256(lo, mask), out[1] = _mm256_and_si256(m, mask), out[2] = _mm256_and_si256(hi, mask);
+}
+
+/* f mod P for 4 integral doubles |f| < 2^31, exactly (as cell_axis: q = floor(f / P) may be one off) */
+AVX2 static inline __m128i mod4(__m256d f, uint32_t period)
+{
+    __m256d P = _mm256_set1_pd((double)period), zero = _mm256_setzero_pd();
+    __m256d m = _mm256_sub_pd(f, _mm256_mul_pd(_mm256_floor_pd(_mm256_div_pd(f, P)), P));
+    m = _mm256_add_pd(m, _mm256_and_pd(_mm256_cmp_pd(m, zero, _CMP_LT_OQ), P));
+    m = _mm256_sub_pd(m, _mm256_and_pd(_mm256_cmp_pd(m, P, _CMP_GE_OQ), P));
+    return _mm256_cvttpd_epi32(m);
+}
+
+/* The words cell4[...] of the 3^dims cells around 8 points (c = (dx + 1) + 3 (dy + 1) + 9 (dz + 1)) */
+AVX2 static inline void cells8(const udm1_noise *n, uint32_t dims, const __m256i ib[3][3], __m256i W[27])
+{
+    const int *c4 = (const int *)n->cell4;
+    const __m256i m255 = _mm256_set1_epi32(255);
+    __m256i a[3];
+    for (int j = 0; j < 3; ++j) a[j] = _mm256_and_si256(_mm256_i32gather_epi32(c4, ib[0][j], 4), m255);
+    if (dims == 2) {
+        for (int c = 0; c < 9; ++c) W[c] = _mm256_i32gather_epi32(c4, _mm256_add_epi32(a[c % 3], ib[1][c / 3]), 4);
+        return;
+    }
+    __m256i b[9];
+    for (int j = 0; j < 9; ++j)
+        b[j] = _mm256_and_si256(_mm256_i32gather_epi32(c4, _mm256_add_epi32(a[j % 3], ib[1][j / 3]), 4), m255);
+    for (int c = 0; c < 27; ++c) W[c] = _mm256_i32gather_epi32(c4, _mm256_add_epi32(b[c % 9], ib[2][c / 9]), 4);
+}
+
+/* the offset on axis a (0..2) of the cells' feature points in W, as 8 ints */
+AVX2 static inline __m256i offset8(__m256i W, uint32_t a)
+{
+    return _mm256_and_si256(_mm256_srli_epi32(W, 8 * (int)(a + 1)), _mm256_set1_epi32(255));
+}
+
+AVX2 static inline __m256 abs8(__m256 x) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x); }
+AVX2 static inline __m256d abs4(__m256d x) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x); }
+
+AVX2 static inline __m256 power8s(const __m256 *v, uint32_t dims, uint32_t metric)
+{
+    __m256 s;
+    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
+        s = _mm256_fmadd_ps(v[1], v[1], _mm256_mul_ps(v[0], v[0]));
+        if (dims == 3) s = _mm256_fmadd_ps(v[2], v[2], s);
+    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
+        s = _mm256_add_ps(abs8(v[0]), abs8(v[1]));
+        if (dims == 3) s = _mm256_add_ps(s, abs8(v[2]));
+    } else {
+        s = _mm256_max_ps(abs8(v[0]), abs8(v[1]));
+        if (dims == 3) s = _mm256_max_ps(s, abs8(v[2]));
+    }
+    return s;
+}
+
+AVX2 static inline __m256d power4d(const __m256d *v, uint32_t dims, uint32_t metric)
+{
+    __m256d s;
+    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
+        s = _mm256_fmadd_pd(v[1], v[1], _mm256_mul_pd(v[0], v[0]));
+        if (dims == 3) s = _mm256_fmadd_pd(v[2], v[2], s);
+    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
+        s = _mm256_add_pd(abs4(v[0]), abs4(v[1]));
+        if (dims == 3) s = _mm256_add_pd(s, abs4(v[2]));
+    } else {
+        s = _mm256_max_pd(abs4(v[0]), abs4(v[1]));
+        if (dims == 3) s = _mm256_max_pd(s, abs4(v[2]));
+    }
+    return s;
+}
+
+AVX2 static inline __m256 gap8s(__m256 K, __m256 c1, __m256 zero) /* axis_gap */
+{
+    __m256 top = _mm256_fmadd_ps(c1, _mm256_set1_ps(255.0f), K);
+    __m256 g = _mm256_blendv_ps(zero, _mm256_sub_ps(zero, top), _mm256_cmp_ps(top, zero, _CMP_LT_OQ));
+    return _mm256_blendv_ps(g, K, _mm256_cmp_ps(K, zero, _CMP_GT_OQ));
+}
+
+AVX2 static inline __m256d gap4d(__m256d K, __m256d c1, __m256d zero)
+{
+    __m256d top = _mm256_fmadd_pd(c1, _mm256_set1_pd(255.0), K);
+    __m256d g = _mm256_blendv_pd(zero, _mm256_sub_pd(zero, top), _mm256_cmp_pd(top, zero, _CMP_LT_OQ));
+    return _mm256_blendv_pd(g, K, _mm256_cmp_pd(K, zero, _CMP_GT_OQ));
+}
+
+AVX2 static inline __m256 root8s(__m256 F, uint32_t metric)
+{
+    return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm256_sqrt_ps(F) : F;
+}
+
+AVX2 static inline __m256d root4d(__m256d F, uint32_t metric)
+{
+    return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm256_sqrt_pd(F) : F;
+}
+
+AVX2 static inline int finite8s(__m256 x)
+{
+    return _mm256_movemask_ps(_mm256_cmp_ps(abs8(x), _mm256_set1_ps(INFINITY), _CMP_LT_OQ)) == 0xFF;
+}
+
+AVX2 static inline int finite4d(__m256d x)
+{
+    return _mm256_movemask_pd(_mm256_cmp_pd(abs4(x), _mm256_set1_pd(INFINITY), _CMP_LT_OQ)) == 0xF;
+}
+
+AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise *n, const udm1_cellular_params *p,
+                                                               uint32_t dims, const float *const *axes, size_t stride,
+                                                               size_t count, float *out)
+{
+    cellular_setup_f32 u;
+    const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
+    cellular_setup_init_f32(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
+    const __m256 c0 = _mm256_set1_ps(u.c0), c1 = _mm256_set1_ps(u.c1), zero = _mm256_setzero_ps();
+    const __m256 inf = _mm256_set1_ps(INFINITY), margin = _mm256_set1_ps(0x1p-20f);
+    const int want_cell = p->output == UDM1_CELLULAR_CELL;
+    const uint32_t cells = dims == 3 ? 27 : 9;
+    size_t i = 0;
+    for (; i + 8 <= count; i += 8) {
+        __m256 x[3], t[3], K[3][3];
+        __m256i ib[3][3];
+        int ok = 1;
+        for (uint32_t a = 0; a < dims; ++a) {
+            const float *q = axes[a] + i * stride;
+            x[a] = stride == 1 ? _mm256_loadu_ps(q) : _mm256_i32gather_ps(q, vindex, 4);
+            ok &= finite8s(x[a]);
+        }
+        if (!ok) break; /* the caller reports it */
+        for (uint32_t a = 0; a < dims && ok; ++a) {
+            __m256 f = _mm256_floor_ps(x[a]);
+            t[a] = _mm256_add_ps(_mm256_sub_ps(x[a], f), zero);
+            __m256i m;
+            if (u.period[a]) {
+                if (_mm256_movemask_ps(_mm256_cmp_ps(abs8(f), _mm256_set1_ps(0x1p31f), _CMP_GE_OQ))) ok = 0;
+                __m128i lo = mod4(_mm256_cvtps_pd(_mm256_castps256_ps128(f)), u.period[a]);
+                __m128i hi = mod4(_mm256_cvtps_pd(_mm256_extractf128_ps(f, 1)), u.period[a]);
+                m = _mm256_set_m128i(hi, lo);
+            } else {
+                m = _mm256_cvttps_epi32(f); /* past 2^31: 0x80000000, and f a multiple of 256 */
+            }
+            index8(m, u.period[a], ib[a]);
+            for (int j = 0; j < 3; ++j) K[a][j] = _mm256_sub_ps(c0, _mm256_sub_ps(t[a], _mm256_set1_ps((float)(j - 1))));
+        }
+        if (!ok) break; /* a periodic coordinate past 2^31: the scalar code */
+        __m256i W[27];
+        cells8(n, dims, (const __m256i(*)[3])ib, W);
+        __m256 F0 = inf, F1 = inf, F2 = inf;
+        __m256i near = _mm256_set1_epi32(256);
+        for (uint32_t c = 0; c < cells; ++c) {
+            const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
+            __m256 v[3] = {zero, zero, zero};
+            for (uint32_t a = 0; a < dims; ++a)
+                v[a] = _mm256_fmadd_ps(c1, _mm256_cvtepi32_ps(offset8(W[c], a)), K[a][d[a]]);
+            __m256 D = power8s(v, dims, u.metric);
+            if (want_cell) {
+                __m256i h = _mm256_and_si256(W[c], _mm256_set1_epi32(255));
+                __m256 m = _mm256_or_ps(_mm256_cmp_ps(D, F0, _CMP_LT_OQ),
+                                        _mm256_and_ps(_mm256_cmp_ps(D, F0, _CMP_EQ_OQ),
+                                                      _mm256_castsi256_ps(_mm256_cmpgt_epi32(near, h))));
+                near = _mm256_blendv_epi8(near, h, _mm256_castps_si256(m));
+            }
+            __m256 lo = _mm256_min_ps(F0, D), hi = _mm256_max_ps(F0, D);
+            F0 = lo;
+            if (k >= 2) {
+                lo = _mm256_min_ps(F1, hi), hi = _mm256_max_ps(F1, hi);
+                F1 = lo;
+                if (k == 3) F2 = _mm256_min_ps(F2, hi);
+            }
+        }
+        /* lanes whose next shell could hold one of the k nearest: the scalar search */
+        __m256 gap = inf;
+        for (uint32_t a = 0; a < dims; ++a) {
+            gap = _mm256_min_ps(gap, gap8s(_mm256_sub_ps(c0, _mm256_sub_ps(t[a], _mm256_set1_ps(2.0f))), c1, zero));
+            gap = _mm256_min_ps(gap, gap8s(_mm256_sub_ps(c0, _mm256_add_ps(t[a], _mm256_set1_ps(2.0f))), c1, zero));
+        }
+        __m256 g3[3] = {gap, zero, zero};
+        __m256 bound = power8s(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+        unsigned redo = (unsigned)_mm256_movemask_ps(
+            _mm256_cmp_ps(bound, _mm256_add_ps(worst, _mm256_mul_ps(worst, margin)), _CMP_LE_OQ));
+        __m256 r;
+        switch (p->output) {
+        case UDM1_CELLULAR_F1: r = root8s(F0, u.metric); break;
+        case UDM1_CELLULAR_F2: r = root8s(F1, u.metric); break;
+        case UDM1_CELLULAR_F3: r = root8s(F2, u.metric); break;
+        case UDM1_CELLULAR_F2_MINUS_F1: r = _mm256_sub_ps(root8s(F1, u.metric), root8s(F0, u.metric)); break;
+        default: r = _mm256_div_ps(_mm256_cvtepi32_ps(near), _mm256_set1_ps(255.0f)); break;
+        }
+        _mm256_storeu_ps(out + i, r);
+        while (redo) {
+            int l = __builtin_ctz(redo);
+            redo &= redo - 1;
+            float c[3] = {0, 0, 0};
+            for (uint32_t a = 0; a < dims; ++a) c[a] = axes[a][(i + (size_t)l) * stride];
+            nearest3_f32 s;
+            cellular_search_f32(n, &u, c, &s);
+            out[i + (size_t)l] = cellular_output_f32(&s, &u, p->output);
+        }
+    }
+    return i;
+}
+
+AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise *n, const udm1_cellular_params *p,
+                                                               uint32_t dims, const double *const *axes, size_t stride,
+                                                               size_t count, double *out)
+{
+    cellular_setup_f64 u;
+    const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
+    cellular_setup_init_f64(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const __m128i vindex = _mm_mullo_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32((int)stride));
+    const __m256d c0 = _mm256_set1_pd(u.c0), c1 = _mm256_set1_pd(u.c1), zero = _mm256_setzero_pd();
+    const __m256d inf = _mm256_set1_pd(INFINITY), margin = _mm256_set1_pd(0x1p-20);
+    const int want_cell = p->output == UDM1_CELLULAR_CELL;
+    const uint32_t cells = dims == 3 ? 27 : 9;
+    size_t i = 0;
+    for (; i + 8 <= count; i += 8) {
+        __m256d x[3][2], t[3][2];
+        __m256i ib[3][3];
+        int ok = 1;
+        for (uint32_t a = 0; a < dims; ++a)
+            for (int hf = 0; hf < 2; ++hf) {
+                const double *q = axes[a] + (i + 4 * (size_t)hf) * stride;
+                x[a][hf] = stride == 1 ? _mm256_loadu_pd(q) : _mm256_i32gather_pd(q, vindex, 8);
+                ok &= finite4d(x[a][hf]);
+            }
+        if (!ok) break;
+        for (uint32_t a = 0; a < dims && ok; ++a) {
+            __m128i mh[2];
+            for (int hf = 0; hf < 2; ++hf) {
+                __m256d f = _mm256_floor_pd(x[a][hf]);
+                t[a][hf] = _mm256_add_pd(_mm256_sub_pd(x[a][hf], f), zero);
+                if (u.period[a]) {
+                    if (_mm256_movemask_pd(_mm256_cmp_pd(abs4(f), _mm256_set1_pd(0x1p31), _CMP_GE_OQ))) ok = 0;
+                    mh[hf] = mod4(f, u.period[a]);
+                } else { /* f mod 256, exact for every finite f (the hashes read the low byte) */
+                    __m256d m = _mm256_sub_pd(f, _mm256_mul_pd(_mm256_floor_pd(_mm256_mul_pd(f, _mm256_set1_pd(1.0 / 256))),
+                                                               _mm256_set1_pd(256.0)));
+                    mh[hf] = _mm256_cvttpd_epi32(m);
+                }
+            }
+            index8(_mm256_set_m128i(mh[1], mh[0]), u.period[a], ib[a]);
+        }
+        if (!ok) break; /* a periodic coordinate past 2^31: the scalar code */
+        __m256i W[27];
+        cells8(n, dims, (const __m256i(*)[3])ib, W);
+        unsigned redo = 0;
+        for (int hf = 0; hf < 2; ++hf) {
+            __m256d K[3][3];
+            for (uint32_t a = 0; a < dims; ++a)
+                for (int j = 0; j < 3; ++j) K[a][j] = _mm256_sub_pd(c0, _mm256_sub_pd(t[a][hf], _mm256_set1_pd((double)(j - 1))));
+            __m256d F0 = inf, F1 = inf, F2 = inf;
+            __m256i near = _mm256_set1_epi64x(256);
+            for (uint32_t c = 0; c < cells; ++c) {
+                const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
+                __m128i w = hf ? _mm256_extracti128_si256(W[c], 1) : _mm256_castsi256_si128(W[c]);
+                __m256d v[3] = {zero, zero, zero};
+                for (uint32_t a = 0; a < dims; ++a) {
+                    __m128i b = _mm_and_si128(_mm_srli_epi32(w, 8 * (int)(a + 1)), _mm_set1_epi32(255));
+                    v[a] = _mm256_fmadd_pd(c1, _mm256_cvtepi32_pd(b), K[a][d[a]]);
+                }
+                __m256d D = power4d(v, dims, u.metric);
+                if (want_cell) {
+                    __m256i h = _mm256_cvtepu32_epi64(_mm_and_si128(w, _mm_set1_epi32(255)));
+                    __m256d m = _mm256_or_pd(_mm256_cmp_pd(D, F0, _CMP_LT_OQ),
+                                             _mm256_and_pd(_mm256_cmp_pd(D, F0, _CMP_EQ_OQ),
+                                                           _mm256_castsi256_pd(_mm256_cmpgt_epi64(near, h))));
+                    near = _mm256_blendv_epi8(near, h, _mm256_castpd_si256(m));
+                }
+                __m256d lo = _mm256_min_pd(F0, D), hi = _mm256_max_pd(F0, D);
+                F0 = lo;
+                if (k >= 2) {
+                    lo = _mm256_min_pd(F1, hi), hi = _mm256_max_pd(F1, hi);
+                    F1 = lo;
+                    if (k == 3) F2 = _mm256_min_pd(F2, hi);
+                }
+            }
+            __m256d gap = inf;
+            for (uint32_t a = 0; a < dims; ++a) {
+                gap = _mm256_min_pd(gap, gap4d(_mm256_sub_pd(c0, _mm256_sub_pd(t[a][hf], _mm256_set1_pd(2.0))), c1, zero));
+                gap = _mm256_min_pd(gap, gap4d(_mm256_sub_pd(c0, _mm256_add_pd(t[a][hf], _mm256_set1_pd(2.0))), c1, zero));
+            }
+            __m256d g3[3] = {gap, zero, zero};
+            __m256d bound = power4d(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+            redo |= (unsigned)_mm256_movemask_pd(
+                        _mm256_cmp_pd(bound, _mm256_add_pd(worst, _mm256_mul_pd(worst, margin)), _CMP_LE_OQ))
+                    << (4 * hf);
+            __m256d r;
+            switch (p->output) {
+            case UDM1_CELLULAR_F1: r = root4d(F0, u.metric); break;
+            case UDM1_CELLULAR_F2: r = root4d(F1, u.metric); break;
+            case UDM1_CELLULAR_F3: r = root4d(F2, u.metric); break;
+            case UDM1_CELLULAR_F2_MINUS_F1: r = _mm256_sub_pd(root4d(F1, u.metric), root4d(F0, u.metric)); break;
+            default: { /* near < 2^31: its low 32-bit halves as ints */
+                __m128i n32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(near, _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0)));
+                r = _mm256_div_pd(_mm256_cvtepi32_pd(n32), _mm256_set1_pd(255.0));
+                break;
+            }
+            }
+            _mm256_storeu_pd(out + i + 4 * (size_t)hf, r);
+        }
+        while (redo) {
+            int l = __builtin_ctz(redo);
+            redo &= redo - 1;
+            double c[3] = {0, 0, 0};
+            for (uint32_t a = 0; a < dims; ++a) c[a] = axes[a][(i + (size_t)l) * stride];
+            nearest3_f64 s;
+            cellular_search_f64(n, &u, c, &s);
+            out[i + (size_t)l] = cellular_output_f64(&s, &u, p->output);
+        }
+    }
+    return i;
+}
+
+/* The kernels of the processor: 0 none (the scalar code), 1 AVX2, 2 AVX-512 with VBMI */
 static int vector_case(const udm1_cellular_params *p, uint32_t dims, size_t stride)
 {
-    return p->metric <= UDM1_CELLULAR_CHEBYSHEV && (dims == 2 || dims == 3) && stride <= (1u << 26) &&
-           udm1_isa_vbmi();
+    if (!(p->metric <= UDM1_CELLULAR_CHEBYSHEV && (dims == 2 || dims == 3) && stride <= (1u << 26))) return 0;
+    return udm1_isa_vbmi() ? 2 : udm1_isa_level() >= UDM1_ISA_AVX2 ? 1 : 0;
 }
 
 size_t udm1_cellular_fast_f64(const udm1_noise *n, const udm1_cellular_params *p, uint32_t dims,
                               const double *const *axes, size_t stride, size_t count, double *out)
 {
-    return vector_case(p, dims, stride) ? cellular_f64(n, p, dims, axes, stride, count, out) : 0;
+    switch (vector_case(p, dims, stride)) {
+    case 2: return cellular_f64(n, p, dims, axes, stride, count, out);
+    case 1: return cellular_f64_avx2(n, p, dims, axes, stride, count, out);
+    default: return 0;
+    }
 }
 
 size_t udm1_cellular_fast_f32(const udm1_noise *n, const udm1_cellular_params *p, uint32_t dims,
                               const float *const *axes, size_t stride, size_t count, float *out)
 {
-    return vector_case(p, dims, stride) ? cellular_f32(n, p, dims, axes, stride, count, out) : 0;
+    switch (vector_case(p, dims, stride)) {
+    case 2: return cellular_f32(n, p, dims, axes, stride, count, out);
+    case 1: return cellular_f32_avx2(n, p, dims, axes, stride, count, out);
+    default: return 0;
+    }
 }
 
 #else

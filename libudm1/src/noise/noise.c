@@ -199,6 +199,9 @@ udm1_status udm1_noise_create(const udm1_noise_desc *caller_desc, udm1_noise **o
     memcpy(n->perm + 256, n->perm, 256);
     const uint8_t *p = n->perm;
     for (int i = 0; i < 512; ++i) n->pair[i] = p[i] | (i < 511 ? p[i + 1] << 8 : 0);
+    for (int i = 0; i < 512; ++i)
+        n->cell4[i] = (uint32_t)p[i] | (uint32_t)n->feature[0][p[i]] << 8 | (uint32_t)n->feature[1][p[i]] << 16 |
+                      (uint32_t)n->feature[2][p[i]] << 24;
     for (int x = 0; x < 256; ++x) {
         const uint8_t *a = p + p[x], *b = p + p[(x + 1) & 255]; /* the columns of x and x + 1 */
         for (int y = 0; y < 256; ++y) {

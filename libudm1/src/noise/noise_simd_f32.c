@@ -302,10 +302,14 @@ AVX2 static inline __m256 flip8(__m256 v, __m256i h, int bit) /* negate the lane
 /* Perlin's gradient of the hash h (low 4 bits; the others ignored) */
 AVX2 static inline __m256 grad3_8(__m256i h, __m256 x, __m256 y, __m256 z)
 {
-    __m256 below8 = mask8(h, 8, 0), below4 = mask8(h, 12, 0), is12or14 = mask8(h, 13, 12);
-    __m256 u = _mm256_blendv_ps(y, x, below8);
+    /* the hash's bits moved to the sign bit, which blendv reads and the sign flips take: bit 3 picks u,
+     * bits 0 and 1 negate u and v */
+    __m256 below4 = mask8(h, 12, 0), is12or14 = mask8(h, 13, 12);
+    __m256 u = _mm256_blendv_ps(x, y, _mm256_castsi256_ps(_mm256_slli_epi32(h, 28)));
     __m256 v = _mm256_blendv_ps(_mm256_blendv_ps(z, x, is12or14), y, below4);
-    return _mm256_add_ps(_mm256_add_ps(flip8(u, h, 1), flip8(v, h, 2)), _mm256_setzero_ps()); /* (a zero +0) */
+    u = _mm256_xor_ps(u, _mm256_castsi256_ps(_mm256_slli_epi32(h, 31)));
+    v = _mm256_xor_ps(v, _mm256_and_ps(_mm256_castsi256_ps(_mm256_slli_epi32(h, 30)), _mm256_set1_ps(-0.0f)));
+    return _mm256_add_ps(_mm256_add_ps(u, v), _mm256_setzero_ps()); /* (a zero +0) */
 }
 
 AVX2 static inline void gvec3_8(__m256i h, __m256 g[3])

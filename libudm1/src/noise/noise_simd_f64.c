@@ -9,8 +9,10 @@
  * differ. A zero's sign changes no non-zero result of sums, differences and products, so only a value or
  * gradient component that is itself zero may differ: those points are recomputed by the scalar code.
  * So every value equals udm1_noise_1d..3d bit for bit, signed zeros included (tests/c/test_noise.c,
- * test_noise_eval.c). Improved noise in 2D and 3D, not periodic, any layout of the coordinates; the rest
- * goes to noise_simd.c's 4-lane kernels (packed points) or to the scalar code. */
+ * test_noise_eval.c). Improved noise in 2D and 3D, not periodic, any layout of the coordinates.
+ * Without AVX-512 VBMI, an AVX2 + FMA kernel on 8 points at a time (below: gathers from the combined
+ * tables, Perlin's +-u +-v as blends and sign flips, signed zeros as the scalar code's). The rest (1D,
+ * 4D, classic, periodic) goes to the scalar code. */
 #include "core/isa.h"
 #include "noise/noise_tables.h"
 
@@ -263,18 +265,247 @@ AVX512 static size_t noise_f64_avx512(const udm1_noise *n, uint32_t dims, const 
                     : kernel_f64(n, 2, axes, stride, count, value, NULL, 0, side);
 }
 
+/* ---- AVX2 + FMA: 8 points, the arithmetic in two halves of 4 doubles ----
+ * The hashes of 8 points by gathers from the combined tables (noise_tables.h: hash4, a cell's four column
+ * hashes in one word; pair, a column's hashes at z and z + 1), Perlin's gradients as blends and sign flips
+ * (the scalar double code's +-u +-v, signed zeros included), the rest the scalar code's operations. */
+#define AVX2 __attribute__((target("avx2,fma")))
+
+AVX2 static inline __m256d load4d(const double *p, size_t stride, __m128i vindex)
+{
+    return stride == 1 ? _mm256_loadu_pd(p) : _mm256_i32gather_pd(p, vindex, 8);
+}
+
+AVX2 static inline int finite4d(__m256d x)
+{
+    __m256d ax = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+    return _mm256_movemask_pd(_mm256_cmp_pd(ax, _mm256_set1_pd(INFINITY), _CMP_LT_OQ)) == 0xF;
+}
+
+/* the exact offset in the cell, and the lower corner's index mod 256 (f - 256 floor(f / 256): exact for
+ * every finite floor f, as the scalar code's (int64_t)f & 255) */
+AVX2 static inline __m256d axis4d(__m256d x, __m128i *i0)
+{
+    __m256d f = _mm256_floor_pd(x);
+    __m256d m = _mm256_sub_pd(f, _mm256_mul_pd(_mm256_floor_pd(_mm256_mul_pd(f, _mm256_set1_pd(1.0 / 256))),
+                                               _mm256_set1_pd(256.0)));
+    *i0 = _mm256_cvttpd_epi32(m);
+    return _mm256_add_pd(_mm256_sub_pd(x, f), _mm256_setzero_pd());
+}
+
+AVX2 static inline __m256d fade4d(__m256d t)
+{
+    __m256d a = _mm256_mul_pd(_mm256_mul_pd(t, t), t);
+    __m256d b = _mm256_sub_pd(_mm256_mul_pd(t, _mm256_set1_pd(6.0)), _mm256_set1_pd(15.0));
+    b = _mm256_add_pd(_mm256_mul_pd(t, b), _mm256_set1_pd(10.0));
+    return _mm256_mul_pd(a, b);
+}
+
+AVX2 static inline __m256d dfade4d(__m256d t)
+{
+    __m256d a = _mm256_mul_pd(_mm256_mul_pd(_mm256_set1_pd(30.0), t), t);
+    __m256d b = _mm256_add_pd(_mm256_mul_pd(t, _mm256_sub_pd(t, _mm256_set1_pd(2.0))), _mm256_set1_pd(1.0));
+    return _mm256_mul_pd(a, b);
+}
+
+AVX2 static inline __m256d lerp4d(__m256d t, __m256d a, __m256d b)
+{
+    return _mm256_add_pd(a, _mm256_mul_pd(t, _mm256_sub_pd(b, a)));
+}
+
+AVX2 static inline __m256d mask4d(__m128i h, int bits, int equal) /* (h & bits) == equal, as a lane mask */
+{
+    __m128i m = _mm_cmpeq_epi32(_mm_and_si128(h, _mm_set1_epi32(bits)), _mm_set1_epi32(equal));
+    return _mm256_castsi256_pd(_mm256_cvtepi32_epi64(m));
+}
+
+AVX2 static inline __m256d flip4d(__m256d v, __m128i h, int bit) /* negate the lanes where h & bit */
+{
+    return _mm256_xor_pd(v, _mm256_and_pd(mask4d(h, bit, bit), _mm256_set1_pd(-0.0)));
+}
+
+/* Perlin's gradient: u = x (h < 8) or y; v = y (h < 4), x (h = 12, 14) or z; +-u +-v (low 4 bits of h) */
+AVX2 static inline __m256d grad3_4d(__m128i h, __m256d x, __m256d y, __m256d z)
+{
+    /* the hash in 64-bit lanes, its bits moved to the sign bit, which blendv reads and the sign flips
+     * take: bit 3 picks u, bits 0 and 1 negate u and v */
+    __m256i w = _mm256_cvtepu32_epi64(h);
+    __m256d below4 = mask4d(h, 12, 0), is12or14 = mask4d(h, 13, 12);
+    __m256d u = _mm256_blendv_pd(x, y, _mm256_castsi256_pd(_mm256_slli_epi64(w, 60)));
+    __m256d v = _mm256_blendv_pd(_mm256_blendv_pd(z, x, is12or14), y, below4);
+    u = _mm256_xor_pd(u, _mm256_castsi256_pd(_mm256_slli_epi64(w, 63)));
+    v = _mm256_xor_pd(v, _mm256_and_pd(_mm256_castsi256_pd(_mm256_slli_epi64(w, 62)), _mm256_set1_pd(-0.0)));
+    return _mm256_add_pd(u, v);
+}
+
+/* its vector: +-1 on the axes of u and v, +0 on the third */
+AVX2 static inline void gvec3_4d(__m128i h, __m256d g[3])
+{
+    __m256d below8 = mask4d(h, 8, 0), below4 = mask4d(h, 12, 0), is12or14 = mask4d(h, 13, 12);
+    __m256d one = _mm256_set1_pd(1.0), zero = _mm256_setzero_pd();
+    __m256d su = flip4d(one, h, 1), sv = flip4d(one, h, 2);
+    __m256d v_on_x = _mm256_andnot_pd(below4, is12or14);
+    __m256d v_on_z = _mm256_andnot_pd(_mm256_or_pd(below4, is12or14), _mm256_castsi256_pd(_mm256_set1_epi64x(-1)));
+    g[0] = _mm256_blendv_pd(_mm256_blendv_pd(zero, sv, v_on_x), su, below8);
+    g[1] = _mm256_blendv_pd(su, _mm256_blendv_pd(zero, sv, below4), below8);
+    g[2] = _mm256_blendv_pd(zero, sv, v_on_z);
+}
+
+/* noise1234's 2D: u = x (h & 7 < 4) or y, v the other; +-u +-2v */
+AVX2 static inline __m256d grad2_4d(__m128i h, __m256d x, __m256d y)
+{
+    __m256d below4 = mask4d(h, 4, 0);
+    __m256d u = _mm256_blendv_pd(y, x, below4);
+    __m256d v = _mm256_mul_pd(_mm256_set1_pd(2.0), _mm256_blendv_pd(x, y, below4));
+    return _mm256_add_pd(flip4d(u, h, 1), flip4d(v, h, 2));
+}
+
+AVX2 static inline void gvec2_4d(__m128i h, __m256d g[2])
+{
+    __m256d below4 = mask4d(h, 4, 0);
+    __m256d su = flip4d(_mm256_set1_pd(1.0), h, 1), sv = flip4d(_mm256_set1_pd(2.0), h, 2);
+    g[0] = _mm256_blendv_pd(sv, su, below4);
+    g[1] = _mm256_blendv_pd(su, sv, below4);
+}
+
+AVX2 static inline void store_interleaved4d(double *out, const __m256d *g, int k)
+{
+    double tmp[3][4];
+    for (int c = 0; c < k; ++c) _mm256_storeu_pd(tmp[c], g[c]);
+    for (int j = 0; j < 4; ++j)
+        for (int c = 0; c < k; ++c) out[k * j + c] = tmp[c][j];
+}
+
+/* One half (4 points) of a 3D group: the corner hashes qA, qB, qA1, qB1 (at z in the low byte, at z + 1 in
+ * the next) */
+AVX2 static inline __attribute__((always_inline)) void half3_avx2(__m128i qA, __m128i qB, __m128i qA1, __m128i qB1,
+                                                                   __m256d x, __m256d y, __m256d z, double *value,
+                                                                   double *gradient, const int with_gradient)
+{
+    const __m256d one = _mm256_set1_pd(1.0);
+    __m256d x1 = _mm256_sub_pd(x, one), y1 = _mm256_sub_pd(y, one), z1 = _mm256_sub_pd(z, one);
+    __m256d u = fade4d(x), v = fade4d(y), w = fade4d(z);
+    __m128i hA1 = _mm_srli_epi32(qA, 8), hB1 = _mm_srli_epi32(qB, 8), hA11 = _mm_srli_epi32(qA1, 8),
+            hB11 = _mm_srli_epi32(qB1, 8);
+    __m256d c000 = grad3_4d(qA, x, y, z), c100 = grad3_4d(qB, x1, y, z);
+    __m256d c010 = grad3_4d(qA1, x, y1, z), c110 = grad3_4d(qB1, x1, y1, z);
+    __m256d c001 = grad3_4d(hA1, x, y, z1), c101 = grad3_4d(hB1, x1, y, z1);
+    __m256d c011 = grad3_4d(hA11, x, y1, z1), c111 = grad3_4d(hB11, x1, y1, z1);
+    if (value)
+        _mm256_storeu_pd(value, lerp4d(w, lerp4d(v, lerp4d(u, c000, c100), lerp4d(u, c010, c110)),
+                                       lerp4d(v, lerp4d(u, c001, c101), lerp4d(u, c011, c111))));
+    if (with_gradient) {
+        __m256d G[8][3], g[3];
+        gvec3_4d(qA, G[0]), gvec3_4d(qB, G[1]), gvec3_4d(qA1, G[2]), gvec3_4d(qB1, G[3]);
+        gvec3_4d(hA1, G[4]), gvec3_4d(hB1, G[5]), gvec3_4d(hA11, G[6]), gvec3_4d(hB11, G[7]);
+        for (int k = 0; k < 3; ++k)
+            g[k] = lerp4d(w, lerp4d(v, lerp4d(u, G[0][k], G[1][k]), lerp4d(u, G[2][k], G[3][k])),
+                          lerp4d(v, lerp4d(u, G[4][k], G[5][k]), lerp4d(u, G[6][k], G[7][k])));
+        __m256d du = dfade4d(x), dv = dfade4d(y), dw = dfade4d(z);
+        __m256d k1 = _mm256_sub_pd(c100, c000), k2 = _mm256_sub_pd(c010, c000), k3 = _mm256_sub_pd(c001, c000);
+        __m256d k4 = _mm256_sub_pd(_mm256_sub_pd(c110, c010), k1), k5 = _mm256_sub_pd(_mm256_sub_pd(c011, c001), k2);
+        __m256d k6 = _mm256_sub_pd(_mm256_sub_pd(c101, c001), k1);
+        __m256d k7 = _mm256_sub_pd(_mm256_sub_pd(_mm256_sub_pd(c111, c011), _mm256_sub_pd(c101, c001)), k4);
+        __m256d k67 = _mm256_add_pd(k6, _mm256_mul_pd(k7, v));
+        __m256d pu = _mm256_add_pd(_mm256_add_pd(k1, _mm256_mul_pd(k4, v)), _mm256_mul_pd(k67, w));
+        __m256d pv = _mm256_add_pd(_mm256_add_pd(k2, _mm256_mul_pd(k4, u)), _mm256_mul_pd(_mm256_add_pd(k5, _mm256_mul_pd(k7, u)), w));
+        __m256d pw = _mm256_add_pd(_mm256_add_pd(k3, _mm256_mul_pd(k5, v)), _mm256_mul_pd(k67, u));
+        g[0] = _mm256_add_pd(g[0], _mm256_mul_pd(du, pu));
+        g[1] = _mm256_add_pd(g[1], _mm256_mul_pd(dv, pv));
+        g[2] = _mm256_add_pd(g[2], _mm256_mul_pd(dw, pw));
+        store_interleaved4d(gradient, g, 3);
+    }
+}
+
+/* One half of a 2D group: the corner hashes [h00, h01, h10, h11] in the bytes of c */
+AVX2 static inline __attribute__((always_inline)) void half2_avx2(__m128i c, __m256d x, __m256d y, double *value,
+                                                                   double *gradient, const int with_gradient)
+{
+    const __m256d one = _mm256_set1_pd(1.0), scale = _mm256_set1_pd(0.507);
+    __m256d x1 = _mm256_sub_pd(x, one), y1 = _mm256_sub_pd(y, one);
+    __m256d u = fade4d(x), v = fade4d(y);
+    __m128i h01 = _mm_srli_epi32(c, 8), h10 = _mm_srli_epi32(c, 16), h11 = _mm_srli_epi32(c, 24);
+    __m256d a = grad2_4d(c, x, y), b = grad2_4d(h10, x1, y), cc = grad2_4d(h01, x, y1), d = grad2_4d(h11, x1, y1);
+    if (value) _mm256_storeu_pd(value, _mm256_mul_pd(scale, lerp4d(v, lerp4d(u, a, b), lerp4d(u, cc, d))));
+    if (with_gradient) {
+        __m256d G[4][2], g[2];
+        gvec2_4d(c, G[0]), gvec2_4d(h10, G[1]), gvec2_4d(h01, G[2]), gvec2_4d(h11, G[3]);
+        for (int k = 0; k < 2; ++k) g[k] = lerp4d(v, lerp4d(u, G[0][k], G[1][k]), lerp4d(u, G[2][k], G[3][k]));
+        __m256d du = dfade4d(x), dv = dfade4d(y);
+        g[0] = _mm256_mul_pd(scale, _mm256_add_pd(_mm256_mul_pd(du, lerp4d(v, _mm256_sub_pd(b, a), _mm256_sub_pd(d, cc))), g[0]));
+        g[1] = _mm256_mul_pd(scale, _mm256_add_pd(_mm256_mul_pd(dv, lerp4d(u, _mm256_sub_pd(cc, a), _mm256_sub_pd(d, b))), g[1]));
+        store_interleaved4d(gradient, g, 2);
+    }
+}
+
+AVX2 static inline __attribute__((always_inline)) size_t kernel_f64_avx2(const udm1_noise *n, const uint32_t dims,
+                                                                         const double *const *axes, size_t stride,
+                                                                         size_t count, double *value, double *gradient,
+                                                                         const int with_gradient, udm1_side_check *side)
+{
+    const __m128i vindex = _mm_mullo_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32((int)stride));
+    const __m256i m255 = _mm256_set1_epi32(255);
+    const int *hash4 = (const int *)n->hash4, *pair = n->pair;
+    __m256d checked = _mm256_setzero_pd();
+    size_t i = 0;
+    for (; i + 8 <= count; i += 8) {
+        checked = udm1_side_step256_pd(side, checked);
+        __m256d c[3][2];
+        int ok = 1;
+        for (uint32_t a = 0; a < dims; ++a)
+            for (int h = 0; h < 2; ++h) {
+                c[a][h] = load4d(axes[a] + (i + 4 * (size_t)h) * stride, stride, vindex);
+                ok &= finite4d(c[a][h]);
+            }
+        if (!ok) break; /* the caller reports it */
+        __m128i idx[3][2];
+        for (uint32_t a = 0; a < dims; ++a)
+            for (int h = 0; h < 2; ++h) c[a][h] = axis4d(c[a][h], &idx[a][h]);
+        __m256i X0 = _mm256_set_m128i(idx[0][1], idx[0][0]), Y0 = _mm256_set_m128i(idx[1][1], idx[1][0]);
+        /* the four column hashes [p[A], p[A1], p[B], p[B1]] (2D: the corner hashes [h00, h01, h10, h11]) */
+        __m256i q = _mm256_i32gather_epi32(hash4, _mm256_or_si256(_mm256_slli_epi32(X0, 8), Y0), 4);
+        if (dims == 3) {
+            /* each column's hashes at z and z + 1 in one load (the doubled permutation's pairs) */
+            __m256i Z0 = _mm256_set_m128i(idx[2][1], idx[2][0]);
+            __m256i qA = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(q, m255), Z0), 4);
+            __m256i qA1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(q, 8), m255), Z0), 4);
+            __m256i qB = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(q, 16), m255), Z0), 4);
+            __m256i qB1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_srli_epi32(q, 24), Z0), 4);
+            for (int h = 0; h < 2; ++h) {
+#define HALF(v) (h ? _mm256_extracti128_si256(v, 1) : _mm256_castsi256_si128(v))
+                half3_avx2(HALF(qA), HALF(qB), HALF(qA1), HALF(qB1), c[0][h], c[1][h], c[2][h],
+                           value ? value + i + 4 * (size_t)h : NULL, with_gradient ? gradient + 3 * (i + 4 * (size_t)h) : NULL,
+                           with_gradient);
+            }
+        } else {
+            for (int h = 0; h < 2; ++h)
+                half2_avx2(HALF(q), c[0][h], c[1][h], value ? value + i + 4 * (size_t)h : NULL,
+                           with_gradient ? gradient + 2 * (i + 4 * (size_t)h) : NULL, with_gradient);
+#undef HALF
+        }
+    }
+    udm1_side_end256_pd(side, checked);
+    return i;
+}
+
+AVX2 static size_t noise_f64_avx2(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
+                                  size_t count, double *value, double *gradient, udm1_side_check *side)
+{
+    if (dims == 3)
+        return gradient ? kernel_f64_avx2(n, 3, axes, stride, count, value, gradient, 1, side)
+                        : kernel_f64_avx2(n, 3, axes, stride, count, value, NULL, 0, side);
+    return gradient ? kernel_f64_avx2(n, 2, axes, stride, count, value, gradient, 1, side)
+                    : kernel_f64_avx2(n, 2, axes, stride, count, value, NULL, 0, side);
+}
+
 size_t udm1_noise_eval_group_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
                                  const double *value, const double *gradient)
 {
     if (n->kind != UDM1_NOISE_IMPROVED || n->period[0] || n->period[1] || n->period[2]) return 0;
     if (dims < 2 || dims > 3) return 0;
-    if (udm1_isa_vbmi() && stride <= (1u << 26)) return 16;
-    /* otherwise the 4-lane kernels of noise_simd.c (blocks of 16 groups of four), for packed points and
-     * values alone */
-    if (gradient || !value || udm1_isa_level() < UDM1_ISA_AVX2) return 0;
-    for (uint32_t c = 1; c < dims; ++c)
-        if (axes[c] != axes[0] + c) return 0;
-    return 64;
+    if (stride > (1u << 26)) return 0; /* (a gather's offsets must fit an int) */
+    (void)axes, (void)value, (void)gradient;
+    return udm1_isa_vbmi() ? 16 : udm1_isa_level() >= UDM1_ISA_AVX2 ? 8 : 0;
 }
 
 size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double *const *axes, size_t stride,
@@ -284,7 +515,8 @@ size_t udm1_noise_eval_fast_f64(const udm1_noise *n, uint32_t dims, const double
     if (!side) side = &none;
     size_t group = udm1_noise_eval_group_f64(n, dims, axes, stride, value, gradient);
     if (group == 16) return noise_f64_avx512(n, dims, axes, stride, count, value, gradient, side);
-    if (group == 64) return udm1_noise_points_fast(n, dims, axes[0], count, stride, value, side);
+    if (group == 8) /* (AVX-512 without VBMI takes the AVX2 kernel) */
+        return noise_f64_avx2(n, dims, axes, stride, count, value, gradient, side);
     return 0;
 }
 

@@ -26,6 +26,8 @@ struct udm1_noise {
     udm1_pick pick2[256];     /* ... 2D */
     double wave_source[UDM1_NOISE_WAVES][3];
     uint8_t feature[3][256];  /* the cellular noise's feature point offsets by axis, b: (b + 1/2) / 256 (udm1/cellular.h) */
+    uint32_t cell4[512];      /* perm[k] | feature[0..2][perm[k]] << 8, 16, 24: a cell's hash and its feature
+                               * point's offsets in one load (the AVX2 cellular kernels) */
 };
 
 /* Coordinates a vector kernel checks for NaN and infinities beside its own work (noise/side_check.h has
