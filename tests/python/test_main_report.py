@@ -23,11 +23,11 @@ pytestmark = pytest.mark.skipif(not all(ENV.values()), reason="the tools' paths 
                                 "UDM1_BUILD_DIR) are not set: run through CTest")
 
 
-def run(out, *extra, ao=None):
+def run(out, *extra, noise=None):
     cmd = [sys.executable, str(ROOT / "tools" / "report" / "main_report.py"), "--quick", "--out", str(out),
            "--build", ENV["UDM1_BUILD_DIR"], "--bench-samplers", ENV["UDM1_BENCH_SAMPLERS"],
-           "--bench-noise", ENV["UDM1_BENCH_NOISE"], "--noise", ENV["UDM1_NOISE_TOOL"],
-           "--ao", ao or ENV["UDM1_AO_TOOL"], "--pt", ENV["UDM1_PT_TOOL"], *extra]
+           "--bench-noise", ENV["UDM1_BENCH_NOISE"], "--noise", noise or ENV["UDM1_NOISE_TOOL"],
+           "--ao", ENV["UDM1_AO_TOOL"], "--pt", ENV["UDM1_PT_TOOL"], *extra]
     return subprocess.run(cmd, capture_output=True, text=True, timeout=900,
                           env={**os.environ, "PYTHONPATH": str(ROOT / "python")})
 
@@ -166,29 +166,30 @@ def test_main_report(tmp_path):
     assert {k: v for k, v in again["tables"].items() if k not in ("steps", "machine")} == \
         {k: v for k, v in tables.items() if k not in ("steps", "machine")}
 
-    # a failing step is shown failed, with its error, and its stale numbers (ao.json is still there) are not shown
-    r = run(out, ao=str(tmp_path / "missing" / "udm1-ao"))
+    # a failing step is shown failed, with its error, and its stale numbers (its files are still there) are not
+    # shown (the noise step: the steps that render are not run again for this)
+    r = run(out, noise=str(tmp_path / "missing" / "udm1-noise"))
     assert r.returncode == 1
     failed = check_page(out)
-    assert failed["steps"]["ao"]["status"] == "failed" and "missing/udm1-ao" in failed["steps"]["ao"]["error"]
-    assert failed["failed"] == ["ao", "screen"] and (out / "ao.json").exists()  # the screen step runs udm1-ao too
-    assert all(v["status"] == "reused" for s, v in failed["steps"].items() if s not in ("ao", "screen"))
-    assert "ao" not in failed["tables"] and not any(c["figure"] == "6" for c in failed["tables"]["claims"]["rows"])
-    steps_row = next(row for row in parse(out / "index.html").tables["steps"] if row[0] == "ao")
-    assert steps_row[2] == "failed" and "missing/udm1-ao" in steps_row[4]
+    assert failed["steps"]["noise"]["status"] == "failed" and "missing/udm1-noise" in failed["steps"]["noise"]["error"]
+    assert failed["failed"] == ["noise"] and (out / "noise_simd.json").exists()
+    assert all(v["status"] == "reused" for s, v in failed["steps"].items() if s != "noise")
+    assert "noise_speed" not in failed["tables"] and "ao" in failed["tables"]
+    steps_row = next(row for row in parse(out / "index.html").tables["steps"] if row[0] == "noise")
+    assert steps_row[2] == "failed" and "missing/udm1-noise" in steps_row[4]
     assert "This step failed" in (out / "index.html").read_text()
 
     # an interrupted step (left "running") runs again; the failed one too; the others are reused
     state = json.loads((out / "steps.json").read_text())
-    state["pt"]["status"] = "running"
+    state["tent"]["status"] = "running"
     (out / "steps.json").write_text(json.dumps(state))
     r = run(out)
     assert r.returncode == 0, r.stderr[-3000:]
     final = check_page(out)
     assert {s: v["status"] for s, v in final["steps"].items()} == {
-        "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "reused", "ao": "ok", "pt": "ok",
-        "mitsuba": "reused", "tolerance": "reused", "tent": "reused", "screen": "ok"}
-    assert "ao" in final["tables"]
+        "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "ok", "ao": "reused",
+        "pt": "reused", "mitsuba": "reused", "tolerance": "reused", "tent": "ok", "screen": "reused"}
+    assert "noise_speed" in final["tables"] and "tent" in final["tables"]
 
 
 def test_bad_arguments(tmp_path):
