@@ -9,6 +9,12 @@ pbrt-v4 reads it: names are relative to the directory of the main scene file, in
 (tools/pbrt_references.py). No stand-in is made for a .pbrt include whose text is absent (it is reported as
 not readable), nor where none can be written (NanoVDB grids, measured BSDF tables), which is reported.
 
+Where a file's full text is absent but the collection folder holds a condensed transcription of it under
+.condensed/ (same path; every directive and parameter as in the file, the long numeric arrays of inline meshes
+cut to a one-triangle stand-in), the scene is read with it: an include or a main file. Such a scene is never
+counted as read whole: its stand-ins column says "condensed geometry" and the summary counts the scenes that
+render on condensed text apart ("renders N (of which M on condensed text)").
+
 udm1-pt renders each scene at a tiny size with 1 sample per pixel on one thread, under a time limit. The
 result is `renders` (with the notes udm1-pt printed) or the first refusal: udm1-pt stops at its first error,
 so a scene's later refusals are not listed; the tally counts scenes by their first refusal only.
@@ -83,16 +89,33 @@ def build_overlay(collection: Path, overlay: Path) -> None:
             os.symlink(src.resolve(), dst)
 
 
+CONDENSED = ".condensed"  # the collection's condensed transcriptions of files whose full text is absent
+
+
 def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict) -> dict:
-    """Stand-ins in the overlay for what the scene names and the collection lacks; what could not be made."""
-    files = scan(main, collection)
+    """Stand-ins in the overlay for what the scene names and the collection lacks, the condensed texts it is
+    read with (copied into the overlay where the full text would be); what could not be made."""
+    condensed_dir = collection / CONDENSED
+    main_rel = main.relative_to(collection).as_posix()
+    condensed = []
+    if not main.is_file():  # a main file read from its condensed transcription
+        short = condensed_dir / main_rel
+        files = scan(short, collection, condensed=condensed_dir, base=main.parent, label=main_rel)
+        condensed.append(main_rel)
+    else:
+        files = scan(main, collection, condensed=condensed_dir)
+    condensed += files.condensed
+    for rel in condensed:
+        target = overlay / rel
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copyfile(condensed_dir / rel, target)
     made, blocked, unreadable = {}, {}, {}
     for ref in files.references:
         try:
             rel = ref.path.resolve().relative_to(collection.resolve()).as_posix()
         except ValueError:
             continue  # an absolute name outside the collection: left to the renderer
-        if ref.path.exists():
+        if ref.path.exists() or rel in condensed:
             continue
         if ref.include and not ref.name.lower().endswith(".gz"):
             entry = manifest.get(rel)
@@ -108,7 +131,8 @@ def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict) -
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_bytes(data)
             made[rel] = what
-    return {"references": len(files.references), "stand_ins": made, "blocked": blocked, "unreadable": unreadable}
+    return {"references": len(files.references), "stand_ins": made, "blocked": blocked, "unreadable": unreadable,
+            "condensed": condensed}
 
 
 def feature_of(msg: str, tried: str | None, scene: dict) -> str:
@@ -238,6 +262,8 @@ def census(args) -> dict:
     present = [p.relative_to(collection).as_posix() for p in main_files(collection)]
     absent = sorted(p for p, e in manifest.items()
                     if e["role"] == "scene" and e["fetched"] != "yes" and p not in present)
+    present += [p for p in absent if (collection / CONDENSED / p).is_file()]  # read on condensed text
+    absent = [p for p in absent if p not in present]
     scenes = sorted(present + absent)
     if args.only:
         keys = [k.strip() for k in args.only.split(",") if k.strip()]
@@ -258,7 +284,7 @@ def census(args) -> dict:
                         images / (rel.replace("/", "__") + ".exr"))
         row.update(judge(run, prep))
         row.update(stand_ins=prep["stand_ins"], blocked=prep["blocked"], unreadable=prep["unreadable"],
-                   references=prep["references"])
+                   references=prep["references"], condensed=prep["condensed"])
         if args.pbrt:
             row["pbrt"] = run_pbrt(args.pbrt, overlay / rel, args.size, args.timeout,
                                    images / (rel.replace("/", "__") + ".pbrt.exr"))
@@ -280,12 +306,20 @@ def tally(rows) -> list[tuple[str, int, list[str]]]:
 def markdown(data: dict) -> str:
     rows = data["rows"]
     counts = Counter(r["result"] for r in rows)
+    on_condensed = Counter(r["result"] for r in rows if r.get("condensed"))
     lines = [f"# udm1-pt on the pbrt-v4 scene collection: {len(rows)} scenes in {data['folders']} folders", "",
              f"Collection: `{data['collection']}`; renderer: `{data['tool']}` at {data['size']}, 1 spp, one thread.",
              f"Scenes: {data['rule']}.",
              "Each scene's absent meshes, images and spectra are stand-ins (tools/pbrt_placeholders.py) placed by "
              "pbrt-v4's path rule; udm1-pt stops at its first refusal, so only the first is listed.", "",
-             "Results: " + ", ".join(f"{k} {v}" for k, v in sorted(counts.items(), key=lambda kv: -kv[1])) + "."]
+             "Results: " + ", ".join(f"{k} {v}" + (f" (of which {on_condensed[k]} on condensed text)"
+                                                   if on_condensed[k] else "")
+                                     for k, v in sorted(counts.items(), key=lambda kv: -kv[1])) + "."]
+    if any(r.get("condensed") for r in rows):
+        lines += ["", "Condensed text: a file whose full text is absent, read from the collection's "
+                  f"{CONDENSED}/ transcription (its directives as in the file, its inline meshes cut to one "
+                  "triangle); such scenes say \"condensed geometry\" in the stand-ins column and are not the "
+                  "scene as distributed."]
     pbrt = data.get("pbrt")
     if pbrt:
         pc = Counter(r["pbrt"]["result"] for r in rows if "pbrt" in r)
@@ -300,7 +334,8 @@ def markdown(data: dict) -> str:
             refusal = "notes: " + "; ".join(n.replace("|", "\\|") for n in r["notes"])
         made = len(r.get("stand_ins", {}))
         extra = f"{made}" + (f", {len(r['blocked'])} impossible" if r.get("blocked") else "") + (
-            f", {len(r['unreadable'])} includes absent" if r.get("unreadable") else "")
+            f", {len(r['unreadable'])} includes absent" if r.get("unreadable") else "") + (
+            f", condensed geometry ({', '.join(r['condensed'])})" if r.get("condensed") else "")
         line = f"| {r['scene']} | {r['result']} | {refusal} | {r['feature']} | {extra} |"
         if pbrt:
             pr = r.get("pbrt", {"result": "-", "message": ""})
@@ -331,8 +366,11 @@ def readme_table(data: dict) -> str:
     what udm1-pt models is checked against."""
     rows = data["rows"]
     renders = [r["scene"] for r in rows if r["result"] == "renders"]
+    condensed = [r["scene"] for r in rows if r["result"] == "renders" and r.get("condensed")]
     lines = [f"udm1-pt renders {len(renders)} of the collection's {len(rows)} scenes"
-             + (f" ({', '.join(renders)})" if renders else "") + "; the others stop first at:", ""]
+             + (f" ({', '.join(renders)})" if renders else "")
+             + (f", of which {len(condensed)} on condensed text" if condensed else "") + "; the others stop first at:",
+             ""]
     if data.get("pbrt"):
         both = sum(r.get("pbrt", {}).get("result") == "renders" for r in rows)
         lines[0] = lines[0][:-1] + f" (pbrt-v4 renders {both} of the {len(rows)} with the same stand-ins):"

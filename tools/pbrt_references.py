@@ -45,10 +45,12 @@ class Reference:
 
 @dataclass
 class SceneFiles:
-    """What a main file names, in reading order, and which of its includes could not be read as text."""
+    """What a main file names, in reading order, which of its includes could not be read as text, and which
+    were read from a condensed transcription instead of the full text (by their path in the collection)."""
     main: Path
     references: list[Reference] = field(default_factory=list)
     unreadable_includes: list[Reference] = field(default_factory=list)
+    condensed: list[str] = field(default_factory=list)
 
 
 def tokens(text: str):
@@ -74,11 +76,18 @@ def is_directive(word: str) -> bool:
     return word[:1].isalpha() and word[:1].isupper()
 
 
-def scan(main: Path, root: Path, max_depth: int = 32) -> SceneFiles:
+def scan(main: Path, root: Path, max_depth: int = 32, condensed: Path | None = None,
+         base: Path | None = None, label: str | None = None) -> SceneFiles:
     """Every file name the scene `main` gives, its readable includes followed (each once), resolved by
-    pbrt-v4's rule. `root` is the collection's folder, which `source` is given relative to."""
+    pbrt-v4's rule. `root` is the collection's folder, which `source` is given relative to.
+
+    `condensed`, where given, is a folder mirroring the collection with condensed transcriptions of files
+    whose full text is absent (every directive kept, long inline mesh arrays cut to a stand-in): an include
+    absent from the collection is followed there, and listed in `condensed`. `base` is the folder names are
+    resolved against (default: the main file's) and `label` the main file's name in `source` (default: its path
+    in the collection): give both where `main` is itself a condensed transcription."""
     found = SceneFiles(main)
-    base = main.parent
+    base = base if base is not None else main.parent
     seen: set[Path] = set()
 
     def resolve(name: str) -> Path:
@@ -91,8 +100,9 @@ def scan(main: Path, root: Path, max_depth: int = 32) -> SceneFiles:
         except ValueError:
             return str(p)
 
-    def walk(path: Path, depth: int) -> None:
+    def walk(path: Path, depth: int, source: str | None = None) -> None:
         seen.add(path.resolve())
+        source = source or rel(path)
         toks = list(tokens(path.read_text(encoding="utf-8", errors="replace")))
         directive, kind = "", ""
         i = 0
@@ -102,12 +112,19 @@ def scan(main: Path, root: Path, max_depth: int = 32) -> SceneFiles:
                 directive, kind = v, ""
                 if v in INCLUDES and i + 1 < len(toks) and toks[i + 1][0] == "q":
                     name = toks[i + 1][1]
-                    ref = Reference(rel(path), line, v, "Include", name, resolve(name))
+                    ref = Reference(source, line, v, "Include", name, resolve(name))
                     found.references.append(ref)
                     target = ref.path
+                    inside = not Path(rel(target)).is_absolute()  # a name outside the collection has none
+                    short = condensed / rel(target) if condensed is not None and inside else None
                     if target.is_file() and not name.lower().endswith(".gz"):
                         if target.resolve() not in seen and depth < max_depth:
                             walk(target, depth + 1)
+                    elif short is not None and not target.exists() and short.is_file():
+                        if rel(target) not in found.condensed:
+                            found.condensed.append(rel(target))
+                        if short.resolve() not in seen and depth < max_depth:
+                            walk(short, depth + 1, rel(target))
                     else:
                         found.unreadable_includes.append(ref)
                     i += 2
@@ -128,12 +145,12 @@ def scan(main: Path, root: Path, max_depth: int = 32) -> SceneFiles:
                 if directive != "Film" and ((ptype == "string" and pname in FILE_PARAMS)
                                             or (ptype == "spectrum" and _spectrum_files(values))):
                     for name in (values if ptype == "string" else _spectrum_files(values)):
-                        found.references.append(Reference(rel(path), line, label, pname, name, resolve(name)))
+                        found.references.append(Reference(source, line, label, pname, name, resolve(name)))
                 i = j
                 continue
             i += 1
 
-    walk(main, 0)
+    walk(main, 0, label)
     return found
 
 

@@ -1,7 +1,7 @@
 """The scene census (bench/bench_scene_census.py) on a small collection made here: which scenes it counts, the
 stand-ins it makes (valid files that udm1-pt reads, placed by pbrt-v4's path rule, the collection left
 untouched), what it reports (renders, the tool's own first refusal, an include whose text is absent, a file
-no stand-in can replace), and the one skip line where the collection is absent."""
+no stand-in can replace, a scene read on condensed text), and the one skip line where the collection is absent."""
 
 import gzip
 import json
@@ -54,6 +54,16 @@ SCENES = {
     "rule/geometry/mat.pbrt": '# "string filename" "textures/commented.png" is a comment\n'
                               'Texture "inner" "spectrum" "imagemap"\n    "string filename" [ "textures/inner.png" ]\n'
                               'Material "diffuse" "texture reflectance" "inner"\nShape "sphere" "float radius" 0.5\n',
+    # its include's full text is absent, a condensed transcription of it is in .condensed/
+    "short/short.pbrt": VIEW + LIGHT + 'Include "geometry/mesh.pbrt"\n',
+}
+TRIANGLE = 'Shape "trianglemesh" "point3 P" [ -1 -1 0  1 -1 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
+CONDENSED = {
+    # names inside a condensed include follow pbrt-v4's rule too (relative to short/, the main file's folder)
+    "short/geometry/mesh.pbrt": 'Texture "t" "spectrum" "imagemap" "string filename" "textures/c.png"\n'
+                                'Material "diffuse" "texture reflectance" "t"\n' + TRIANGLE,
+    # a main file whose full text is absent (the manifest lists it), read from its condensed transcription
+    "bigmain/bigmain.pbrt": VIEW + LIGHT + 'Material "diffuse"\n' + TRIANGLE,
 }
 
 
@@ -62,8 +72,13 @@ def make_collection(folder: pathlib.Path) -> pathlib.Path:
     for rel, text in SCENES.items():
         (col / rel).parent.mkdir(parents=True, exist_ok=True)
         (col / rel).write_text(text)
+    for rel, text in CONDENSED.items():
+        (col / ".condensed" / rel).parent.mkdir(parents=True, exist_ok=True)
+        (col / ".condensed" / rel).write_text(text)
     (col / "MANIFEST.txt").write_text("# test manifest\ngone/gone.pbrt\t0\t100\tno\tscene\ttoo large\n"
-                                      "partial/geometry/big.pbrt\t0\t900000\tno\tinclude\ttoo large\n")
+                                      "partial/geometry/big.pbrt\t0\t900000\tno\tinclude\ttoo large\n"
+                                      "short/geometry/mesh.pbrt\t0\t800000\tno\tinclude\ttoo large\n"
+                                      "bigmain/bigmain.pbrt\t0\t700000\tno\tscene\ttoo large\n")
     return col
 
 
@@ -186,6 +201,26 @@ def test_absent_text_and_impossible_stand_ins_are_reported(census):
     assert tally["text not available (include not fetched)"] == 1
     assert tally["text not available (main file not fetched)"] == 1
     assert sum(tally.values()) == sum(r["result"] != "renders" for r in census["data"]["rows"])
+
+
+@needs_tool
+def test_condensed_text_is_used_and_labelled(census):
+    rows = census["rows"]
+    short, big = rows["short/short.pbrt"], rows["bigmain/bigmain.pbrt"]
+    assert short["result"] == "renders" and short["condensed"] == ["short/geometry/mesh.pbrt"], short
+    assert short["stand_ins"] == {"short/textures/c.png": "a 4x4 PNG"} and short["unreadable"] == {}
+    assert big["result"] == "renders" and big["condensed"] == ["bigmain/bigmain.pbrt"], big
+    overlay = census["out"] / "overlay"
+    for rel, text in CONDENSED.items():  # read where the full text would be, from the overlay only
+        assert (overlay / rel).read_text() == text and not (census["col"] / rel).exists()
+    # never counted as read whole: labelled in its row and counted apart in the summary
+    assert "| short/short.pbrt | renders |" in census["stdout"]
+    assert "condensed geometry (short/geometry/mesh.pbrt) |" in census["stdout"]
+    assert "condensed geometry (bigmain/bigmain.pbrt) |" in census["stdout"]
+    renders = sum(r["result"] == "renders" for r in rows.values())
+    assert f"Results: renders {renders} (of which 2 on condensed text)" in census["stdout"]
+    assert rows["plain/plain.pbrt"]["condensed"] == [] and rows["partial/partial.pbrt"]["result"] == "not readable"
+    assert snapshot(census["col"]) == census["before"]
 
 
 FAKE_PBRT = """#!/bin/sh
