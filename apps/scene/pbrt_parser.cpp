@@ -186,6 +186,7 @@ public:
     // The main scene file: its folder is where pbrt-v4 looks for every relative file name (resolve_path).
     void parse_main(const std::string &path)
     {
+        if (!geometry_only_) scene_.pixel_filter = PixelFilter::defaults("gaussian");  // pbrt-v4's default filter
         size_t slash = path.find_last_of('/');
         scene_.search_dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
         Lexer lex;
@@ -842,8 +843,33 @@ private:
     {
         Lexer &lex = c.lex;
         const Token &t = c.t;
-        string_arg(lex, "PixelFilter");
-        params(lex, t);  // the renderers use their own box filter
+        std::string type = string_arg(lex, "PixelFilter");
+        ParamSet ps = params(lex, t);
+        if (geometry_only_) {  // (udm1-ao's primary rays are its own: the pixel's centre or a box)
+            ignore(c.here, "PixelFilter");
+            return;
+        }
+        PixelFilter f;
+        try {
+            f = PixelFilter::defaults(type);
+        } catch (const std::invalid_argument &) {
+            throw SceneError(c.here + ": PixelFilter \"" + quote(type) + "\" is not one of pbrt-v4's filters (box, gaussian, "
+                                      "mitchell, sinc, triangle)");
+        }
+        if (type == "gaussian") only(ps, {"xradius", "yradius", "sigma"}, "PixelFilter \"gaussian\"");
+        else if (type == "mitchell") only(ps, {"xradius", "yradius", "B", "C"}, "PixelFilter \"mitchell\"");
+        else if (type == "sinc") only(ps, {"xradius", "yradius", "tau"}, "PixelFilter \"sinc\"");
+        else only(ps, {"xradius", "yradius"}, "PixelFilter \"" + type + "\"");
+        // (pbrt-v4 reads them as float)
+        f.xradius = (float)ps.get_float("xradius", f.xradius), f.yradius = (float)ps.get_float("yradius", f.yradius);
+        f.sigma = (float)ps.get_float("sigma", f.sigma), f.tau = (float)ps.get_float("tau", f.tau);
+        f.b = (float)ps.get_float("B", f.b), f.c = (float)ps.get_float("C", f.c);
+        f.where = c.here;
+        const char *at = "";
+        std::string bad = f.invalid(&at);
+        if (!bad.empty())
+            throw SceneError((ps.find(at) ? ps.find(at)->where : c.here) + ": PixelFilter \"" + type + "\": " + bad);
+        scene_.pixel_filter = f;
     }
 
     void on_ColorSpace(const Call &c)
