@@ -9,6 +9,7 @@
 #include "wavefront_general.h"
 
 #include "spectrum.h"
+#include "white_balance.h"
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -82,8 +83,11 @@ Vec3 trace(const Estimator &est, const udm1scene::EmbreeScene &rt, PathState &p,
 
 FilmResponse::FilmResponse(const udm1scene::Scene &scene)
     : scale(scene.film_scale), max_component(scene.max_component), clamp(std::isfinite(scene.max_component)),
-      sampler(scene.pixel_filter), weighted(sampler.signed_weights()), stride(weighted ? 4 : 3)
+      balance(scene.white_balance > 0), sampler(scene.pixel_filter), weighted(sampler.signed_weights()),
+      stride(weighted ? 4 : 3)
 {
+    if (balance && !udm1scene::white_balance_rgb(scene.white_balance, wb))
+        throw std::runtime_error("white balance " + std::to_string(scene.white_balance) + " K is not finite");
     for (int c = 0; c < 3; ++c) {  // (column c of XYZ from RGB: the XYZ of the primary c)
         Vec3 e;
         e[c] = 1;

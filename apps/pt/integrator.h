@@ -115,7 +115,8 @@ struct Options {
 
 // What the film makes of a path's radiance L before it is summed, as pbrt-v4's RGB film adds a sample: the
 // imaging ratio (Scene::film_scale), then Film "maxcomponentvalue" m: the sample scaled so that the largest
-// of its sensor values - CIE X, Y and Z for the default cie1931 sensor - is at most m. And where a sample
+// of its sensor values - CIE X, Y and Z for the default cie1931 sensor - is at most m, then the sensor's white
+// balance (Film "whitebalance", pbrt-v4's outputRGBFromSensorRGB). And where a sample
 // lies on the film: the pixel filter (udm1scene::FilmSampler) places it and gives its weight's sign; with
 // negative lobes (weighted) the pixel's sums hold a fourth channel W, the sum of the signs, and the pixel is
 // the weighted mean (sum of sign L) / W, as pbrt-v4's film divides by its sum of weights.
@@ -128,11 +129,14 @@ struct FilmResponse {
             double m = std::max({udm1scene::dot(xyz[0], L), udm1scene::dot(xyz[1], L), udm1scene::dot(xyz[2], L)});
             if (m > max_component) L = L * (max_component / m);
         }
+        if (balance) L = Vec3(udm1scene::dot(wb[0], L), udm1scene::dot(wb[1], L), udm1scene::dot(wb[2], L));
         return L;
     }
     double scale, max_component;
     bool clamp;
     Vec3 xyz[3];  // the rows of XYZ from linear sRGB
+    bool balance;  // Film "whitebalance": wb, the adaptation on linear sRGB (udm1scene::white_balance_rgb), after the clamp
+    Vec3 wb[3];
     udm1scene::FilmSampler sampler;
     bool weighted;  // sampler.signed_weights(): the sums hold W
     size_t stride;  // channels per pixel of the sums: 3 (R, G, B) or 4 (and W)

@@ -11,6 +11,7 @@
 #include "medium_presets.h"
 #include "mesh_io.h"
 #include "spectrum.h"
+#include "white_balance.h"
 #include "udm1app/one_line.h"
 
 #include <sys/stat.h>
@@ -707,6 +708,7 @@ private:
                 if (const Param *p = ps.find(n)) ignore(p->where, std::string("Film '") + n + "'");
             return;
         }
+        film_sensor(ps);
         if (type == "gbuffer") {
             std::string cs = ps.get_string("coordinatesystem", "camera");
             if (cs != "camera" && cs != "world")
@@ -754,6 +756,39 @@ private:
         if (ps.find("savefp16"))
             scene_.notes.push_back(ps.find("savefp16")->where + ": Film: savefp16 ignored: udm1-pt writes 32-bit floats "
                                                                 "(and exact sums)");
+    }
+
+    // pbrt-v4's PixelSensor: "cie1931" (its default: the film records CIE XYZ) with an optional white balance
+    // (white_balance.h). The cameras' sensors are measured spectral responses that no maintained package
+    // provides: such a film renders as the cie1931 sensor with the white balance pbrt-v4 gives a camera (6500 K
+    // unless the file says), with a note naming the sensor; a name pbrt-v4 does not know is refused.
+    void film_sensor(const ParamSet &ps)
+    {
+        static const std::set<std::string> CAMERAS = {
+            "canon_eos_100d", "canon_eos_1dx_mkii", "canon_eos_200d", "canon_eos_200d_mkii", "canon_eos_5d",
+            "canon_eos_5d_mkii", "canon_eos_5d_mkiii", "canon_eos_5d_mkiv", "canon_eos_5ds", "canon_eos_m",
+            "hasselblad_l1d_20c", "nikon_d810", "nikon_d850", "sony_ilce_6400", "sony_ilce_7m3", "sony_ilce_7rm3",
+            "sony_ilce_9"};
+        const std::string &sensor = scene_.film_sensor;
+        const bool camera = sensor != "cie1931";
+        if (camera && !CAMERAS.count(sensor))
+            throw SceneError(ps.find("sensor")->where + ": Film: sensor \"" + quote(sensor) + "\" is not one of pbrt-v4's "
+                                                        "(cie1931 and its cameras' names)");
+        const Param *p = ps.find("whitebalance", "float");
+        double kelvin = (float)ps.get_float("whitebalance", 0);  // (read as float, as pbrt-v4 reads it)
+        if (!(kelvin >= 0) || !std::isfinite(kelvin))
+            throw SceneError(p->where + ": Film: whitebalance must be a temperature in kelvin (0: none)");
+        if (camera && kelvin == 0) kelvin = 6500;  // (pbrt-v4's default for a camera's sensor)
+        Vec3 rows[3];
+        if (kelvin > 0 && !white_balance_rgb(kelvin, rows))
+            throw SceneError(p->where + ": Film: whitebalance " + number_text(kelvin) + " K: no light to balance to "
+                                        "(Planck's law gives none at that temperature)");
+        scene_.white_balance = kelvin;
+        if (camera)
+            scene_.notes.push_back(ps.find("sensor")->where + ": Film: sensor \"" + sensor + "\" (a camera's measured "
+                                   "spectral response, which udm1 does not have) renders as the cie1931 sensor balanced "
+                                   "from " + short_number(kelvin) + " K: its colours differ from pbrt-v4's by the "
+                                   "camera's response");
     }
 
     void on_Sampler(const Call &c)
