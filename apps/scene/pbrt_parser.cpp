@@ -335,8 +335,12 @@ private:
             try {
                 s = read_spectrum_file(full);
             } catch (const SceneError &e) {
-                throw SceneError(p.where + ": '" + p.name + "': \"" + file + "\" is not a named spectrum that udm1 knows (" +
-                                 known_spectra() + ") nor a spectrum file (" + e.what() + ")");
+                if (pbrt_v4_named_spectrum(file))
+                    throw SceneError(p.where + ": '" + p.name + "': \"" + file + "\" is one of pbrt-v4's named spectra, whose "
+                                     "measured data udm1 does not hold (no maintained package it builds from provides "
+                                     "them; it holds " + known_spectra() + ")");
+                throw SceneError(p.where + ": '" + p.name + "': \"" + quote(file) + "\" is not a named spectrum that udm1 "
+                                 "knows (" + known_spectra() + ") nor a spectrum file (" + e.what() + ")");
             }
             p.strings.clear();
             for (size_t i = 0; i < s.nm.size(); ++i) p.numbers.push_back(s.nm[i]), p.numbers.push_back(s.value[i]);

@@ -265,8 +265,8 @@ HEAD = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]\nCame
         ('Texture "t" "spectrum" "checkerboard" "integer dimension" [ 4 ]\nShape "sphere"\n', 4, "dimension must be 2 or 3"),
         ('Material "coatedconductor" "rgb reflectance" [ 0.5 0.5 0.5 ] "spectrum conductor.eta" "metal-Au-eta"\n'
          'Shape "sphere"\n', 4, 'both "reflectance" and "eta" and "k"'),
-        ('Material "conductor" "spectrum eta" [ 400 0.2 700 0.2 ] "spectrum k" [ 300 3 900 3 ]\nShape "sphere"\n', 4,
-         "an eta of 0 makes its Fresnel term not a number"),
+        ('Material "conductor" "spectrum eta" [ 400 -0.2 700 0.2 ] "spectrum k" [ 300 3 900 3 ]\nShape "sphere"\n', 4,
+         "eta and k must not be negative"),
         ('Material "diffuse" "string normalmap" "nothere.png"\nShape "sphere"\n', 4, "nothere.png"),
         ('Material "measured" "string filename" "x.bsdf"\nShape "sphere"\n', 4, 'Material "measured" is not supported'),
     ],
