@@ -42,9 +42,7 @@ const std::map<std::string, Spectrum> &named()
         t["stdillum-D65"] = d65;
         // pbrt-v4's glasses, by their index at 550 nm only: udm1-pt's dielectrics have one index (no
         // dispersion), so nothing else of these spectra is read
-        for (auto [name, eta] : {std::pair<const char *, double>{"glass-BK7", 1.5185}, {"glass-BAF10", 1.6700},
-                                 {"glass-F11", 1.6200}})
-            t[name] = Spectrum::constant(eta);
+        for (const spectral_data::GlassIndex *g = spectral_data::GLASSES; g->name; ++g) t[g->name] = Spectrum::constant(g->eta_550);
         return t;
     }();
     return table;
