@@ -137,6 +137,9 @@ def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict) -
 
 def feature_of(msg: str, tried: str | None, scene: dict) -> str:
     """A short name for what a refusal is about, by which the tally groups scenes."""
+    m = re.search(r'"(?P<n>[^"]+)" is one of pbrt-v4\'s named spectra, whose measured data udm1 does not hold', msg)
+    if m:
+        return f'a named spectrum udm1 does not hold ({m.group("n")})'
     if tried:
         if tried in scene["unreadable"]:
             return "text not available (include not fetched)"

@@ -9,6 +9,7 @@
 #include "wavefront_general.h"
 
 #include "spectrum.h"
+#include "white_balance.h"
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/parallel_for.h>
@@ -81,8 +82,12 @@ Vec3 trace(const Estimator &est, const udm1scene::EmbreeScene &rt, PathState &p,
 }  // namespace
 
 FilmResponse::FilmResponse(const udm1scene::Scene &scene)
-    : scale(scene.film_scale), max_component(scene.max_component), clamp(std::isfinite(scene.max_component))
+    : scale(scene.film_scale), max_component(scene.max_component), clamp(std::isfinite(scene.max_component)),
+      balance(scene.white_balance > 0), sampler(scene.pixel_filter), weighted(sampler.signed_weights()),
+      stride(weighted ? 4 : 3)
 {
+    if (balance && !udm1scene::white_balance_rgb(scene.white_balance, wb))
+        throw std::runtime_error("white balance " + std::to_string(scene.white_balance) + " K is not finite");
     for (int c = 0; c < 3; ++c) {  // (column c of XYZ from RGB: the XYZ of the primary c)
         Vec3 e;
         e[c] = 1;
@@ -131,12 +136,13 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                                                                 view.width, view.height);
     Sequence seq_owner = make_sequence(opt, path_dims(max_depth));  // freed on every path
     udm1_seq *seq = seq_owner.get();
+    const FilmResponse film(scene);
     Accumulator acc;
-    acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1], {"R", "G", "B"},
+    acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1],
+              film.weighted ? std::vector<std::string>{"R", "G", "B", "W"} : std::vector<std::string>{"R", "G", "B"},
               SAMPLE_SCALE);
     acc.spp = opt.spp, acc.first = opt.first, acc.count = count;
     const udm1scene::CameraRays camera(view);
-    const FilmResponse film(scene);
     const Estimator estimator(scene, lights, materials, max_depth, opt.strategy, opt.roulette, opt.rr_depth);
     std::unique_ptr<DiffuseWavefront> diffuse;
     std::unique_ptr<GeneralWavefront> general;
@@ -163,7 +169,7 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
         uint64_t local_rays = 0, local_nonfinite = 0, local_clamped = 0;
         for (int y = r.rows().begin(); y < r.rows().end(); ++y)
             for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                int64_t *px = &acc.sum[3 * ((size_t)(y - acc.y0) * acc.width + (x - acc.x0))];
+                int64_t *px = &acc.sum[film.stride * ((size_t)(y - acc.y0) * acc.width + (x - acc.x0))];
                 udm1_stream pixel;  // the pixel's randomization, once: its samples' domains draw inline
                 udm1_stream_init(&pixel, seq, order.stream(x, y), 0, stream_dims(max_depth));
                 for (uint64_t n = opt.first; n < opt.first + count; ++n) {
@@ -171,19 +177,12 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
                     udm1_domain sample = udm1_domain_root(&pixel, i);
                     double uv[4];
                     udm1_domain_draw_f64(sample, camera.has_lens() ? 4 : 2, uv);
+                    const int sign = film.sampler.place(uv);
                     PathState path;
                     path.pixel = &pixel, path.index = i;
                     camera.ray(x + uv[0], y + uv[1], uv[2], uv[3], &path.o, &path.d);
-                    Vec3 L = film(trace(estimator, rt, path, &local_rays));
-                    for (int k = 0; k < 3; ++k) {
-                        double v = L[k];
-                        if (!std::isfinite(v)) {
-                            ++local_nonfinite;
-                            continue;
-                        }
-                        if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++local_clamped;
-                        px[k] += (int64_t)std::llround(v * SAMPLE_SCALE);
-                    }
+                    add_sample(px, film(trace(estimator, rt, path, &local_rays)), sign, film.weighted, &local_nonfinite,
+                               &local_clamped);
                 }
             }
         rays += local_rays, nonfinite += local_nonfinite, clamped += local_clamped;

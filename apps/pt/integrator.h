@@ -8,7 +8,8 @@
 //
 // The sampler's values: one udm1 domain tree per path (udm1/domain.h), so that no dimension is counted by
 // hand. Sample i of pixel p is the root domain udm1_domain_root(stream of p, i):
-//   root                 2 values: the position in the pixel (box filter); 4 with a thin lens (2, 3: lens)
+//   root                 2 values: the position on the film, placed by the pixel filter (FilmResponse::sampler,
+//                        pbrt-v4's filter importance sampling); 4 with a thin lens (2, 3: lens)
 //   next(root, 1 + d)    the vertex of depth d (0, 1, ..., maxdepth - 1) that scatters, 4 values: 0, 1
 //                        next-event estimation (0 picks the light by power and, rescaled, gives with 1 the
 //                        point on it), 2, 3 the BSDF direction
@@ -41,6 +42,7 @@
 #include <udm1/udm1.h>
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -116,7 +118,11 @@ struct Options {
 
 // What the film makes of a path's radiance L before it is summed, as pbrt-v4's RGB film adds a sample: the
 // imaging ratio (Scene::film_scale), then Film "maxcomponentvalue" m: the sample scaled so that the largest
-// of its sensor values - CIE X, Y and Z for the default cie1931 sensor - is at most m.
+// of its sensor values - CIE X, Y and Z for the default cie1931 sensor - is at most m, then the sensor's white
+// balance (Film "whitebalance", pbrt-v4's outputRGBFromSensorRGB). And where a sample
+// lies on the film: the pixel filter (udm1scene::FilmSampler) places it and gives its weight's sign; with
+// negative lobes (weighted) the pixel's sums hold a fourth channel W, the sum of the signs, and the pixel is
+// the weighted mean (sum of sign L) / W, as pbrt-v4's film divides by its sum of weights.
 struct FilmResponse {
     explicit FilmResponse(const udm1scene::Scene &scene);
     Vec3 operator()(Vec3 L) const
@@ -126,12 +132,27 @@ struct FilmResponse {
             double m = std::max({udm1scene::dot(xyz[0], L), udm1scene::dot(xyz[1], L), udm1scene::dot(xyz[2], L)});
             if (m > max_component) L = L * (max_component / m);
         }
+        if (balance) L = Vec3(udm1scene::dot(wb[0], L), udm1scene::dot(wb[1], L), udm1scene::dot(wb[2], L));
         return L;
     }
     double scale, max_component;
     bool clamp;
     Vec3 xyz[3];  // the rows of XYZ from linear sRGB
+    bool balance;  // Film "whitebalance": wb, the adaptation on linear sRGB (udm1scene::white_balance_rgb), after the clamp
+    Vec3 wb[3];
+    udm1scene::FilmSampler sampler;
+    bool weighted;  // sampler.signed_weights(): the sums hold W
+    size_t stride;  // channels per pixel of the sums: 3 (R, G, B) or 4 (and W)
 };
+
+// The pixel's 2D sample of sample `index` (the root domain's first two values) drawn again and placed by the
+// filter: the sign of its weight (for the loops that keep no sign per path).
+inline int sample_sign(const FilmResponse &film, const udm1_stream *pixel, uint64_t index)
+{
+    double u[2];
+    udm1_domain_draw_f64(udm1_domain_root(pixel, index), 2, u);
+    return film.sampler.place(u);
+}
 
 // Per-pixel sums of the samples in fixed point (2^-24 units, int64, channels R, G, B), so that sums
 // of disjoint sample ranges and tiles add up exactly: split and whole runs give the same image bit
@@ -139,6 +160,24 @@ struct FilmResponse {
 using Accumulator = udm1app::PartialImage;
 constexpr double SAMPLE_SCALE = 16777216.0;  // 2^24
 constexpr double MAX_SAMPLE = 1e9;           // larger sample values are clamped (and counted)
+
+// A sample's film value L (FilmResponse) into its pixel's sums px: each finite channel, clamped to MAX_SAMPLE, in
+// fixed point times the sign of the filter's weight, and that sign into W where the film is weighted; a non-finite
+// channel counts as 0 (pbrt-v4 zeroes such a sample's radiance) and is counted.
+inline void add_sample(int64_t *px, Vec3 L, int sign, bool weighted, uint64_t *nonfinite, uint64_t *clamped)
+{
+    for (int k = 0; k < 3; ++k) {
+        double v = L[k];
+        if (!std::isfinite(v)) {
+            ++*nonfinite;
+            continue;
+        }
+        if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++*clamped;
+        int64_t q = (int64_t)std::llround(v * SAMPLE_SCALE);
+        px[k] += sign < 0 ? -q : q;
+    }
+    if (weighted) px[3] += sign < 0 ? -(int64_t)SAMPLE_SCALE : (int64_t)SAMPLE_SCALE;
+}
 
 struct Stats {
     double seconds = 0;

@@ -224,7 +224,8 @@ public:
 
     bool owns(const udm1app::PartialImage &img) const override
     {
-        return img.channels == std::vector<std::string>{"R", "G", "B"};
+        return img.channels == std::vector<std::string>{"R", "G", "B"} ||
+               img.channels == std::vector<std::string>{"R", "G", "B", "W"};
     }
 
     void check_sampler(const std::string &name) const override

@@ -91,27 +91,50 @@ Vec3 spectrum_param(const udm1scene::ParamSet &ps, const std::string &name, Vec3
     throw SceneError(p->where + ": '" + name + "' must be a float, an rgb triple, a named spectrum or (lambda, value) pairs");
 }
 
+// pbrt-v4's wavelengths of one camera sample (SampledWavelengths::SampleVisible): four, a quarter apart in its
+// distribution of visible wavelengths (pdf proportional to 1 / cosh^2(0.0072 (lambda - 538)) over 360..830 nm).
+// The others of the four that come with `lambda`.
+void companions(double lambda, double out[3])
+{
+    double u = (0.85691062 - std::tanh((538 - lambda) / 138.888889)) / 1.82750197;  // (its place in the distribution)
+    for (int i = 1; i < 4; ++i) {
+        double up = u + i / 4.0;
+        if (up > 1) up -= 1;
+        out[i - 1] = 538 - 138.888889 * std::atanh(0.85691062 - 1.82750197 * up);
+    }
+}
+
 // The Fresnel table of a spectral conductor of index eta + i k (each divided by `relative`: a coated
 // conductor's index is relative to its coat's): its reflectance at each wavelength, projected on RGB as
 // pbrt-v4's film records it under D65 (udm1scene::albedo_rgb), at 65 incident angles. pbrt-v4 takes a
 // spectrum given as pairs or read from a file as 0 outside its wavelengths (PiecewiseLinearSpectrum); where
-// that makes eta 0, its Fresnel term is not a number and its samples there black: refused.
+// both eta and k are 0 its Fresnel term is not a number, and pbrt-v4 zeroes the radiance of every camera sample
+// one of whose four wavelengths falls there: the table keeps a wavelength's reflectance only where it and its
+// three companions (above) have an index, which is the conductor's reflection as pbrt-v4 renders it (the light a
+// zeroed sample gathered at its other vertices is not modelled). Negative values are refused.
 std::unique_ptr<FresnelTable> fresnel_table(const udm1scene::Spectrum &eta, const udm1scene::Spectrum &k,
                                             const std::string &where, double relative = 1)
 {
     double n[udm1scene::WAVELENGTHS], kk[udm1scene::WAVELENGTHS], r[udm1scene::WAVELENGTHS];
+    double kept[udm1scene::WAVELENGTHS];  // the part of the nanometre around each wavelength that is kept
+    auto defined = [&](double lambda) { return eta.at(lambda) != 0 || k.at(lambda) != 0; };
     for (int l = 0; l < udm1scene::WAVELENGTHS; ++l) {
         n[l] = eta.at(360 + l) / relative, kk[l] = k.at(360 + l) / relative;
-        if (!(n[l] > 0) || !(kk[l] >= 0))
-            throw SceneError(where + ": conductor: eta must be positive and k not negative at every wavelength pbrt-v4 "
-                                     "samples (360..830 nm; not at " + std::to_string(360 + l) +
-                             " nm): pbrt-v4 takes a spectrum as 0 outside the wavelengths it lists, and an eta of 0 "
-                             "makes its Fresnel term not a number and its samples black");
+        if (!(n[l] >= 0) || !(kk[l] >= 0))
+            throw SceneError(where + ": conductor: eta and k must not be negative (at " + std::to_string(360 + l) + " nm)");
+        constexpr int SUB = 32;  // (the kept bands can be a few nanometres wide: their edges to 1/32 nm)
+        int in = 0;
+        for (int j = 0; j < SUB; ++j) {
+            double lambda = 360 + l + (j + 0.5) / SUB - 0.5, others[3];
+            companions(lambda, others);
+            in += defined(lambda) && defined(others[0]) && defined(others[1]) && defined(others[2]);
+        }
+        kept[l] = (double)in / SUB;
     }
     auto t = std::make_unique<FresnelTable>();
     for (int i = 0; i < FresnelTable::N; ++i) {
         double c = (double)i / (FresnelTable::N - 1);
-        for (int l = 0; l < udm1scene::WAVELENGTHS; ++l) r[l] = fresnel_complex(c, n[l], kk[l]);
+        for (int l = 0; l < udm1scene::WAVELENGTHS; ++l) r[l] = kept[l] > 0 ? kept[l] * fresnel_complex(c, n[l], kk[l]) : 0;
         Vec3 rgb = udm1scene::albedo_rgb(r);
         for (int ch = 0; ch < 3; ++ch) t->r[ch][i] = (float)rgb[ch];
     }

@@ -409,17 +409,9 @@ void DiffuseWavefront::Batch::finish(size_t j)  // path j ends: its radiance int
 {
     const Paths &P = b_.paths;
     int p = P.pixel[j];
-    int64_t *px = &acc_->sum[3 * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
-    const Vec3 L = film_(Vec3(P.lr[j], P.lg[j], P.lb[j]));
-    for (int c = 0; c < 3; ++c) {
-        double v = L[c];
-        if (!std::isfinite(v)) {
-            ++counts_->nonfinite;
-            continue;
-        }
-        if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++counts_->clamped;
-        px[c] += (int64_t)std::llround(v * SAMPLE_SCALE);
-    }
+    int64_t *px = &acc_->sum[film_.stride * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
+    const int sign = film_.weighted ? sample_sign(film_, &streams_[p], P.index[j]) : 1;
+    add_sample(px, film_(Vec3(P.lr[j], P.lg[j], P.lb[j])), sign, film_.weighted, &counts_->nonfinite, &counts_->clamped);
 }
 
 void DiffuseWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64_t start, size_t n)
@@ -436,6 +428,8 @@ void DiffuseWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64
     }
     // the root domain's 2 values of every path: the position in the pixel
     for (size_t k = 0; k < n; ++k) udm1_domain_draw_f64(udm1_domain_root(&streams_[P.pixel[k]], P.index[k]), 2, &b_.u[2 * k]);
+    if (!film_.sampler.unit_box())  // the pixel filter places them (the unit box leaves them as they are)
+        for (size_t k = 0; k < n; ++k) film_.sampler.place(&b_.u[2 * k]);
     Vec3 co, ca, cb, cc;
     camera.pinhole(&co, &ca, &cb, &cc);
     const double *uv = b_.u.data();

@@ -106,17 +106,10 @@ private:
 void GeneralWavefront::Batch::finish(size_t j)  // path j ends: its radiance into its pixel's sums (as the scalar loop)
 {
     int p = b_.pixel[j];
-    int64_t *px = &acc_->sum[3 * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
-    Vec3 L = film_(b_.paths[j].L);
-    for (int k = 0; k < 3; ++k) {
-        double v = L[k];
-        if (!std::isfinite(v)) {
-            ++counts_->nonfinite;
-            continue;
-        }
-        if (v > MAX_SAMPLE) v = MAX_SAMPLE, ++counts_->clamped;
-        px[k] += (int64_t)std::llround(v * SAMPLE_SCALE);
-    }
+    int64_t *px = &acc_->sum[film_.stride * ((size_t)(y0_ + p / W_ - acc_->y0) * acc_->width + (x0_ + p % W_ - acc_->x0))];
+    const PathState &path = b_.paths[j];
+    const int sign = film_.weighted ? sample_sign(film_, path.pixel, path.index) : 1;
+    add_sample(px, film_(path.L), sign, film_.weighted, &counts_->nonfinite, &counts_->clamped);
 }
 
 void GeneralWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64_t start, size_t n)
@@ -132,6 +125,7 @@ void GeneralWavefront::Batch::camera(const udm1scene::CameraRays &camera, uint64
         b_.pixel[k] = p;
         double uv[4];
         udm1_domain_draw_f64(udm1_domain_root(path.pixel, path.index), camera.has_lens() ? 4 : 2, uv);
+        film_.sampler.place(uv);
         camera.ray(x0_ + p % W_ + uv[0], y0_ + p / W_ + uv[1], uv[2], uv[3], &path.o, &path.d);
         if (volumetric_) w_.estimator_.start(path);
         if (++s == count_) s = 0, ++p;  // the next pixel

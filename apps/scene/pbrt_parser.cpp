@@ -11,6 +11,7 @@
 #include "medium_presets.h"
 #include "mesh_io.h"
 #include "spectrum.h"
+#include "white_balance.h"
 #include "udm1app/one_line.h"
 
 #include <sys/stat.h>
@@ -189,6 +190,7 @@ public:
     // The main scene file: its folder is where pbrt-v4 looks for every relative file name (resolve_path).
     void parse_main(const std::string &path)
     {
+        if (!geometry_only_) scene_.pixel_filter = PixelFilter::defaults("gaussian");  // pbrt-v4's default filter
         size_t slash = path.find_last_of('/');
         scene_.search_dir = slash == std::string::npos ? "" : path.substr(0, slash + 1);
         Lexer lex;
@@ -336,8 +338,12 @@ private:
             try {
                 s = read_spectrum_file(full);
             } catch (const SceneError &e) {
-                throw SceneError(p.where + ": '" + p.name + "': \"" + file + "\" is not a named spectrum that udm1 knows (" +
-                                 known_spectra() + ") nor a spectrum file (" + e.what() + ")");
+                if (pbrt_v4_named_spectrum(file))
+                    throw SceneError(p.where + ": '" + p.name + "': \"" + file + "\" is one of pbrt-v4's named spectra, whose "
+                                     "measured data udm1 does not hold (no maintained package it builds from provides "
+                                     "them; it holds " + known_spectra() + ")");
+                throw SceneError(p.where + ": '" + p.name + "': \"" + quote(file) + "\" is not a named spectrum that udm1 "
+                                 "knows (" + known_spectra() + ") nor a spectrum file (" + e.what() + ")");
             }
             p.strings.clear();
             for (size_t i = 0; i < s.nm.size(); ++i) p.numbers.push_back(s.nm[i]), p.numbers.push_back(s.value[i]);
@@ -709,6 +715,7 @@ private:
                 if (const Param *p = ps.find(n)) ignore(p->where, std::string("Film '") + n + "'");
             return;
         }
+        film_sensor(ps);
         if (type == "gbuffer") {
             std::string cs = ps.get_string("coordinatesystem", "camera");
             if (cs != "camera" && cs != "world")
@@ -756,6 +763,39 @@ private:
         if (ps.find("savefp16"))
             scene_.notes.push_back(ps.find("savefp16")->where + ": Film: savefp16 ignored: udm1-pt writes 32-bit floats "
                                                                 "(and exact sums)");
+    }
+
+    // pbrt-v4's PixelSensor: "cie1931" (its default: the film records CIE XYZ) with an optional white balance
+    // (white_balance.h). The cameras' sensors are measured spectral responses that no maintained package
+    // provides: such a film renders as the cie1931 sensor with the white balance pbrt-v4 gives a camera (6500 K
+    // unless the file says), with a note naming the sensor; a name pbrt-v4 does not know is refused.
+    void film_sensor(const ParamSet &ps)
+    {
+        static const std::set<std::string> CAMERAS = {
+            "canon_eos_100d", "canon_eos_1dx_mkii", "canon_eos_200d", "canon_eos_200d_mkii", "canon_eos_5d",
+            "canon_eos_5d_mkii", "canon_eos_5d_mkiii", "canon_eos_5d_mkiv", "canon_eos_5ds", "canon_eos_m",
+            "hasselblad_l1d_20c", "nikon_d810", "nikon_d850", "sony_ilce_6400", "sony_ilce_7m3", "sony_ilce_7rm3",
+            "sony_ilce_9"};
+        const std::string &sensor = scene_.film_sensor;
+        const bool camera = sensor != "cie1931";
+        if (camera && !CAMERAS.count(sensor))
+            throw SceneError(ps.find("sensor")->where + ": Film: sensor \"" + quote(sensor) + "\" is not one of pbrt-v4's "
+                                                        "(cie1931 and its cameras' names)");
+        const Param *p = ps.find("whitebalance", "float");
+        double kelvin = (float)ps.get_float("whitebalance", 0);  // (read as float, as pbrt-v4 reads it)
+        if (!(kelvin >= 0) || !std::isfinite(kelvin))
+            throw SceneError(p->where + ": Film: whitebalance must be a temperature in kelvin (0: none)");
+        if (camera && kelvin == 0) kelvin = 6500;  // (pbrt-v4's default for a camera's sensor)
+        Vec3 rows[3];
+        if (kelvin > 0 && !white_balance_rgb(kelvin, rows))
+            throw SceneError(p->where + ": Film: whitebalance " + number_text(kelvin) + " K: no light to balance to "
+                                        "(Planck's law gives none at that temperature)");
+        scene_.white_balance = kelvin;
+        if (camera)
+            scene_.notes.push_back(ps.find("sensor")->where + ": Film: sensor \"" + sensor + "\" (a camera's measured "
+                                   "spectral response, which udm1 does not have) renders as the cie1931 sensor balanced "
+                                   "from " + short_number(kelvin) + " K: its colours differ from pbrt-v4's by the "
+                                   "camera's response");
     }
 
     void on_Sampler(const Call &c)
@@ -845,8 +885,33 @@ private:
     {
         Lexer &lex = c.lex;
         const Token &t = c.t;
-        string_arg(lex, "PixelFilter");
-        params(lex, t);  // the renderers use their own box filter
+        std::string type = string_arg(lex, "PixelFilter");
+        ParamSet ps = params(lex, t);
+        if (geometry_only_) {  // (udm1-ao's primary rays are its own: the pixel's centre or a box)
+            ignore(c.here, "PixelFilter");
+            return;
+        }
+        PixelFilter f;
+        try {
+            f = PixelFilter::defaults(type);
+        } catch (const std::invalid_argument &) {
+            throw SceneError(c.here + ": PixelFilter \"" + quote(type) + "\" is not one of pbrt-v4's filters (box, gaussian, "
+                                      "mitchell, sinc, triangle)");
+        }
+        if (type == "gaussian") only(ps, {"xradius", "yradius", "sigma"}, "PixelFilter \"gaussian\"");
+        else if (type == "mitchell") only(ps, {"xradius", "yradius", "B", "C"}, "PixelFilter \"mitchell\"");
+        else if (type == "sinc") only(ps, {"xradius", "yradius", "tau"}, "PixelFilter \"sinc\"");
+        else only(ps, {"xradius", "yradius"}, "PixelFilter \"" + type + "\"");
+        // (pbrt-v4 reads them as float)
+        f.xradius = (float)ps.get_float("xradius", f.xradius), f.yradius = (float)ps.get_float("yradius", f.yradius);
+        f.sigma = (float)ps.get_float("sigma", f.sigma), f.tau = (float)ps.get_float("tau", f.tau);
+        f.b = (float)ps.get_float("B", f.b), f.c = (float)ps.get_float("C", f.c);
+        f.where = c.here;
+        const char *at = "";
+        std::string bad = f.invalid(&at);
+        if (!bad.empty())
+            throw SceneError((ps.find(at) ? ps.find(at)->where : c.here) + ": PixelFilter \"" + type + "\": " + bad);
+        scene_.pixel_filter = f;
     }
 
     void on_ColorSpace(const Call &c)

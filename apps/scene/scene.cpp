@@ -273,6 +273,12 @@ uint64_t Scene::digest() const
         f.value(has_crop), f.value(has_pixel_bounds), f.value(max_component), f.value(film_scale);
         for (int k = 0; k < 4; ++k) f.value(crop[k]), f.value(pixel_bounds[k]);
     }
+    if (white_balance != 0) f.value(white_balance);
+    if (!pixel_filter.unit_box()) {
+        const PixelFilter &pf = pixel_filter;
+        for (char ch : pf.type) f.value(ch);
+        f.value(pf.xradius), f.value(pf.yradius), f.value(pf.sigma), f.value(pf.b), f.value(pf.c), f.value(pf.tau);
+    }
     f.value((uint64_t)shapes.size());
     for (const Shape &s : shapes) {
         f.value((int)s.kind), f.vec(s.P), f.vec(s.N), f.vec(s.indices);

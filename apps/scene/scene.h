@@ -5,6 +5,7 @@
 #pragma once
 
 #include "math.h"
+#include "pixel_filter.h"
 
 #include <cmath>
 #include <map>
@@ -234,7 +235,9 @@ struct Scene {
     std::string film_filename;
     double shutter_open = 0, shutter_close = 1;  // the Camera's; pbrt-v4's exposure time is their difference
     double film_scale = 1;              // pbrt-v4's imaging ratio: exposure time * iso / 100
-    std::string film_sensor = "cie1931";  // named in the file; udm1-pt renders plain RGB whatever it is
+    PixelFilter pixel_filter;           // a pbrt-v4 file's (gaussian without a PixelFilter line); else the unit box
+    std::string film_sensor = "cie1931";  // the only sensor modelled (pbrt-v4's default: CIE XYZ)
+    double white_balance = 0;           // Film "whitebalance": the temperature (K) adapted to D65; 0 none
     std::string media_where;              // file:line of the first MakeNamedMedium, if any
     std::vector<Medium> media;            // the homogeneous ones (grid media are refused under "volpath")
     std::string sampler;        // the scene's Sampler directive (udm1's renderers use their own samplers)

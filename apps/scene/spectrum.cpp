@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <set>
 
 namespace udm1scene {
 
@@ -41,9 +42,7 @@ const std::map<std::string, Spectrum> &named()
         t["stdillum-D65"] = d65;
         // pbrt-v4's glasses, by their index at 550 nm only: udm1-pt's dielectrics have one index (no
         // dispersion), so nothing else of these spectra is read
-        for (auto [name, eta] : {std::pair<const char *, double>{"glass-BK7", 1.5185}, {"glass-BAF10", 1.6700},
-                                 {"glass-F11", 1.6200}})
-            t[name] = Spectrum::constant(eta);
+        for (const spectral_data::GlassIndex *g = spectral_data::GLASSES; g->name; ++g) t[g->name] = Spectrum::constant(g->eta_550);
         return t;
     }();
     return table;
@@ -95,6 +94,24 @@ const Spectrum *named_spectrum(const std::string &name)
 {
     auto it = named().find(name);
     return it == named().end() ? nullptr : &it->second;
+}
+
+bool pbrt_v4_named_spectrum(const std::string &name)
+{
+    static const std::set<std::string> names = [] {
+        std::set<std::string> n = {"glass-BK7", "glass-BAF10", "glass-FK51A", "glass-LASF9", "glass-F5", "glass-F10",
+                                   "glass-F11", "stdillum-A", "stdillum-D50", "stdillum-D65", "illum-acesD60"};
+        for (const char *m : {"Ag", "Al", "Au", "Cu", "CuZn", "MgO", "TiO2"})
+            for (const char *part : {"-eta", "-k"}) n.insert(std::string("metal-") + m + part);
+        for (int f = 1; f <= 12; ++f) n.insert("stdillum-F" + std::to_string(f));
+        for (const char *c : {"canon_eos_100d", "canon_eos_1dx_mkii", "canon_eos_200d", "canon_eos_200d_mkii", "canon_eos_5d",
+                              "canon_eos_5d_mkii", "canon_eos_5d_mkiii", "canon_eos_5d_mkiv", "canon_eos_5ds", "canon_eos_m",
+                              "hasselblad_l1d_20c", "nikon_d810", "nikon_d850", "sony_ilce_6400", "sony_ilce_7m3",
+                              "sony_ilce_7rm3", "sony_ilce_9"})
+            for (const char *ch : {"_r", "_g", "_b"}) n.insert(std::string(c) + ch);
+        return n;
+    }();
+    return names.count(name) > 0;
 }
 
 std::string known_spectra()

@@ -32,6 +32,9 @@ Spectrum spectrum_from_pairs(const std::vector<double> &pairs, const std::string
 // "stdillum-D65"), or nullptr. known_spectra() lists them, for messages.
 const Spectrum *named_spectrum(const std::string &name);
 std::string known_spectra();
+// Whether pbrt-v4 knows a spectrum by this name (its spectrum.cpp: glasses, metals, standard illuminants, the
+// cameras' sensor curves), held by udm1 or not: the names it does not hold are refused as such.
+bool pbrt_v4_named_spectrum(const std::string &name);
 
 // A spectrum file as pbrt-v4 reads it ("spds/..."): whitespace-separated (wavelength, value) pairs,
 // '#' comments. Throws SceneError naming the file.

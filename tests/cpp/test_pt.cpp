@@ -533,6 +533,7 @@ static std::string light_over_plane(double offset, double height, double tilt, s
     std::snprintf(buf, sizeof buf,
                   "LookAt %.17g %.17g 0  %.17g 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ %.17g ]\n"
                   "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 1 ]\n"
+                  "PixelFilter \"box\"\n"  // (the closed form: each pixel's own area)
                   "Integrator \"path\" \"integer maxdepth\" [ 1 ]\nWorldBegin\n"
                   "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [ 1 1 1 ]\n"
                   "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [%s ]\nAttributeEnd\n"
@@ -637,6 +638,7 @@ static std::string floor_under(const std::string &lights)
 {
     return "LookAt 0 30 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" [ 60 ]\n"
            "Film \"rgb\" \"integer xresolution\" [ 16 ] \"integer yresolution\" [ 16 ]\n"
+           "PixelFilter \"box\"\n"  // (the closed forms: each pixel's own area)
            "Integrator \"path\" \"integer maxdepth\" [ 1 ]\nWorldBegin\n" + lights +
            "\nMaterial \"diffuse\" \"rgb reflectance\" [ 0.5 0.5 0.5 ]\n"
            "Shape \"trianglemesh\" \"integer indices\" [ 0 1 2 0 2 3 ] \"point3 P\" [ -1000 0 -1000  1000 0 -1000  "

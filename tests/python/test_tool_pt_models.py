@@ -13,7 +13,7 @@ import re
 import numpy as np
 import pytest
 from cli_checks import fails_cleanly
-from test_tool_pt_scenes import camera_rays, look_at, read_exr, render, rotate, run, scale, translate
+from test_tool_pt_scenes import BOX, camera_rays, look_at, read_exr, render, rotate, run, scale, translate
 
 TOOL = os.environ.get("UDM1_PT_TOOL", "")
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
@@ -67,7 +67,7 @@ def test_silhouettes_of_sheared_quadrics(kind, tmp_path):
         params = dict(r=0.6, zmin=-0.8, zmax=0.9, phimax=250)
         shape = 'Shape "cylinder" "float radius" [ 0.6 ] "float zmin" [ -0.8 ] "float zmax" [ 0.9 ] "float phimax" [ 250 ]'
     cam = look_at([0, 0, -10], [0, 0, 0], [0, 1, 0])
-    text = (f'Film "rgb" "integer xresolution" [ {w} ] "integer yresolution" [ {h} ]\nLookAt 0 0 -10  0 0 0  0 1 0\n'
+    text = (f'Film "rgb" "integer xresolution" [ {w} ] "integer yresolution" [ {h} ]\n{BOX}LookAt 0 0 -10  0 0 0  0 1 0\n'
             f'Camera "perspective" "float fov" [ {fov} ]\nWorldBegin\n{ENV}Material "diffuse" "rgb reflectance" [ 0 0 0 ]\n'
             f'AttributeBegin\n{xf_text}{shape}\nAttributeEnd\n')
     img, _ = render(tmp_path, "s", text, "--spp", "64", "--maxdepth", "1")
@@ -145,7 +145,7 @@ def test_alpha_half_covers_half(tmp_path):
 def floor_scene(texture):
     """A floor z = 0 of (u, v) = (x, y) / 4 over [0, 4]^2 seen from above, lit by a white sky: with BSDF
     sampling only and one bounce, every pixel is the reflectance at its point exactly."""
-    return ('Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]\nLookAt 2 2 -40  2 2 0  0 1 0\n'
+    return ('Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]\n' + BOX + 'LookAt 2 2 -40  2 2 0  0 1 0\n'
             f'Camera "perspective" "float fov" [ 5.7 ]\nWorldBegin\n{ENV}{texture}\n'
             'Material "diffuse" "texture reflectance" "t"\n'
             'Shape "trianglemesh" "point3 P" [ 0 0 0  4 0 0  4 4 0  0 4 0 ] "point2 uv" [ 0 0 1 0 1 1 0 1 ] '
@@ -265,8 +265,8 @@ HEAD = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]\nCame
         ('Texture "t" "spectrum" "checkerboard" "integer dimension" [ 4 ]\nShape "sphere"\n', 4, "dimension must be 2 or 3"),
         ('Material "coatedconductor" "rgb reflectance" [ 0.5 0.5 0.5 ] "spectrum conductor.eta" "metal-Au-eta"\n'
          'Shape "sphere"\n', 4, 'both "reflectance" and "eta" and "k"'),
-        ('Material "conductor" "spectrum eta" [ 400 0.2 700 0.2 ] "spectrum k" [ 300 3 900 3 ]\nShape "sphere"\n', 4,
-         "an eta of 0 makes its Fresnel term not a number"),
+        ('Material "conductor" "spectrum eta" [ 400 -0.2 700 0.2 ] "spectrum k" [ 300 3 900 3 ]\nShape "sphere"\n', 4,
+         "eta and k must not be negative"),
         ('Material "diffuse" "string normalmap" "nothere.png"\nShape "sphere"\n', 4, "nothere.png"),
         ('Material "measured" "string filename" "x.bsdf"\nShape "sphere"\n', 4, 'Material "measured" is not supported'),
     ],

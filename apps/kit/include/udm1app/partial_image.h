@@ -24,15 +24,19 @@ struct PartialImage {
     uint64_t first = 0, count = 0;              // the sample indices summed: [first, first + count)
     int full_width = 0, full_height = 0;        // the whole image
     int x0 = 0, y0 = 0, width = 0, height = 0;  // the window held: [x0, x0 + width) x [y0, y0 + height)
-    std::vector<std::string> channels;          // the summed channels: {"R", "G", "B"} or {"A"}
+    std::vector<std::string> channels;          // the summed channels: {"R", "G", "B"}, {"A"}, or with a last
+                                                // channel "W": the samples' weights (a pixel filter's, signed)
     double scale = 1;                           // a sample value v is summed as llround(v * scale)
     std::vector<int64_t> sum;                   // channels.size() per window pixel, row-major
     uint64_t nonfinite = 0, clamped = 0;        // sample values left out / clamped
 
     // An empty image of `channels` over the window, sums zero.
     void reset(int full_w, int full_h, int wx0, int wy0, int w, int h, std::vector<std::string> names, double s);
-    std::vector<float> mean() const;  // per window pixel and channel: sum / (scale * count)
+    // Per window pixel and shown channel (all but W): sum / (scale * count); weighted, the weighted mean sum / W.
+    std::vector<float> mean() const;
     std::vector<float> rgb() const;   // the mean as RGB (one channel shown as grey)
+    bool weighted() const;            // whether the last channel is the weights' sum W
+    size_t shown() const;             // the channels mean() gives: all but W
     bool whole() const { return x0 == 0 && y0 == 0 && width == full_width && height == full_height; }
 };
 
