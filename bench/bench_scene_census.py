@@ -9,6 +9,13 @@ pbrt-v4 reads it: names are relative to the directory of the main scene file, in
 (tools/pbrt_references.py). No stand-in is made for a .pbrt include whose text is absent (it is reported as
 not readable), nor where none can be written (NanoVDB grids, measured BSDF tables), which is reported.
 
+With --absent-includes empty, a .pbrt include whose text is absent (not fetched, or not held by the index the
+text was read through: mostly the large files of inline meshes) is an empty file in the overlay (but for one
+tiny triangle far below the scene: udm1-pt refuses a scene without shapes), so that the
+rest of the scene is judged: such a scene says "empty includes" in the stand-ins column, the summary counts
+those that render apart, and it is not the scene as distributed (a named material or object defined in the
+absent file makes it refused, which is reported as such).
+
 Where a file's full text is absent but the collection folder holds a condensed transcription of it under
 .condensed/ (same path; every directive and parameter as in the file, the long numeric arrays of inline meshes
 cut to a one-triangle stand-in), the scene is read with it: an include or a main file. Such a scene is never
@@ -27,6 +34,7 @@ Writes DIR/census.md (also printed) and DIR/census.json.
 
     python bench/bench_scene_census.py [--collection DIR] [--tool build/bin/udm1-pt] [--out build/census]
                                        [--only SUBSTRING,...] [--size 16x16] [--timeout 120] [--readme-table]
+                                       [--absent-includes report|empty]
 """
 
 from __future__ import annotations
@@ -89,10 +97,15 @@ def build_overlay(collection: Path, overlay: Path) -> None:
             os.symlink(src.resolve(), dst)
 
 
+# What an absent include becomes with --absent-includes empty: one tiny triangle far below the scene (udm1-pt
+# refuses a scene without shapes, and the absent files are mostly geometry), in the material then in force.
+EMPTY_INCLUDE = ("# udm1 census: this include's text is absent from the collection folder\n"
+                 "AttributeBegin\n  Shape \"trianglemesh\" \"integer indices\" [0 1 2]\n"
+                 "    \"point3 P\" [0 -1e5 0  1e-3 -1e5 0  0 -1e5 1e-3]\nAttributeEnd\n")
 CONDENSED = ".condensed"  # the collection's condensed transcriptions of files whose full text is absent
 
 
-def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict) -> dict:
+def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict, empty_includes: bool = False) -> dict:
     """Stand-ins in the overlay for what the scene names and the collection lacks, the condensed texts it is
     read with (copied into the overlay where the full text would be); what could not be made."""
     condensed_dir = collection / CONDENSED
@@ -109,7 +122,7 @@ def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict) -
         target = overlay / rel
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(condensed_dir / rel, target)
-    made, blocked, unreadable = {}, {}, {}
+    made, blocked, unreadable, emptied = {}, {}, {}, []
     for ref in files.references:
         try:
             rel = ref.path.resolve().relative_to(collection.resolve()).as_posix()
@@ -119,6 +132,13 @@ def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict) -
             continue
         if ref.include and not ref.name.lower().endswith(".gz"):
             entry = manifest.get(rel)
+            if empty_includes:
+                target = overlay / rel
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.write_text(EMPTY_INCLUDE)
+                if rel not in emptied:
+                    emptied.append(rel)
+                continue
             unreadable[rel] = ("not fetched" if entry else "not in the collection's text") + (
                 f" ({entry['note']})" if entry and entry.get("note") else "")
             continue
@@ -132,7 +152,7 @@ def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict) -
             target.write_bytes(data)
             made[rel] = what
     return {"references": len(files.references), "stand_ins": made, "blocked": blocked, "unreadable": unreadable,
-            "condensed": condensed}
+            "condensed": condensed, "emptied": emptied}
 
 
 def feature_of(msg: str, tried: str | None, scene: dict) -> str:
@@ -282,12 +302,12 @@ def census(args) -> dict:
                        feature="text not available (main file not fetched)", stand_ins={}, blocked={}, unreadable={})
             rows.append(row)
             continue
-        prep = prepare_scene(collection / rel, collection, overlay, manifest)
+        prep = prepare_scene(collection / rel, collection, overlay, manifest, args.absent_includes == "empty")
         run = run_scene(args.tool, overlay / rel, overlay, args.size, args.timeout,
                         images / (rel.replace("/", "__") + ".exr"))
         row.update(judge(run, prep))
         row.update(stand_ins=prep["stand_ins"], blocked=prep["blocked"], unreadable=prep["unreadable"],
-                   references=prep["references"], condensed=prep["condensed"])
+                   references=prep["references"], condensed=prep["condensed"], emptied=prep["emptied"])
         if args.pbrt:
             row["pbrt"] = run_pbrt(args.pbrt, overlay / rel, args.size, args.timeout,
                                    images / (rel.replace("/", "__") + ".pbrt.exr"))
@@ -310,6 +330,7 @@ def markdown(data: dict) -> str:
     rows = data["rows"]
     counts = Counter(r["result"] for r in rows)
     on_condensed = Counter(r["result"] for r in rows if r.get("condensed"))
+    on_empty = Counter(r["result"] for r in rows if r.get("emptied"))
     lines = [f"# udm1-pt on the pbrt-v4 scene collection: {len(rows)} scenes in {data['folders']} folders", "",
              f"Collection: `{data['collection']}`; renderer: `{data['tool']}` at {data['size']}, 1 spp, one thread.",
              f"Scenes: {data['rule']}.",
@@ -317,12 +338,17 @@ def markdown(data: dict) -> str:
              "pbrt-v4's path rule; udm1-pt stops at its first refusal, so only the first is listed.", "",
              "Results: " + ", ".join(f"{k} {v}" + (f" (of which {on_condensed[k]} on condensed text)"
                                                    if on_condensed[k] else "")
+                                     + (f" (of which {on_empty[k]} with absent includes empty)" if on_empty[k] else "")
                                      for k, v in sorted(counts.items(), key=lambda kv: -kv[1])) + "."]
     if any(r.get("condensed") for r in rows):
         lines += ["", "Condensed text: a file whose full text is absent, read from the collection's "
                   f"{CONDENSED}/ transcription (its directives as in the file, its inline meshes cut to one "
                   "triangle); such scenes say \"condensed geometry\" in the stand-ins column and are not the "
                   "scene as distributed."]
+    if any(r.get("emptied") for r in rows):
+        lines += ["", "Empty includes (--absent-includes empty): a .pbrt include whose text is absent is an empty file, "
+                  "so the rest of the scene is judged; such scenes say \"empty includes\" in the stand-ins column and "
+                  "are not the scene as distributed."]
     pbrt = data.get("pbrt")
     if pbrt:
         pc = Counter(r["pbrt"]["result"] for r in rows if "pbrt" in r)
@@ -338,7 +364,8 @@ def markdown(data: dict) -> str:
         made = len(r.get("stand_ins", {}))
         extra = f"{made}" + (f", {len(r['blocked'])} impossible" if r.get("blocked") else "") + (
             f", {len(r['unreadable'])} includes absent" if r.get("unreadable") else "") + (
-            f", condensed geometry ({', '.join(r['condensed'])})" if r.get("condensed") else "")
+            f", condensed geometry ({', '.join(r['condensed'])})" if r.get("condensed") else "") + (
+            f", empty includes ({', '.join(r['emptied'])})" if r.get("emptied") else "")
         line = f"| {r['scene']} | {r['result']} | {refusal} | {r['feature']} | {extra} |"
         if pbrt:
             pr = r.get("pbrt", {"result": "-", "message": ""})
@@ -370,9 +397,11 @@ def readme_table(data: dict) -> str:
     rows = data["rows"]
     renders = [r["scene"] for r in rows if r["result"] == "renders"]
     condensed = [r["scene"] for r in rows if r["result"] == "renders" and r.get("condensed")]
+    emptied = [r["scene"] for r in rows if r["result"] == "renders" and r.get("emptied")]
     lines = [f"udm1-pt renders {len(renders)} of the collection's {len(rows)} scenes"
              + (f" ({', '.join(renders)})" if renders else "")
-             + (f", of which {len(condensed)} on condensed text" if condensed else "") + "; the others stop first at:",
+             + (f", of which {len(condensed)} on condensed text" if condensed else "")
+             + (f", {len(emptied)} with absent includes empty" if emptied else "") + "; the others stop first at:",
              ""]
     if data.get("pbrt"):
         both = sum(r.get("pbrt", {}).get("result") == "renders" for r in rows)
@@ -394,6 +423,9 @@ def main(argv=None) -> int:
                     help="pbrt-v4 to run on the same overlay for comparison ('' for none; default: "
                          "build/anchors/pbrt-v4-build/pbrt where scripts/anchors.sh built it)")
     ap.add_argument("--readme-table", action="store_true", help="print the table of first refusals only")
+    ap.add_argument("--absent-includes", choices=("report", "empty"), default="report",
+                    help="a .pbrt include whose text is absent: reported as not readable (default), or an empty "
+                         "file so that the rest of the scene is judged (labelled)")
     args = ap.parse_args(argv)
     if not args.collection.is_dir():
         print(f"skipped: the pbrt-v4 scene collection's text is absent ({args.collection}; "

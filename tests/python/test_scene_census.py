@@ -266,3 +266,32 @@ def test_absent_collection_is_one_skip_line(tmp_path):
     env = dict(os.environ, UDM1_PBRT_SCENES=str(tmp_path / "also-absent"))
     r = subprocess.run(CENSUS + ["--out", str(tmp_path / "out")], capture_output=True, text=True, env=env, timeout=120)
     assert r.returncode == 0 and str(tmp_path / "also-absent") in r.stdout
+
+
+@needs_tool
+def test_absent_includes_empty_judges_the_rest_and_is_labelled(tmp_path):
+    col = make_collection(tmp_path)
+    # an absent include that defines a named material the main file uses: refused (named), never rendered
+    (col / "named" / "named.pbrt").parent.mkdir(parents=True)
+    (col / "named" / "named.pbrt").write_text(VIEW + LIGHT + 'Include "materials.pbrt"\nNamedMaterial "gone"\n' + TRIANGLE)
+    before = snapshot(col)
+    out = tmp_path / "out"
+    r = subprocess.run(CENSUS + ["--collection", str(col), "--tool", TOOL, "--out", str(out), "--pbrt", "",
+                                 "--only", "partial,named,plain", "--absent-includes", "empty"],
+                       capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr
+    rows = {row["scene"]: row for row in json.loads((out / "census.json").read_text())["rows"]}
+    partial, named, plain = rows["partial/partial.pbrt"], rows["named/named.pbrt"], rows["plain/plain.pbrt"]
+    assert partial["result"] == "renders" and partial["emptied"] == ["partial/geometry/big.pbrt"], partial
+    assert partial["unreadable"] == {}
+    assert named["result"] == "refused" and "gone" in named["refusal"] and named["emptied"] == ["named/materials.pbrt"]
+    assert plain["result"] == "renders" and plain["emptied"] == []
+    assert "empty includes (partial/geometry/big.pbrt) |" in r.stdout
+    assert "Results: renders 2 (of which 1 with absent includes empty), refused 1 (of which 1 with absent includes empty)" \
+        in r.stdout, r.stdout
+    assert snapshot(col) == before  # the collection untouched: the empty files are in the overlay
+    # without the option the same include is reported as not readable
+    r = subprocess.run(CENSUS + ["--collection", str(col), "--tool", TOOL, "--out", str(tmp_path / "out2"), "--pbrt", "",
+                                 "--only", "partial"], capture_output=True, text=True, timeout=300)
+    row = json.loads((tmp_path / "out2" / "census.json").read_text())["rows"][0]
+    assert row["result"] == "not readable" and "partial/geometry/big.pbrt" in row["unreadable"]
