@@ -5,6 +5,7 @@
 // closed-form transmittance and glow of an absorbing slab and the same image as the homogeneous medium of
 // that density in a scene that scatters (light sampling through ratio-tracked shadow rays, MIS).
 #include "../c/check.h"
+#include "scene_text.h"
 
 #include "embree_scene.h"
 #include "grid_medium.h"
@@ -25,23 +26,7 @@ using namespace udm1pt;
 
 namespace {
 
-Scene load(const std::string &text)
-{
-    char dir[] = "/tmp/udm1_test_pt_grid_XXXXXX";
-    if (!mkdtemp(dir)) return Scene();
-    std::string path = std::string(dir) + "/s.pbrt";
-    std::ofstream(path) << text;
-    Scene s;
-    try {
-        s = load_scene(path);
-    } catch (const SceneError &e) {
-        std::fprintf(stderr, "unexpected scene error: %s\n", e.what());
-        ++check_failures;
-    }
-    std::remove(path.c_str());
-    rmdir(dir);
-    return s;
-}
+Scene load(const std::string &text) { return load_scene_text(text); }
 
 Vec3 image_mean(const Scene &s, uint32_t spp, int size)
 {

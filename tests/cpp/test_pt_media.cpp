@@ -7,6 +7,7 @@
 // chromatic scattering media; interface surfaces invisible; the Henyey-Greenstein phase function
 // normalized, sampled by its density, of mean cosine g; both path loops rendering the same image.
 #include "../c/check.h"
+#include "scene_text.h"
 
 #include "embree_scene.h"
 #include "integrator.h"
@@ -27,23 +28,7 @@ using namespace udm1pt;
 
 namespace {
 
-Scene load(const std::string &text)
-{
-    char dir[] = "/tmp/udm1_test_pt_media_XXXXXX";
-    if (!mkdtemp(dir)) return Scene();
-    std::string path = std::string(dir) + "/s.pbrt";
-    std::ofstream(path) << text;
-    Scene s;
-    try {
-        s = load_scene(path);
-    } catch (const SceneError &e) {
-        std::fprintf(stderr, "unexpected scene error: %s\n", e.what());
-        ++check_failures;
-    }
-    std::remove(path.c_str());
-    rmdir(dir);
-    return s;
-}
+Scene load(const std::string &text) { return load_scene_text(text); }
 
 double image_mean(const Accumulator &a, int channel)
 {
