@@ -174,6 +174,9 @@ bench)
     udm1_log "udm1-pt on every scene of the public pbrt-v4 collection: renders or its first refusal (bench/bench_scene_census.py;"
     udm1_log "about a minute; skipped with a message where the collection's text, \$UDM1_PBRT_SCENES or ../pbrt-v4-scenes, is absent)"
     "$PY" bench/bench_scene_census.py --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/census"
+    udm1_log "the same with each absent .pbrt include an empty file, the rest of each scene judged (--absent-includes empty)"
+    "$PY" bench/bench_scene_census.py --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/census-empty" \
+        --absent-includes empty
     udm1_log "udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes, each against its own reference"
     udm1_log "(bench/bench_pt_scenes.py, about 45 minutes; skipped with a message where ../shared is absent)"
     "$PY" bench/bench_pt_scenes.py --tool "$ROOT/build/bin/udm1-pt" --out "$ROOT/build/bench_pt_scenes"
