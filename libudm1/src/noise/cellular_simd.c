@@ -128,21 +128,27 @@ AVX512 static inline __m256i mod8(__m512d f, uint32_t period)
 
 /* ---- float: 16 lanes ---- */
 
-AVX512 static inline __m512 power16(const __m512 *v, uint32_t dims, uint32_t metric)
-{
-    __m512 s;
-    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
-        s = _mm512_fmadd_ps(v[1], v[1], _mm512_mul_ps(v[0], v[0]));
-        if (dims == 3) s = _mm512_fmadd_ps(v[2], v[2], s);
-    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
-        s = _mm512_add_ps(_mm512_abs_ps(v[0]), _mm512_abs_ps(v[1]));
-        if (dims == 3) s = _mm512_add_ps(s, _mm512_abs_ps(v[2]));
-    } else {
-        s = _mm512_max_ps(_mm512_abs_ps(v[0]), _mm512_abs_ps(v[1]));
-        if (dims == 3) s = _mm512_max_ps(s, _mm512_abs_ps(v[2]));
+/* The distance's power of the metric (Euclidean: squared; Manhattan: sum of |v|; Chebyshev: max of |v|) over
+ * 2 or 3 components, one copy per vector type: NAME(v, dims, metric). */
+#define CELLULAR_POWER(NAME, TARGET, V, FMADD, MUL, ADD, MAX, ABS)                                           \
+    TARGET static inline V NAME(const V *v, uint32_t dims, uint32_t metric)                                \
+    {                                                                                                       \
+        V s;                                                                                                \
+        if (metric == UDM1_CELLULAR_EUCLIDEAN) {                                                            \
+            s = FMADD(v[1], v[1], MUL(v[0], v[0]));                                                         \
+            if (dims == 3) s = FMADD(v[2], v[2], s);                                                        \
+        } else if (metric == UDM1_CELLULAR_MANHATTAN) {                                                     \
+            s = ADD(ABS(v[0]), ABS(v[1]));                                                                  \
+            if (dims == 3) s = ADD(s, ABS(v[2]));                                                           \
+        } else {                                                                                            \
+            s = MAX(ABS(v[0]), ABS(v[1]));                                                                  \
+            if (dims == 3) s = MAX(s, ABS(v[2]));                                                           \
+        }                                                                                                   \
+        return s;                                                                                           \
     }
-    return s;
-}
+
+CELLULAR_POWER(power16, AVX512, __m512, _mm512_fmadd_ps, _mm512_mul_ps, _mm512_add_ps, _mm512_max_ps, _mm512_abs_ps)
+
 
 AVX512 static inline __m512 gap16(__m512 K, __m512 c1, __m512 zero) /* axis_gap */
 {
@@ -255,21 +261,8 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
 
 /* ---- double: 16 points, the arithmetic in two halves of 8 lanes ---- */
 
-AVX512 static inline __m512d power8(const __m512d *v, uint32_t dims, uint32_t metric)
-{
-    __m512d s;
-    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
-        s = _mm512_fmadd_pd(v[1], v[1], _mm512_mul_pd(v[0], v[0]));
-        if (dims == 3) s = _mm512_fmadd_pd(v[2], v[2], s);
-    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
-        s = _mm512_add_pd(_mm512_abs_pd(v[0]), _mm512_abs_pd(v[1]));
-        if (dims == 3) s = _mm512_add_pd(s, _mm512_abs_pd(v[2]));
-    } else {
-        s = _mm512_max_pd(_mm512_abs_pd(v[0]), _mm512_abs_pd(v[1]));
-        if (dims == 3) s = _mm512_max_pd(s, _mm512_abs_pd(v[2]));
-    }
-    return s;
-}
+CELLULAR_POWER(power8, AVX512, __m512d, _mm512_fmadd_pd, _mm512_mul_pd, _mm512_add_pd, _mm512_max_pd, _mm512_abs_pd)
+
 
 AVX512 static inline __m512d gap8(__m512d K, __m512d c1, __m512d zero)
 {
@@ -444,37 +437,10 @@ AVX2 static inline __m256i offset8(__m256i W, uint32_t a)
 AVX2 static inline __m256 abs8(__m256 x) { return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x); }
 AVX2 static inline __m256d abs4(__m256d x) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), x); }
 
-AVX2 static inline __m256 power8s(const __m256 *v, uint32_t dims, uint32_t metric)
-{
-    __m256 s;
-    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
-        s = _mm256_fmadd_ps(v[1], v[1], _mm256_mul_ps(v[0], v[0]));
-        if (dims == 3) s = _mm256_fmadd_ps(v[2], v[2], s);
-    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
-        s = _mm256_add_ps(abs8(v[0]), abs8(v[1]));
-        if (dims == 3) s = _mm256_add_ps(s, abs8(v[2]));
-    } else {
-        s = _mm256_max_ps(abs8(v[0]), abs8(v[1]));
-        if (dims == 3) s = _mm256_max_ps(s, abs8(v[2]));
-    }
-    return s;
-}
+CELLULAR_POWER(power8s, AVX2, __m256, _mm256_fmadd_ps, _mm256_mul_ps, _mm256_add_ps, _mm256_max_ps, abs8)
 
-AVX2 static inline __m256d power4d(const __m256d *v, uint32_t dims, uint32_t metric)
-{
-    __m256d s;
-    if (metric == UDM1_CELLULAR_EUCLIDEAN) {
-        s = _mm256_fmadd_pd(v[1], v[1], _mm256_mul_pd(v[0], v[0]));
-        if (dims == 3) s = _mm256_fmadd_pd(v[2], v[2], s);
-    } else if (metric == UDM1_CELLULAR_MANHATTAN) {
-        s = _mm256_add_pd(abs4(v[0]), abs4(v[1]));
-        if (dims == 3) s = _mm256_add_pd(s, abs4(v[2]));
-    } else {
-        s = _mm256_max_pd(abs4(v[0]), abs4(v[1]));
-        if (dims == 3) s = _mm256_max_pd(s, abs4(v[2]));
-    }
-    return s;
-}
+CELLULAR_POWER(power4d, AVX2, __m256d, _mm256_fmadd_pd, _mm256_mul_pd, _mm256_add_pd, _mm256_max_pd, abs4)
+
 
 AVX2 static inline __m256 gap8s(__m256 K, __m256 c1, __m256 zero) /* axis_gap */
 {
