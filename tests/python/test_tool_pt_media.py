@@ -304,9 +304,11 @@ def test_test_scenes_render(name, tmp_path):
 
 @pytest.mark.skipif(not CROWN.exists(), reason=f"{CROWN} is absent: the shared scenes are not here")
 def test_crown_as_distributed_renders(tmp_path):
-    # Integrator "volpath" with maximum depth 100 and its gems' media, as distributed: no note, red and blue gems
+    # Integrator "volpath" with maximum depth 100 and its gems' media, as distributed: red and blue gems, and
+    # the one note is the camera's sensor, which renders as cie1931
     out = tmp_path / "crown.exr"
     r = ok("--scene", str(CROWN), "--spp", "2", "--size", "40x56", "-o", str(out))
-    assert r.stderr == "", r.stderr
+    assert re.fullmatch(r'udm1-pt: note: \S+crown-volpath.pbrt:8: Film: sensor "canon_eos_5d_mkiv" [^\n]+\n',
+                        r.stderr), r.stderr
     img = read_exr(out)
     assert img.shape == (56, 40, 3) and 0.1 < img.mean() < 0.9, img.mean()
