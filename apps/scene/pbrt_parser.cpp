@@ -2063,7 +2063,9 @@ Scene parse_pbrt(const std::string &path, Need need)
     Parser p(scene, need);
     p.parse_main(path);
     p.finish();
-    if (std::none_of(scene.shapes.begin(), scene.shapes.end(), [](const Shape &s) { return s.object < 0; }) &&
+    // pbrt-v4 renders a scene without shapes (its lights seen directly, its media); an occlusion job has nothing to do
+    if (need == Need::Geometry &&
+        std::none_of(scene.shapes.begin(), scene.shapes.end(), [](const Shape &s) { return s.object < 0; }) &&
         scene.instances.empty())
         throw SceneError(path + ": the scene has no shapes");
     return scene;

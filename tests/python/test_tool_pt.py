@@ -14,6 +14,7 @@ import sys
 import numpy as np
 import pytest
 from cli_checks import fails_cleanly
+from pt_tool import read_exr
 
 TOOL = os.environ.get("UDM1_PT_TOOL", "")
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
@@ -288,6 +289,20 @@ HEAD = 'LookAt 0 0 -5  0 0 0  0 1 0\nCamera "perspective" "float fov" [ 45 ]\nWo
 TRI = 'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  0 1 0 ] "integer indices" [ 0 1 2 ]\n'
 LIGHT = ('AttributeBegin\nAreaLightSource "diffuse" "rgb L" [ 1 1 1 ]\n'
          'Shape "trianglemesh" "point3 P" [ 0 0 0  1 0 0  2 0 0 ] "integer indices" [ 0 1 2 ]\nAttributeEnd\n')
+
+
+@pytest.mark.parametrize("integrator", ["path", "volpath"])
+def test_a_scene_without_shapes_renders_its_lights(integrator, tmp_path):
+    # as pbrt-v4 renders it: every camera ray escapes to the infinite light; the point light lights nothing
+    scene = tmp_path / "lights.pbrt"
+    scene.write_text(f'Integrator "{integrator}"\n' + HEAD + 'LightSource "infinite" "rgb L" [ 0.5 0.3 0.2 ]\n'
+                     'LightSource "point" "rgb I" [ 10 10 10 ]\n')
+    r = ok("--scene", str(scene), "--spp", "4", "--size", "8x6", "-o", str(tmp_path / "x.exr"))
+    assert r.stderr == "", r.stderr
+    img = read_exr(tmp_path / "x.exr")
+    assert img.shape == (6, 8, 3) and np.allclose(img, [0.5, 0.3, 0.2], rtol=1e-6), img.reshape(-1, 3)[:2]
+
+
 PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
             b"property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n")
 
