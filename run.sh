@@ -109,7 +109,7 @@ test)
         ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
         "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --dist loadfile \
-        $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study)'))
+        $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study|readme_example)'))
     udm1_log "the tools' tests again and the report steps' tests, against the sanitized tools and benchmarks of build-asan"
     udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library; two pytest runs side by side)"
     asan_tools_pytest() { # asan_tools_pytest <log> <test files...>: one pytest run, its own temporary folder
