@@ -11,7 +11,7 @@ not readable), nor where none can be written (NanoVDB grids, measured BSDF table
 
 With --absent-includes empty, a .pbrt include whose text is absent (not fetched, or not held by the index the
 text was read through: mostly the large files of inline meshes) is an empty file in the overlay (but for one
-tiny triangle far below the scene: udm1-pt refuses a scene without shapes), so that the
+tiny triangle far below the scene, so that what would be refused of its shapes is still seen), so that the
 rest of the scene is judged: such a scene says "empty includes" in the stand-ins column, the summary counts
 those that render apart, and it is not the scene as distributed (a named material or object defined in the
 absent file makes it refused, which is reported as such).
@@ -97,8 +97,9 @@ def build_overlay(collection: Path, overlay: Path) -> None:
             os.symlink(src.resolve(), dst)
 
 
-# What an absent include becomes with --absent-includes empty: one tiny triangle far below the scene (udm1-pt
-# refuses a scene without shapes, and the absent files are mostly geometry), in the material then in force.
+# What an absent include becomes with --absent-includes empty: one tiny triangle far below the scene, in the material
+# and under the transforms then in force (the absent files are mostly geometry: a shape keeps what would be refused
+# of them, such as a transform that moves while the shutter is open, from passing unseen).
 EMPTY_INCLUDE = ("# udm1 census: this include's text is absent from the collection folder\n"
                  "AttributeBegin\n  Shape \"trianglemesh\" \"integer indices\" [0 1 2]\n"
                  "    \"point3 P\" [0 -1e5 0  1e-3 -1e5 0  0 -1e5 1e-3]\nAttributeEnd\n")
