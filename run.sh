@@ -152,7 +152,7 @@ bench)
     ./build/bin/udm1_bench_seq "$@"
     udm1_log "Python throughput against numpy and scipy (bench/bench_python.py)"
     PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1" "$PY" bench/bench_python.py
-    udm1_log "per-sample draws (streams, domains, cursor) against OpenQMC, -O3 -march=native and -O3 (bench/bench_per_sample.py)"
+    udm1_log "per-sample draws (streams, domains, cursor) against OpenQMC at -O3 -march=native, x86-64-v3 and the baseline (bench/bench_per_sample.py)"
     "$PY" bench/bench_per_sample.py --build "$ROOT/build" --out "$ROOT/build/bench_per_sample"
     udm1_log "every sampler's throughput (bench/bench_samplers.c)"
     ./build/bin/udm1_bench_samplers throughput
