@@ -835,9 +835,15 @@ private:
             if (in != "path" && in != "volpath" && in != "simplepath" && in != "randomwalk" && in != "bdpt" && in != "sppm")
                 throw SceneError(here + ": Integrator \"" + in + "\" is not supported (path, volpath; simplepath, "
                                         "randomwalk and sppm render as path, bdpt as volpath)");
-            if (const Param *p = ps.find("rrthreshold"))
-                throw SceneError(p->where + ": Integrator: 'rrthreshold' is pbrt-v3's; pbrt-v4 refuses it as an unused "
-                                            "parameter");
+            // pbrt-v3's Russian roulette threshold (scenes converted from pbrt-v3 keep it; pbrt-v4 refuses it as
+            // unused): roulette changes the noise, not the image, which is rendered with pbrt-v4's roulette
+            if (const Param *p = ps.find("rrthreshold")) {
+                if (p->type != "float" || p->numbers.size() != 1)
+                    throw SceneError(p->where + ": Integrator: rrthreshold takes one float");
+                scene_.notes.push_back(p->where + ": Integrator: rrthreshold ignored: pbrt-v3's roulette threshold "
+                                                  "(pbrt-v4 refuses it as unused); roulette changes the noise, not the image");
+                ps.params.erase(ps.params.begin() + (p - ps.params.data()));
+            }
             // each integrator's own parameters (pbrt-v4 refuses the others as unused)
             if (in == "path" || in == "volpath") only(ps, {"maxdepth", "lightsampler", "regularize"}, "Integrator \"" + in + "\"");
             else if (in == "simplepath") only(ps, {"maxdepth", "samplelights", "samplebsdf"}, "Integrator \"simplepath\"");
