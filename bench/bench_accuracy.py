@@ -133,6 +133,7 @@ def cases() -> list[Case]:
         Case("grid-fire", TEST_SCENES / "grid-fire.pbrt", (96, 72), 256),
         Case("cloud", TEST_SCENES / "cloud.pbrt", (96, 72), 256),
         Case("format", TEST_SCENES / "format.pbrt", (160, 120), 1024),
+        Case("displacement", TEST_SCENES / "displacement.pbrt", (96, 64), 1024),
         Case("clamp", TEST_SCENES / "clamp.pbrt", (160, 120), 1024,
              cause="the film's maxcomponentvalue acts on each sample's sensor values: pbrt-v4's are a spectral "
                    "sample's (four wavelengths, whose XYZ vary from sample to sample), udm1-pt's an RGB sample's, so the "

@@ -5,12 +5,14 @@
 // only what a scene needs.
 #include "pbrt_parser.h"
 
+#include "displacement.h"
 #include "file_read.h"
 
 #include "loop_subdivision.h"
 #include "medium_presets.h"
 #include "mesh_io.h"
 #include "spectrum.h"
+#include "textures.h"
 #include "white_balance.h"
 #include "udm1app/one_line.h"
 
@@ -233,6 +235,7 @@ public:
             scene_.shapes[pm.shape].material = it->second.index;
         }
         resolve_textures();
+        resolve_displacements();
         resolve_instances();
         // (after the named materials: a shape's NamedMaterial "interface" may be made after the shape)
         if (!geometry_only_) resolve_media(), interface_lights();
@@ -1730,16 +1733,38 @@ private:
             }
         } else if (type == "plymesh") {
             only(ps, {"filename", "displacement", "edgelength", "alpha"}, "plymesh", false, &SHAPE_PARAMETERS);
-            if (const Param *disp = ps.find("displacement")) {
-                if (!geometry_only_) throw SceneError(disp->where + ": plymesh displacement is not supported");
+            const Param *disp = ps.find("displacement");
+            double edge = 1;
+            if (disp && geometry_only_) {
                 ignore(disp->where, "plymesh displacement (the mesh is used undisplaced)");
+                disp = nullptr;
+            } else if (disp) {  // displaced when the scene is complete (its texture may come later): resolve_displacements
+                if (disp->type != "texture" || disp->strings.size() != 1)
+                    throw SceneError(disp->where + ": plymesh: displacement must be \"texture displacement\" naming one "
+                                                   "float texture");
+                edge = ps.get_float("edgelength", 1.0);
+                if (!(edge > 0 && edge < 1e30))
+                    throw SceneError((ps.find("edgelength") ? ps.find("edgelength")->where : disp->where) +
+                                     ": plymesh: edgelength must be a positive number");
+                if (!m.affine()) throw SceneError(here + ": plymesh with displacement: " + PROJECTIVE);
             }
             std::string file = ps.get_string("filename", "");
             if (file.empty()) throw SceneError(here + ": plymesh needs \"string filename\"");
             try {  // the PLY's own complaint, and where the scene asked for it
-                read_ply(resolve(file), m, &s);
+                read_ply(resolve(file), disp ? Mat4() : m, &s);
             } catch (const SceneError &e) {
                 throw SceneError(here + ": plymesh: " + e.what() + where_looked(file, resolve(file)));
+            }
+            if (disp) {
+                if (s.UV.empty())
+                    throw SceneError(disp->where + ": plymesh displacement needs the mesh's vertex uv (" + file +
+                                     " has none; pbrt-v4 refuses it too)");
+                PendingDisplacement pd;
+                pd.shape = scene_.shapes.size(), pd.name = disp->strings[0], pd.where = disp->where, pd.edge = edge;
+                pd.world_from_object = m, pd.reverse = st_.reverse;
+                pd.mesh.P = s.P, pd.mesh.N = s.N, pd.mesh.UV = s.UV, pd.mesh.indices = s.indices;
+                pending_displacements_.push_back(std::move(pd));
+                to_world(m, &s);  // (undisplaced until then)
             }
         } else if (type == "sphere") {
             only(ps, {"radius", "alpha"}, "sphere", false, &SHAPE_PARAMETERS);
@@ -2004,6 +2029,53 @@ private:
         TextureInput Texture::*input;
         std::string kind, name, where;
     };
+    struct PendingDisplacement {  // a plymesh's "texture displacement": its object-space mesh
+        size_t shape;
+        std::string name, where;
+        double edge;
+        Mat4 world_from_object;
+        bool reverse;
+        DisplacedMesh mesh;
+    };
+    std::vector<PendingDisplacement> pending_displacements_;
+
+    // An object-space triangle mesh into world space: points by m, normals by its inverse transpose, normalized.
+    static void to_world(const Mat4 &m, Shape *s)
+    {
+        for (size_t k = 0; k + 2 < s->P.size(); k += 3) {
+            Vec3 p = m.point(Vec3(s->P[k], s->P[k + 1], s->P[k + 2]));
+            s->P[k] = (float)p.x, s->P[k + 1] = (float)p.y, s->P[k + 2] = (float)p.z;
+        }
+        for (size_t k = 0; k + 2 < s->N.size(); k += 3) {
+            Vec3 n = normalize(m.normal(Vec3(s->N[k], s->N[k + 1], s->N[k + 2])));
+            s->N[k] = (float)n.x, s->N[k + 1] = (float)n.y, s->N[k + 2] = (float)n.z;
+        }
+    }
+
+    // Each displaced plymesh refined and displaced by its float texture (displacement.h), made anywhere in the scene.
+    void resolve_displacements()
+    {
+        for (PendingDisplacement &pd : pending_displacements_) {
+            auto it = textures_.find({"float", pd.name});
+            if (it == textures_.end())
+                throw SceneError(pd.where + ": displacement: float texture \"" + quote(pd.name) + "\" was not made");
+            Textures tex(scene_, {it->second});
+            int t = it->second;
+            displace_mesh(pd.mesh, pd.world_from_object, pd.edge, [&](const Vec3 &p, double u, double v) {
+                TexturePoint at;
+                at.p = p, at.u = u, at.v = v;
+                return tex.value(t, at);
+            });
+            Shape &s = scene_.shapes[pd.shape];
+            s.P = std::move(pd.mesh.P), s.N = std::move(pd.mesh.N), s.UV = std::move(pd.mesh.UV);
+            s.indices = std::move(pd.mesh.indices);
+            to_world(pd.world_from_object, &s);
+            if (pd.reverse)
+                for (float &x : s.N) x = -x;
+        }
+        pending_displacements_.clear();
+    }
+
     struct PendingAlpha {  // a shape's "texture alpha"
         size_t shape;
         std::string name, where;

@@ -9,6 +9,8 @@ the same image; and what pbrt-v4 renders inconsistently or refuses, refused with
 
 import os
 import re
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -276,3 +278,59 @@ def test_refusals_name_file_and_line(body, line, words, tmp_path):
     scene.write_text(HEAD + body)
     r = fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "-o", str(tmp_path / "x.exr")], words, tmp_path)
     assert f"{scene}:{line}:" in r.stderr, r.stderr
+
+
+SCENES = Path(__file__).resolve().parents[1] / "scenes"
+GRID = SCENES / "displacement" / "grid.ply"  # a 4 x 4-vertex grid with normals and uv
+
+
+@pytest.mark.parametrize(
+    "params,line,words",
+    [
+        ('"texture displacement" "lift" "float edgelength" [ 0 ]', 6, "edgelength must be a positive number"),
+        ('"texture displacement" "lift" "float edgelength" [ -1 ]', 6, "edgelength must be a positive number"),
+        ('"texture displacement" "nothere"', 6, 'float texture "nothere" was not made'),
+        ('"float displacement" [ 0.1 ]', 6, 'displacement must be "texture displacement"'),
+        ('"texture displacement" "colour"', 6, 'float texture "colour" was not made'),
+    ],
+)
+def test_displacement_refusals(params, line, words, tmp_path):
+    scene = tmp_path / "s.pbrt"
+    scene.write_text(HEAD + 'Texture "lift" "float" "constant" "float value" [ 0.1 ]\n'
+                     'Texture "colour" "spectrum" "constant" "rgb value" [ 0.1 0.2 0.3 ]\n'
+                     f'Shape "plymesh" "string filename" "{GRID}" {params}\n')
+    r = fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "-o", str(tmp_path / "x.exr")], words, tmp_path)
+    assert f"{scene}:{line}:" in r.stderr, r.stderr
+
+
+def test_displacement_needs_uv(tmp_path):
+    ply = tmp_path / "nouv.ply"
+    ply.write_text("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")
+    scene = tmp_path / "s.pbrt"
+    scene.write_text(HEAD + 'Texture "lift" "float" "constant" "float value" [ 0.1 ]\n'
+                     f'Shape "plymesh" "string filename" "{ply}" "texture displacement" "lift"\n')
+    r = fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "-o", str(tmp_path / "x.exr")], "needs the mesh's vertex uv",
+                      tmp_path)
+    assert f"{scene}:5:" in r.stderr, r.stderr
+
+
+def test_displacement_changes_the_surface_and_zero_changes_nothing(tmp_path):
+    # tests/scenes/displacement.pbrt (its relief within 0.1 % of pbrt-v4: bench/bench_accuracy.py): the relief
+    # changes the image; a displacement of 0 refines the grids but leaves the surface, so the image stays
+    text = (SCENES / "displacement.pbrt").read_text()
+    (tmp_path / "displacement").mkdir()
+    shutil.copy(GRID, tmp_path / "displacement" / "grid.ply")
+    shutil.copy(SCENES / "sky-map.png", tmp_path / "sky-map.png")
+    plain = re.sub(r' "texture displacement" "\w+" "float edgelength" \[ [\d.]+ \]', "", text)
+    zero = text.replace('"float value" [ 0.2 ]', '"float value" [ 0 ]').replace('"float scale" [ 0.35 ]', '"float scale" [ 0 ]')
+    assert plain != text and zero != text
+    means = {}
+    for name, t in (("relief", text), ("plain", plain), ("zero", zero)):
+        scene = tmp_path / f"{name}.pbrt"
+        scene.write_text(t)
+        r = run("--scene", str(scene), "--spp", "16", "--size", "48x32", "-o", str(tmp_path / f"{name}.exr"))
+        assert r.returncode == 0 and r.stderr == "", r.stderr
+        means[name] = read_exr(tmp_path / f"{name}.exr").reshape(-1, 3).mean(axis=0)
+    assert np.all(np.abs(means["zero"] / means["plain"] - 1) < 2e-3), means
+    assert np.all(np.abs(means["relief"] / means["plain"] - 1) > 5e-3), means
