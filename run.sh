@@ -93,7 +93,9 @@ test)
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
     udm1_log "running every test (ctest in build/; the report steps' tests run once, below, against the sanitized tools)"
-    ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_reports$'
+    # the tools' test files that run again below against the sanitized tools: here only their release_only tests
+    SANITIZED_TOOL_TESTS="test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py test_hardening.py"
+    UDM1_SANITIZED_LATER="${SANITIZED_TOOL_TESTS// /,}" ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_reports$'
     udm1_log "building and running the C and C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
     build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -127,8 +129,7 @@ test)
     asan_tools_pytest "$logs/reports" test_reports.py &
     reports_pid=$!
     tools_status=0 reports_status=0
-    asan_tools_pytest "$logs/tools" test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py \
-        test_hardening.py || tools_status=$?
+    asan_tools_pytest "$logs/tools" $SANITIZED_TOOL_TESTS || tools_status=$?
     wait "$reports_pid" || reports_status=$?
     cat "$logs/tools" "$logs/reports"
     rm -rf "$logs"
