@@ -282,7 +282,7 @@ public:
 
     std::string to_string() const override {
         return "Udm1Sampler[preset=" + m_o.preset + ", sample_count=" + std::to_string(m_sample_count) +
-               ", randomize=" + m_o.randomize + ", dimensions=" + std::to_string(m_o.dimensions) + "]";
+               ", randomize=" + randomization() + ", dimensions=" + std::to_string(m_o.dimensions) + "]";
     }
 
     MI_DECLARE_CLASS(Udm1Sampler)
@@ -318,6 +318,18 @@ private:
 
     /// clone(): the same state, the same future draws (the stream and the arrays are values)
     Udm1Sampler(const Udm1Sampler &s) = default;
+
+    /// The randomization applied (the preset's default resolved), as udm1.Sequence.randomization names it.
+    std::string randomization() const {
+        switch (udm1_seq_randomization(m_seq.get())) {
+            case UDM1_RANDOMIZE_NONE: return "none";
+            case UDM1_RANDOMIZE_SHIFT: return "shift";
+            case UDM1_RANDOMIZE_PERMUTE: return "permute";
+            case UDM1_RANDOMIZE_OWEN: return "owen";
+            case UDM1_RANDOMIZE_SCREEN: return "screen";
+            default: return "default";
+        }
+    }
 
     [[noreturn]] void refused_draw() const {
         udm1mi::fail("sample " + std::to_string(m_index) + " of stream " + std::to_string(m_stream.stream) +
@@ -486,5 +498,16 @@ private:
     Float m_table;
 };
 
+#if defined(UDM1_MITSUBA_TEST_VARIANTS)
+// only scalar_rgb and llvm_ad_rgb: the tests' build (a third of the compile time)
+extern "C" MI_EXPORT void init_plugin(std::string_view name, PluginRegisterFn fn) {
+    using FL = dr::DiffArray<JitBackend::LLVM, float>;
+    using S = Udm1Sampler<float, Color<float, 3>>;
+    using L = Udm1Sampler<FL, Color<FL, 3>>;
+    fn(name, "scalar_rgb", S::Type, [](void *, const Properties &p) -> ref<Object> { return new S(p); });
+    fn(name, "llvm_ad_rgb", L::Type, [](void *, const Properties &p) -> ref<Object> { return new L(p); });
+}
+#else
 MI_EXPORT_PLUGIN(Udm1Sampler)
+#endif
 NAMESPACE_END(mitsuba)
