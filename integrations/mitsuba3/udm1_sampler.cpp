@@ -49,7 +49,9 @@ inline std::string quoted(const std::string &s) { return "'" + s + "'"; }
 
 inline std::string repr_double(double v) {
     char buf[64];
-    auto r = std::to_chars(buf, buf + sizeof buf, v);
+    double a = std::fabs(v);  // Python's repr: the shortest digits, scientific from 1e16 and below 1e-4
+    auto r = (a >= 1e16 || (a > 0 && a < 1e-4)) ? std::to_chars(buf, buf + sizeof buf, v, std::chars_format::scientific)
+                                                : std::to_chars(buf, buf + sizeof buf, v, std::chars_format::fixed);
     std::string s(buf, r.ptr);
     if (s.find_first_of(".eni") == std::string::npos) s += ".0";
     return s;
