@@ -10,8 +10,9 @@
 //    pass P + k % P; the stream is render_seed 2^32 + pixel ("screen": (y << 32) | x, the render's seed
 //    added to the sequence's). The Weyl presets are computed in Dr.Jit integer arrays from the sequence
 //    contract (udm1/seq.h: the 128-bit product with dr::mul_hi, the documented hash of udm1/domain.h,
-//    the permute's XOR, the Owen scrambling and the tent); the other presets are filled by the library
-//    at a pass's first draw into a table of D float32 values per lane.
+//    the permute's XOR, the Owen scrambling and the tent); Sobol and pmj02 (where udm1/stream.h draws them
+//    inline) in Dr.Jit from the library's tables and each pixel's randomization words; the other presets
+//    are filled by the library at a pass's first draw into a table of D float32 values per lane.
 // Properties are checked when the scene loads: a bad one is refused with one line naming it.
 // Only libudm1's public header (udm1/udm1.h) is used; libudm1 is linked in statically.
 
@@ -345,6 +346,9 @@ private:
         m_ahi = m_alo = m_base = UInt64();
         m_table = Float();
         m_lane = UInt32();
+        m_inline = 0;
+        m_words = m_table64 = UInt64();
+        m_table32 = m_word_at = m_g = UInt32();
     }
 
     /// Per-lane state of a pass: stream ids and sample indices, and what the draws read.
@@ -397,9 +401,74 @@ private:
             m_base = dr::load<UInt64>(base.data(), d);
             auto morton = [](const UInt64 &s) { return jspread<UInt64>(s) | (jspread<UInt64>(s >> 32) << 1); };
             m_idx = screen ? sample + morton(stream) * dr::opaque<UInt64>((uint64_t) spp) : sample;
-        } else {
+        } else if (!inline_tables(sample, pixel, lanes / per_pass, d)) {
             fill_table(stream, sample, lanes, d);
         }
+    }
+
+    /// Sobol (any randomization but the tent) and pmj02 (unrandomized or digitally shifted), the cases
+    /// udm1/stream.h draws inline, drawn the same way in Dr.Jit: the library's table of the sequence (its
+    /// layout is the header's) and each pixel's randomization words, from udm1_stream_init of each pixel's
+    /// stream. False (nothing set) where the stream does not draw its D dimensions inline.
+    bool inline_tables(const UInt64 &sample, const UInt32 &pixel, uint32_t pixels, uint32_t d) {
+        const udm1_seq *seq = m_seq.get();
+        udm1_stream st;
+        if (d > UDM1_STREAM_DIMS || (uint64_t) pixels * d > 0xFFFFFFFFull ||
+            udm1_stream_init(&st, seq, 0, 0, d) != UDM1_OK || st.held != d)
+            return false;
+        bool sobol = (st.flags & UDM1_STREAM_SOBOL) && d <= st.table_bits, pmj02 = (st.flags & UDM1_STREAM_PMJ02) != 0;
+        if (!sobol && !pmj02) return false;
+        uint32_t flags = st.flags, mode = st.table_mode;
+        std::vector<uint64_t> words((size_t) pixels * d);
+        for (uint32_t p = 0; p < pixels; ++p) {
+            if (udm1_stream_init(&st, seq, (m_render_seed << 32) + p, 0, d) != UDM1_OK || st.flags != flags ||
+                st.table_mode != mode)
+                return false;
+            std::memcpy(&words[(size_t) p * d], st.offset, d * sizeof(uint64_t));
+        }
+        m_inline = sobol ? 1 : 2;
+        m_table_mode = mode;
+        m_words = dr::load<UInt64>(words.data(), words.size());
+        m_word_at = pixel * d;
+        UInt32 index = UInt32(sample);  // (below 2^32: a Sobol index; below K: a pmj02 one)
+        if (sobol) {
+            m_g = index ^ (index >> 1);  // the Gray code
+            if (mode == 2)
+                m_table32 = dr::load<UInt32>((const uint32_t *) st.table, (size_t) d * 4 * 256);
+            else
+                m_table64 = dr::load<UInt64>((const uint64_t *) st.table, (size_t) d * 4 * 256);
+        } else {
+            uint64_t K = st.point_count, blocks = (d + 3) / 4;
+            m_g = index;
+            m_table32 = dr::load<UInt32>((const uint32_t *) st.table, (size_t) (blocks * K * 4));
+            m_K = dr::opaque<UInt32>((uint32_t) K);
+        }
+        return true;
+    }
+
+    /// The float32 value of dimension jj < D per lane from the inline tables.
+    Float inline_value(const UInt32 &jj) const {
+        UInt64 word = dr::gather<UInt64>(m_words, m_word_at + jj);
+        UInt32 top;
+        if (m_inline == 1) {  // Sobol: the XOR of the direction numbers the Gray code's four bytes select
+            UInt32 at = jj * 1024u;
+            UInt32 i0 = at + (m_g & 255u), i1 = at + 256u + ((m_g >> 8) & 255u), i2 = at + 512u + ((m_g >> 16) & 255u),
+                   i3 = at + 768u + (m_g >> 24);
+            if (m_table_mode == 2) {  // reversed top halves, Owen-scrambled by the word's low half
+                UInt32 rev = dr::gather<UInt32>(m_table32, i0) ^ dr::gather<UInt32>(m_table32, i1) ^
+                             dr::gather<UInt32>(m_table32, i2) ^ dr::gather<UInt32>(m_table32, i3);
+                top = udm1mi::jreverse32<UInt32>(udm1mi::jowen_hash32<UInt32>(rev, UInt32(word & 0xFFFFFFFFull)));
+            } else {
+                UInt64 v = dr::gather<UInt64>(m_table64, i0) ^ dr::gather<UInt64>(m_table64, i1) ^
+                           dr::gather<UInt64>(m_table64, i2) ^ dr::gather<UInt64>(m_table64, i3);
+                if (m_table_mode == 1) v = v ^ word;
+                top = UInt32(v >> 32);
+            }
+        } else {  // pmj02: the point's coordinate in its block of four, XORed with the word's high half
+            top = dr::gather<UInt32>(m_table32, ((jj >> 2) * m_K + m_g) * 4u + (jj & 3u));
+            if (m_table_mode == 1) top = top ^ UInt32(word >> 32);
+        }
+        return Float(top >> 8) * (1.f / 16777216.f);
     }
 
     /// The library's values of every lane for dimensions [0, D): D float32 columns, one udm1_stream per pixel
@@ -481,7 +550,8 @@ private:
         UInt64 raw = jmix64<UInt64>(jmix64<UInt64>(m_pkey + kj) + (m_n + 1ull) * kGolden);  // udm1_pad
         if (m_o.weyl) raw = dr::select(inside, weyl_raw(jj, kj), raw);
         Float v = Float(UInt32(raw >> 40)) * (1.f / 16777216.f);
-        if (!m_o.weyl) v = dr::select(inside, dr::gather<Float>(m_table, jj * m_lanes + m_lane, inside), v);
+        if (m_inline) v = dr::select(inside, inline_value(jj), v);
+        else if (!m_o.weyl) v = dr::select(inside, dr::gather<Float>(m_table, jj * m_lanes + m_lane, inside), v);
         return v;
     }
 
@@ -498,6 +568,9 @@ private:
     UInt64 m_S, m_key, m_n, m_idx, m_pkey, m_ahi, m_alo, m_base;
     UInt32 m_d, m_lanes, m_lane;
     Float m_table;
+    uint32_t m_inline = 0, m_table_mode = 0;  // inline tables: 1 Sobol, 2 pmj02 (else 0)
+    UInt64 m_words, m_table64;
+    UInt32 m_table32, m_word_at, m_g, m_K;
 };
 
 #if defined(UDM1_MITSUBA_TEST_VARIANTS)
