@@ -17,8 +17,8 @@ with a message without it) at --size, and scalar_rgb at --scalar-size (a smaller
 slower for every sampler; where udm1's rows are the Python sampler, a Python call per draw, they render on one
 thread: Mitsuba's render threads calling Python contend for the GIL, which costs more than they gain).
 
-udm1's rows are the native plugin (integrations/mitsuba3), built first when it is not (python -m udm1.mitsuba
-build); where it cannot be built, udm1.mitsuba's Python sampler, said on stderr.
+udm1's rows are the native plugin (integrations/mitsuba3), built first (python -m udm1.mitsuba build, up to
+date in a second); where it cannot be built and is not, udm1.mitsuba's Python sampler, said on stderr.
 
 3. --speed: render time only, the native plugin against Mitsuba's independent sampler, --size (128) Cornell
    box at --speed-spps (4..1024), in scalar_rgb on 1 and on 2 render threads and in llvm_ad_rgb: per spp
@@ -57,12 +57,11 @@ def use_native(mi) -> bool:
     Python sampler with a note; True for the native plugin."""
     import udm1.mitsuba
     from udm1 import mitsuba_build
-    if mitsuba_build.built() is None:
-        try:
-            print("bench_mitsuba_sampler: building the native plugin (python -m udm1.mitsuba build) ...", flush=True)
-            mitsuba_build.build()
-        except mitsuba_build.BuildError as exc:
-            print(f"bench_mitsuba_sampler: the native plugin cannot be built ({exc})", file=sys.stderr)
+    try:  # (CMake's incremental build: the plugin of this checkout's source, in a second when it is up to date)
+        print("bench_mitsuba_sampler: building the native plugin (python -m udm1.mitsuba build) ...", flush=True)
+        mitsuba_build.build()
+    except mitsuba_build.BuildError as exc:
+        print(f"bench_mitsuba_sampler: the native plugin cannot be built ({exc})", file=sys.stderr)
     return not isinstance(udm1.mitsuba.register(), type)
 
 
