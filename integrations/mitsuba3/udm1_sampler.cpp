@@ -4,8 +4,9 @@
 // is the contract: the stream of each pixel, the index of each sample, the dimension of each draw, the
 // padding past D):
 //  - scalar variants: Mitsuba seeds the sampler once per pixel (and pass) with a seed unique in the render;
-//    that seed is the stream (a udm1_stream filled in seed()), the count of advance() calls the index, and
-//    each draw is udm1_stream_draw_f32 (udm1/stream.h: inline for the Weyl, Sobol and pmj02 presets).
+//    that seed is the stream (udm1_streams of 16 dimensions each, filled at their first draw after seed()),
+//    the count of advance() calls the index, and each draw is udm1_stream_draw_f32 (udm1/stream.h: inline
+//    for the Weyl, Sobol and pmj02 presets).
 //  - vector variants (llvm_*, cuda_*): lane k of a pass of P samples per pixel is pixel k / P and sample
 //    pass P + k % P; the stream is render_seed 2^32 + pixel ("screen": (y << 32) | x, the render's seed
 //    added to the sequence's). The Weyl presets are computed in Dr.Jit integer arrays from the sequence
@@ -226,9 +227,10 @@ public:
     void seed(UInt32 seed, uint32_t wavefront_size = (uint32_t) -1) override {
         if constexpr (!Jit) {
             Base::seed(seed, wavefront_size);
-            if (udm1_stream_init(&m_stream, m_seq.get(), (uint64_t) seed, 0,
-                                 std::min<uint32_t>(m_o.dimensions, UDM1_STREAM_DIMS)) != UDM1_OK)
-                udm1mi::fail(std::string("seed(") + std::to_string(seed) + "): " + udm1_last_error());
+            // the pixel's streams are filled at their first draw, a block of kBlock dimensions at a time: most
+            // paths end long before D
+            m_stream_id = seed;
+            m_filled = 0;
             m_index = 0;
         } else {
             uint64_t render_seed = dr::width(seed) ? (uint64_t) dr::slice(seed, 0) : 0;
@@ -258,8 +260,7 @@ public:
     Float next_1d(Mask = true) override {
         if constexpr (!Jit) {
             float v;
-            udm1_stream_draw_f32(&m_stream, m_index, m_dimension_index, 1, &v);
-            if (std::isnan(v)) refused_draw();
+            draw(m_dimension_index, 1, &v);
             m_dimension_index += 1;
             return v;
         } else {
@@ -273,8 +274,13 @@ public:
     Point2f next_2d(Mask active = true) override {
         if constexpr (!Jit) {
             float v[2];
-            udm1_stream_draw_f32(&m_stream, m_index, m_dimension_index, 2, v);
-            if (std::isnan(v[0])) refused_draw();
+            uint32_t j = m_dimension_index;
+            if (j % kBlock == kBlock - 1) {  // (across two blocks)
+                draw(j, 1, v);
+                draw(j + 1, 1, v + 1);
+            } else {
+                draw(j, 2, v);
+            }
             m_dimension_index += 2;
             return Point2f(v[0], v[1]);
         } else {
@@ -334,9 +340,32 @@ private:
         }
     }
 
-    [[noreturn]] void refused_draw() const {
-        udm1mi::fail("sample " + std::to_string(m_index) + " of stream " + std::to_string(m_stream.stream) +
-                     " cannot be drawn: " + udm1_last_error());
+    /// Scalar variants: dimensions [j, j + n) of the current sample, within one block of kBlock dimensions
+    /// below UDM1_STREAM_DIMS (a Weyl value inline here: the contract's arithmetic on the stream's words,
+    /// udm1/stream.h), or past them (the library's draw: the sequence's value or its padding).
+    void draw(uint32_t j, uint32_t n, float *out) {
+        uint32_t b = j / kBlock;
+        udm1_stream &st = m_streams[b < kBlocks ? b : 0];
+        if (b < kBlocks && !(m_filled & (1u << b))) {
+            if (udm1_stream_init(&st, m_seq.get(), m_stream_id, b * kBlock, kBlock) != UDM1_OK)
+                udm1mi::fail("stream " + std::to_string(m_stream_id) + ": " + udm1_last_error());
+            m_filled |= 1u << b;
+        } else if (b >= kBlocks && !(m_filled & 1u)) {
+            if (udm1_stream_init(&st, m_seq.get(), m_stream_id, 0, kBlock) != UDM1_OK)
+                udm1mi::fail("stream " + std::to_string(m_stream_id) + ": " + udm1_last_error());
+            m_filled |= 1u;
+        }
+        uint32_t dim = j - st.first;
+        uint64_t m = m_index + st.index_base;
+        if ((st.flags & UDM1_STREAM_INLINE) && n == 1 && dim < st.held && m <= 0xFFFFFFFFu &&
+            (st.point_count == 0 || m_index < st.point_count)) {
+            out[0] = udm1_raw_to_f32(udm1_weyl_value32(st.a_hi[dim], st.a_lo[dim], st.offset[dim], (uint32_t) m));
+            return;
+        }
+        udm1_stream_draw_f32(&st, m_index, dim, n, out);
+        if (std::isnan(out[0]))
+            udm1mi::fail("sample " + std::to_string(m_index) + " of stream " + std::to_string(m_stream_id) +
+                         " cannot be drawn: " + udm1_last_error());
     }
 
     // ---- vector variants ----
@@ -559,8 +588,10 @@ private:
     udm1mi::SeqPtr m_seq;
     uint64_t m_seq_seed = 0;  // the render's seed added to the sequence's ("screen", vector variants)
     // scalar variants
-    udm1_stream m_stream{};
-    uint64_t m_index = 0;
+    static constexpr uint32_t kBlock = 16, kBlocks = UDM1_STREAM_DIMS / kBlock;
+    udm1_stream m_streams[kBlocks]{};  // dimensions [16 b, 16 b + 16) of the pixel's stream, filled when drawn
+    uint32_t m_filled = 0;             // which of them are
+    uint64_t m_stream_id = 0, m_index = 0;
     // vector variants
     bool m_stale = true;
     uint32_t m_pass = 0, m_mode = 0;

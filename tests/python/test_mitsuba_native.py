@@ -189,6 +189,25 @@ def test_scalar_values_are_the_library_s(plugin):
     assert not bad, "\n".join(bad)
 
 
+def test_scalar_values_across_the_dimension_blocks(plugin):
+    """The scalar sampler fills a pixel's dimensions 16 at a time: long samples (2D draws across a block's
+    end, dimensions past 64 and past D) are the library's too."""
+    variant("scalar_rgb")
+    bad = []
+    for preset, d in (("wr", 40), ("wr", 64), ("sobol-owen", 40), ("pmj02", 36), ("halton", 20), ("rd", 70)):
+        seq = reference(preset, "default", d, 5, SPP)
+        s = mi.load_dict({"type": "udm1", "preset": preset, "sample_count": SPP, "dimensions": d, "seed": 5})
+        for stream in (0, 2**32 - 1):
+            s.seed(stream)
+            for n in range(SPP):
+                got = np.float32(draw(s, 80))
+                want = library(seq, [stream], [n], 80)[0]
+                if not np.array_equal(got, want):
+                    bad.append(f"{preset} D={d} stream {stream} sample {n}: dims {np.flatnonzero(got != want)[:5]}")
+                s.advance()
+    assert not bad, "\n".join(bad)
+
+
 def test_scalar_copies_draw_on(plugin):
     """clone() continues where its original is (the same future draws); fork() is seeded afresh."""
     variant("scalar_rgb")
