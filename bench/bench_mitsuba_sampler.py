@@ -23,8 +23,9 @@ date in a second); where it cannot be built and is not, udm1.mitsuba's Python sa
 3. --speed: render time only, the native plugin against Mitsuba's independent sampler, --size (128) Cornell
    box at --speed-spps (4..1024), in scalar_rgb on 1 and on 2 render threads and in llvm_ad_rgb: per spp
    the samplers alternate, --repeats times (in llvm_ad_rgb after an untimed render each, which compiles the
-   kernels); the fastest time of each (on a shared machine the least disturbed; the median is reported beside
-   it) and its ratio to the independent sampler's.
+   kernels); the fastest wall time of each (on a shared machine the least disturbed; the median is reported
+   beside it) and its ratio to the independent sampler's, and the ratio of their processor times (every
+   thread's: what a render costs, not counting the time its threads wait for a core).
 
     python bench/bench_mitsuba_sampler.py [--size 128] [--spps 4,16,64,256] [--seeds 4] [--out DIR]
     python bench/bench_mitsuba_sampler.py --speed [--speed-spps 4,16,64,256,1024] [--repeats 3]
@@ -84,17 +85,20 @@ def load(mi, sampler: dict, size: int, spp: int):
     return mi.load_dict(d)
 
 
-def render(mi, scene, spp: int, seed: int, threads: int = 0) -> tuple[np.ndarray, float]:
-    """One render, timed; threads > 0 caps Mitsuba's render threads for it."""
+def render(mi, scene, spp: int, seed: int, threads: int = 0, cpu: list | None = None) -> tuple[np.ndarray, float]:
+    """One render, timed (wall clock; its processor time, every thread's, appended to `cpu` when given);
+    threads > 0 caps Mitsuba's render threads for it."""
     import drjit as dr
     before = dr.thread_count()
     if threads:
         dr.set_thread_count(threads)
     try:
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         img = mi.render(scene, spp=spp, seed=seed)
         arr = np.array(img)  # evaluates the image
         dr.sync_thread()
+        if cpu is not None:
+            cpu.append(time.process_time() - c0)
         return arr, time.perf_counter() - t0
     finally:
         dr.set_thread_count(before)
@@ -194,19 +198,23 @@ def run_speed(variant: str, threads: int, size: int, spps, repeats: int) -> dict
             for name, scene in scenes.items():
                 render(mi, scene, spp, 999, threads)  # compile the kernels
         secs = {name: [] for name in scenes}
+        cpu = {name: [] for name in scenes}
         for rep in range(repeats):
             order = list(scenes) if rep % 2 == 0 else list(scenes)[::-1]  # alternating, both ways round
             for name in order:
-                secs[name].append(render(mi, scenes[name], spp, rep, threads)[1])
-        # the fastest of the repeats: on a shared machine the least disturbed render (the median beside it)
-        base, base_med = min(secs["independent"]), statistics.median(secs["independent"])
+                secs[name].append(render(mi, scenes[name], spp, rep, threads, cpu[name])[1])
+        # the fastest of the repeats: on a shared machine the least disturbed render (the median beside it);
+        # and the processor time, which does not count the time a render thread waits for a core
+        base, base_med, base_cpu = min(secs["independent"]), statistics.median(secs["independent"]), min(cpu["independent"])
         for name in scenes:
             best, med = min(secs[name]), statistics.median(secs[name])
             rows.append({"variant": variant, "threads": threads, "sampler": name, "spp": spp, "seconds": best,
                          "median_seconds": med, "all_seconds": secs[name], "x_independent_time": best / base,
-                         "x_independent_median": med / base_med})
+                         "x_independent_median": med / base_med, "cpu_seconds": min(cpu[name]),
+                         "all_cpu_seconds": cpu[name], "x_independent_cpu": min(cpu[name]) / base_cpu})
         print(f"[{variant}, {threads or 'every'} thread(s)] {spp} spp: " +
-              ", ".join(f"{r['sampler']} {r['x_independent_time']:.3f}x" for r in rows[-len(scenes):]), flush=True)
+              ", ".join(f"{r['sampler']} {r['x_independent_time']:.3f}x (cpu {r['x_independent_cpu']:.3f}x)"
+                      for r in rows[-len(scenes):]), flush=True)
     return {"variant": variant, "threads": threads, "size": size, "repeats": repeats, "rows": rows}
 
 
@@ -215,17 +223,18 @@ def print_speed(res: dict):
         print(f"\n{res['variant']} ({res['threads']} threads): skipped: {res['skipped']}")
         return
     print(f"\n{res['variant']}, {res['threads'] or 'every'} render thread(s), {res['size']}x{res['size']}, fastest of "
-          f"{res['repeats']} (median's ratio in brackets): time over the independent sampler's")
+          f"{res['repeats']}: wall time over the independent sampler's (the medians' ratio, then the processor "
+          "times', in brackets)")
     names = list(dict.fromkeys(r["sampler"] for r in res["rows"]))
     spps = list(dict.fromkeys(r["spp"] for r in res["rows"]))
-    print(f"{'sampler':<18}" + "".join(f"{s:>14}" for s in spps))
+    print(f"{'sampler':<18}" + "".join(f"{s:>20}" for s in spps))
     for n in names:
         cells = {r["spp"]: r for r in res["rows"] if r["sampler"] == n}
         if n == "independent":
-            print(f"{n + ' (s)':<18}" + "".join(f"{cells[s]['seconds']:14.3f}" for s in spps))
+            print(f"{n + ' (s)':<18}" + "".join(f"{cells[s]['seconds']:20.3f}" for s in spps))
         else:
-            print(f"{n:<18}" + "".join(f"{cells[s]['x_independent_time']:6.3f} ({cells[s]['x_independent_median']:.2f})"
-                                       for s in spps))
+            print(f"{n:<18}" + "".join(f"{cells[s]['x_independent_time']:6.3f} ({cells[s]['x_independent_median']:.2f}, "
+                                       f"{cells[s]['x_independent_cpu']:.2f})" for s in spps))
 
 
 def print_result(res: dict):
