@@ -345,27 +345,51 @@ private:
     /// udm1/stream.h), or past them (the library's draw: the sequence's value or its padding).
     void draw(uint32_t j, uint32_t n, float *out) {
         uint32_t b = j / kBlock;
-        udm1_stream &st = m_streams[b < kBlocks ? b : 0];
-        if (b < kBlocks && !(m_filled & (1u << b))) {
-            if (udm1_stream_init(&st, m_seq.get(), m_stream_id, b * kBlock, kBlock) != UDM1_OK)
-                udm1mi::fail("stream " + std::to_string(m_stream_id) + ": " + udm1_last_error());
-            m_filled |= 1u << b;
-        } else if (b >= kBlocks && !(m_filled & 1u)) {
-            if (udm1_stream_init(&st, m_seq.get(), m_stream_id, 0, kBlock) != UDM1_OK)
-                udm1mi::fail("stream " + std::to_string(m_stream_id) + ": " + udm1_last_error());
-            m_filled |= 1u;
+        if (b < kBlocks && (m_filled & (1u << b))) {
+            const udm1_stream &st = m_streams[b];
+            uint32_t dim = j - st.first;
+            uint64_t m = m_index + st.index_base;
+            if ((st.flags & UDM1_STREAM_INLINE) && dim + n <= st.held && m <= 0xFFFFFFFFu &&
+                (st.point_count == 0 || m_index < st.point_count)) {
+                for (uint32_t k = 0; k < n; ++k) {
+                    const Weyl &w = m_weyl[j + k];
+                    out[k] = udm1_raw_to_f32(udm1_weyl_value32(w.a_hi, w.a_lo, w.offset, (uint32_t) m));
+                }
+                return;
+            }
         }
-        uint32_t dim = j - st.first;
-        uint64_t m = m_index + st.index_base;
-        if ((st.flags & UDM1_STREAM_INLINE) && n == 1 && dim < st.held && m <= 0xFFFFFFFFu &&
-            (st.point_count == 0 || m_index < st.point_count)) {
-            out[0] = udm1_raw_to_f32(udm1_weyl_value32(st.a_hi[dim], st.a_lo[dim], st.offset[dim], (uint32_t) m));
-            return;
+        draw_library(j, n, out);
+    }
+
+    /// draw() past its inline case: the block filled at its first draw, then udm1_stream_draw_f32 (inline for
+    /// Sobol and pmj02, a library call for the other kinds and past the blocks).
+    MI_NOINLINE void draw_library(uint32_t j, uint32_t n, float *out) {
+        uint32_t b = j / kBlock < kBlocks ? j / kBlock : 0;  // (past the blocks: the library's draw from block 0)
+        udm1_stream &st = m_streams[b];
+        if (!(m_filled & (1u << b))) {
+            fill_block(b);
+            if (j / kBlock < kBlocks && (st.flags & UDM1_STREAM_INLINE)) {
+                draw(j, n, out);
+                return;
+            }
         }
-        udm1_stream_draw_f32(&st, m_index, dim, n, out);
-        if (std::isnan(out[0]))
-            udm1mi::fail("sample " + std::to_string(m_index) + " of stream " + std::to_string(m_stream_id) +
-                         " cannot be drawn: " + udm1_last_error());
+        udm1_stream_draw_f32(&st, m_index, j - st.first, n, out);
+        if (std::isnan(out[0])) refused_draw();
+    }
+
+    MI_NOINLINE void fill_block(uint32_t b) {
+        udm1_stream &st = m_streams[b];
+        if (udm1_stream_init(&st, m_seq.get(), m_stream_id, b * kBlock, kBlock) != UDM1_OK)
+            udm1mi::fail("stream " + std::to_string(m_stream_id) + ": " + udm1_last_error());
+        m_filled |= 1u << b;
+        if (st.flags & UDM1_STREAM_INLINE)  // a dimension's three words side by side
+            for (uint32_t k = 0; k < st.held; ++k)
+                m_weyl[b * kBlock + k] = {st.a_hi[k], st.a_lo[k], st.offset[k]};
+    }
+
+    [[noreturn]] MI_NOINLINE void refused_draw() const {
+        udm1mi::fail("sample " + std::to_string(m_index) + " of stream " + std::to_string(m_stream_id) +
+                     " cannot be drawn: " + udm1_last_error());
     }
 
     // ---- vector variants ----
@@ -591,6 +615,8 @@ private:
     static constexpr uint32_t kBlock = 16, kBlocks = UDM1_STREAM_DIMS / kBlock;
     udm1_stream m_streams[kBlocks]{};  // dimensions [16 b, 16 b + 16) of the pixel's stream, filled when drawn
     uint32_t m_filled = 0;             // which of them are
+    struct Weyl { uint64_t a_hi, a_lo, offset; };
+    Weyl m_weyl[UDM1_STREAM_DIMS];     // a Weyl sequence's: A_j and the pixel's O_j, dimension by dimension
     uint64_t m_stream_id = 0, m_index = 0;
     // vector variants
     bool m_stale = true;
