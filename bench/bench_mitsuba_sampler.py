@@ -13,11 +13,22 @@ Cornell box (mi.cornell_box(), its path integrator):
    best Mitsuba sampler.
 
 Variants: llvm_ad_rgb (the vectorized JIT variant a speed-minded user picks; needs libllvm19, skipped
-with a message without it) at --size, and scalar_rgb at --scalar-size (udm1's scalar sampler is a
-Python call per draw: slower by design there, measured on a smaller image, and on one render thread:
-Mitsuba's render threads calling Python contend for the GIL, which costs more than they gain).
+with a message without it) at --size, and scalar_rgb at --scalar-size (a smaller image: the scalar variant is
+slower for every sampler; where udm1's rows are the Python sampler, a Python call per draw, they render on one
+thread: Mitsuba's render threads calling Python contend for the GIL, which costs more than they gain).
+
+udm1's rows are the native plugin (integrations/mitsuba3), built first (python -m udm1.mitsuba build, up to
+date in a second); where it cannot be built and is not, udm1.mitsuba's Python sampler, said on stderr.
+
+3. --speed: render time only, the native plugin against Mitsuba's independent sampler, --size (128) Cornell
+   box at --speed-spps (4..1024), in scalar_rgb on 1 and on 2 render threads and in llvm_ad_rgb: per spp
+   the samplers alternate, --repeats times (in llvm_ad_rgb after an untimed render each, which compiles the
+   kernels); the fastest wall time of each (on a shared machine the least disturbed; the median is reported
+   beside it) and its ratio to the independent sampler's, and the ratio of their processor times (every
+   thread's: what a render costs, not counting the time its threads wait for a core).
 
     python bench/bench_mitsuba_sampler.py [--size 128] [--spps 4,16,64,256] [--seeds 4] [--out DIR]
+    python bench/bench_mitsuba_sampler.py --speed [--speed-spps 4,16,64,256,1024] [--repeats 3]
 """
 
 from __future__ import annotations
@@ -42,6 +53,19 @@ MITSUBA = [("independent", {"type": "independent"}), ("stratified", {"type": "st
            ("ldsampler", {"type": "ldsampler"})]
 
 
+def use_native(mi) -> bool:
+    """udm1's samplers for Mitsuba's current variant: the native plugin (built here when it is not), else the
+    Python sampler with a note; True for the native plugin."""
+    import udm1.mitsuba
+    from udm1 import mitsuba_build
+    try:  # (CMake's incremental build: the plugin of this checkout's source, in a second when it is up to date)
+        print("bench_mitsuba_sampler: building the native plugin (python -m udm1.mitsuba build) ...", flush=True)
+        mitsuba_build.build()
+    except mitsuba_build.BuildError as exc:
+        print(f"bench_mitsuba_sampler: the native plugin cannot be built ({exc})", file=sys.stderr)
+    return not isinstance(udm1.mitsuba.register(), type)
+
+
 def udm1_samplers(size: int, vector: bool):
     """udm1's rows: wr (D = 64), the table presets at D = 32, and (vector variants only) screen; each with
     the film's size (the vector variants need it)."""
@@ -61,17 +85,20 @@ def load(mi, sampler: dict, size: int, spp: int):
     return mi.load_dict(d)
 
 
-def render(mi, scene, spp: int, seed: int, threads: int = 0) -> tuple[np.ndarray, float]:
-    """One render, timed; threads > 0 caps Mitsuba's render threads for it."""
+def render(mi, scene, spp: int, seed: int, threads: int = 0, cpu: list | None = None) -> tuple[np.ndarray, float]:
+    """One render, timed (wall clock; its processor time, every thread's, appended to `cpu` when given);
+    threads > 0 caps Mitsuba's render threads for it."""
     import drjit as dr
     before = dr.thread_count()
     if threads:
         dr.set_thread_count(threads)
     try:
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         img = mi.render(scene, spp=spp, seed=seed)
         arr = np.array(img)  # evaluates the image
         dr.sync_thread()
+        if cpu is not None:
+            cpu.append(time.process_time() - c0)
         return arr, time.perf_counter() - t0
     finally:
         dr.set_thread_count(before)
@@ -90,8 +117,7 @@ def interp_time(points, target):
 def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Path) -> dict:
     import mitsuba as mi
     mi.set_variant(variant)
-    import udm1.mitsuba
-    udm1.mitsuba.register()
+    native = use_native(mi)
     ref_path = out / f"reference_{variant}_{size}_{ref_spp}.npy"
     if ref_path.exists():
         ref = np.load(ref_path)
@@ -104,7 +130,9 @@ def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Pa
     samplers = MITSUBA + udm1_samplers(size, not variant.startswith("scalar"))
     # a Python sampler in a scalar variant serializes Mitsuba's render threads on the GIL, and their contention
     # costs more than one thread: udm1's rows there render on one thread (Mitsuba's on all)
-    threads = {name: (1 if variant.startswith("scalar") and name.startswith("udm1") else 0) for name, _ in samplers}
+    # (the Python sampler, in a scalar variant, on one thread)
+    threads = {name: (1 if variant.startswith("scalar") and name.startswith("udm1") and not native else 0)
+               for name, _ in samplers}
     rows = []
     for spp in spps:
         scenes = {}
@@ -150,7 +178,63 @@ def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Pa
             equal.append({"variant": variant, "target_rmse": target, "target_of": f"independent at {spp} spp",
                           "best_udm1": bo, "udm1_seconds": ours[bo], "best_mitsuba": bt, "mitsuba_seconds": theirs[bt],
                           "speedup": theirs[bt] / ours[bo], "times": times})
-    return {"variant": variant, "rows": rows, "equal_error": equal, "size": size, "seeds": seeds, "ref_spp": ref_spp}
+    return {"variant": variant, "rows": rows, "equal_error": equal, "size": size, "seeds": seeds, "ref_spp": ref_spp,
+            "udm1": "native plugin" if native else "Python sampler"}
+
+
+def run_speed(variant: str, threads: int, size: int, spps, repeats: int) -> dict:
+    """--speed: the native plugin's render time against the independent sampler's (see the docstring)."""
+    import statistics
+
+    import mitsuba as mi
+    mi.set_variant(variant)
+    if not use_native(mi):
+        return {"variant": variant, "threads": threads, "skipped": "the native plugin is not built"}
+    samplers = [("independent", {"type": "independent"})] + udm1_samplers(size, not variant.startswith("scalar"))
+    rows = []
+    for spp in spps:
+        scenes = {name: load(mi, s, size, spp) for name, s in samplers}
+        if not variant.startswith("scalar"):
+            for name, scene in scenes.items():
+                render(mi, scene, spp, 999, threads)  # compile the kernels
+        secs = {name: [] for name in scenes}
+        cpu = {name: [] for name in scenes}
+        for rep in range(repeats):
+            order = list(scenes) if rep % 2 == 0 else list(scenes)[::-1]  # alternating, both ways round
+            for name in order:
+                secs[name].append(render(mi, scenes[name], spp, rep, threads, cpu[name])[1])
+        # the fastest of the repeats: on a shared machine the least disturbed render (the median beside it);
+        # and the processor time, which does not count the time a render thread waits for a core
+        base, base_med, base_cpu = min(secs["independent"]), statistics.median(secs["independent"]), min(cpu["independent"])
+        for name in scenes:
+            best, med = min(secs[name]), statistics.median(secs[name])
+            rows.append({"variant": variant, "threads": threads, "sampler": name, "spp": spp, "seconds": best,
+                         "median_seconds": med, "all_seconds": secs[name], "x_independent_time": best / base,
+                         "x_independent_median": med / base_med, "cpu_seconds": min(cpu[name]),
+                         "all_cpu_seconds": cpu[name], "x_independent_cpu": min(cpu[name]) / base_cpu})
+        print(f"[{variant}, {threads or 'every'} thread(s)] {spp} spp: " +
+              ", ".join(f"{r['sampler']} {r['x_independent_time']:.3f}x (cpu {r['x_independent_cpu']:.3f}x)"
+                      for r in rows[-len(scenes):]), flush=True)
+    return {"variant": variant, "threads": threads, "size": size, "repeats": repeats, "rows": rows}
+
+
+def print_speed(res: dict):
+    if res.get("skipped"):
+        print(f"\n{res['variant']} ({res['threads']} threads): skipped: {res['skipped']}")
+        return
+    print(f"\n{res['variant']}, {res['threads'] or 'every'} render thread(s), {res['size']}x{res['size']}, fastest of "
+          f"{res['repeats']}: wall time over the independent sampler's (the medians' ratio, then the processor "
+          "times', in brackets)")
+    names = list(dict.fromkeys(r["sampler"] for r in res["rows"]))
+    spps = list(dict.fromkeys(r["spp"] for r in res["rows"]))
+    print(f"{'sampler':<18}" + "".join(f"{s:>20}" for s in spps))
+    for n in names:
+        cells = {r["spp"]: r for r in res["rows"] if r["sampler"] == n}
+        if n == "independent":
+            print(f"{n + ' (s)':<18}" + "".join(f"{cells[s]['seconds']:20.3f}" for s in spps))
+        else:
+            print(f"{n:<18}" + "".join(f"{cells[s]['x_independent_time']:6.3f} ({cells[s]['x_independent_median']:.2f}, "
+                                       f"{cells[s]['x_independent_cpu']:.2f})" for s in spps))
 
 
 def print_result(res: dict):
@@ -180,10 +264,29 @@ def main(argv=None) -> int:
     ap.add_argument("--scalar-seeds", type=int, default=2)
     ap.add_argument("--variants", default="llvm_ad_rgb,scalar_rgb")
     ap.add_argument("--out", default=str(ROOT / "build" / "bench_mitsuba_sampler"))
+    ap.add_argument("--speed", action="store_true", help="render time only: the native plugin against independent")
+    ap.add_argument("--speed-spps", default="4,16,64,256,1024")
+    ap.add_argument("--speed-runs", default="scalar_rgb:1,scalar_rgb:2,llvm_ad_rgb:0",
+                    help="variant:threads pairs (0: Mitsuba's default, every core)")
+    ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     results = []
+    if args.speed:
+        for run in args.speed_runs.split(","):
+            variant, threads = run.split(":")
+            if variant.startswith("llvm") and not Path(LLVM_PATH).exists():
+                results.append({"variant": variant, "threads": int(threads), "skipped": f"{LLVM_PATH} is missing"})
+                continue
+            res = run_speed(variant, int(threads), args.size, [int(s) for s in args.speed_spps.split(",")],
+                            args.repeats)
+            results.append(res)
+        for res in results:
+            print_speed(res)
+        (out / "speed.json").write_text(json.dumps(results, indent=1))
+        print(f"\nwrote {out / 'speed.json'}")
+        return 0
     try:
         import mitsuba  # noqa: F401
     except ImportError:

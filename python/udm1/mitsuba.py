@@ -9,6 +9,12 @@
                                                       "randomize": "shift", "film_width": 256,
                                                       "film_height": 192}}})
 
+``register()`` makes the native plugin (integrations/mitsuba3, C++: the same values at Mitsuba's own speed,
+in every variant) available when it is built for the installed Mitsuba (``python -m udm1.mitsuba build``,
+udm1/mitsuba_build.py; docs/mitsuba.md), and this module's Python sampler otherwise. The native plugin takes
+the same properties, tells a pass's samples from Mitsuba (film_width and film_height are optional there;
+"screen" needs them) and draws what is described below, bit for bit.
+
 or in XML: ``<sampler type="udm1"><string name="preset" value="sobol-owen"/>
 <integer name="sample_count" value="64"/><integer name="film_width" value="256"/>
 <integer name="film_height" value="192"/></sampler>`` (the film's size: the vector variants need it).
@@ -71,6 +77,7 @@ from __future__ import annotations
 
 import ctypes
 import os
+import sys
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -519,10 +526,67 @@ def draws_class():
     return Draws
 
 
-def register(name: str = "udm1"):
-    """Register the udm1 sampler under `name` for Mitsuba's current variant (mi.set_variant first)."""
+_NOTED = []
+
+
+def register(name: str = "udm1", native: bool | None = None):
+    """Make Sampler "udm1" available for Mitsuba's current variant (mi.set_variant first).
+
+    native=None (the default): the native plugin when it is built for the installed Mitsuba (``python -m
+    udm1.mitsuba build``), its folder prepended to Mitsuba's file resolver, which finds plugins/udm1.so
+    there, in every variant; else this module's Python sampler, registered under `name` for the current
+    variant, with a one-line note on stderr (once per process). native=True: the native plugin or
+    udm1.mitsuba_build.BuildError; native=False: the Python sampler. The native plugin's name is "udm1";
+    a Python sampler registered under "udm1" in this process and variant shadows it.
+    Returns the plugin's folder (native) or the Python sampler's class."""
     import mitsuba as mi
 
+    from . import mitsuba_build
+
+    folder = mitsuba_build.built() if native is not False else None
+    if native and folder is None:
+        raise mitsuba_build.BuildError(f"the native plugin is not built for Mitsuba {mi.__version__} (python -m "
+                                       "udm1.mitsuba build)")
+    if native and name != "udm1":
+        raise mitsuba_build.BuildError(f"the native plugin is named 'udm1' (its file's name), not {name!r}")
+    if folder is not None and name == "udm1":
+        resolver = mi.file_resolver()
+        if str(folder) not in [str(resolver[i]) for i in range(len(resolver))]:
+            resolver.prepend(str(folder))
+        return folder
+    if native is None and not _NOTED:
+        _NOTED.append(True)
+        print(f"udm1.mitsuba: the native plugin is not built for Mitsuba {mi.__version__} (python -m udm1.mitsuba "
+              "build): using the Python sampler", file=sys.stderr)
     cls = sampler_class()
     mi.register_sampler(name, lambda props: cls(props))
     return cls
+
+
+def main(argv=None) -> int:
+    """python -m udm1.mitsuba build [--out DIR] [-j N] [--verbose]: compile the native plugin."""
+    import argparse
+
+    from . import mitsuba_build
+
+    ap = argparse.ArgumentParser(prog="python -m udm1.mitsuba",
+                                 description="udm1's Mitsuba 3 sampler: build the native plugin")
+    sub = ap.add_subparsers(dest="command", required=True)
+    b = sub.add_parser("build", help="compile the native plugin against the installed Mitsuba")
+    b.add_argument("--out", help="the folder that gets plugins/udm1.so (default: inside this package, "
+                                 "udm1/_mitsuba/mitsuba-<version>)")
+    b.add_argument("-j", "--jobs", type=int, default=2, help="parallel compile jobs (default 2)")
+    b.add_argument("--test-variants", action="store_true", help="scalar_rgb and llvm_ad_rgb only (faster)")
+    b.add_argument("--verbose", action="store_true", help="show the compiler's output")
+    args = ap.parse_args(argv)
+    try:
+        folder = mitsuba_build.build(args.out, jobs=args.jobs, test_variants=args.test_variants, verbose=args.verbose)
+    except mitsuba_build.BuildError as exc:
+        print(f"udm1.mitsuba build: {exc}", file=sys.stderr)
+        return 1
+    print(f"built {folder / 'plugins' / 'udm1.so'} (udm1.mitsuba.register() uses it; mitsuba -a {folder} ...)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -33,7 +33,7 @@ import udm1.mitsuba  # noqa: E402
 
 def variant(name):
     mi.set_variant(name)
-    udm1.mitsuba.register()
+    udm1.mitsuba.register(native=False)  # the Python sampler (test_mitsuba_native.py tests the plugin)
 
 
 def f32(values):

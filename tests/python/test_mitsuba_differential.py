@@ -42,7 +42,7 @@ SCALAR_DRAWS = 20  # the scalar sampler's too, and past the 16 it draws in one c
 
 def variant(name):
     mi.set_variant(name)
-    udm1.mitsuba.register()
+    udm1.mitsuba.register(native=False)  # the Python sampler (test_mitsuba_native.py tests the plugin)
 
 
 def rng_of(*key) -> np.random.Generator:

@@ -130,7 +130,7 @@ def plan(args, out: Path) -> list[Step]:
         Step("tent", "Beyond the paper: the tent transform (+tent) on the integrands, against Sobol and PMJ02",
              [[tools["bench_samplers"], "error", "--samplers", ",".join(TENT_SAMPLERS), "--reps", reps, *q]],
              ["tent.csv"], stdout={0: "tent.csv"}),
-        Step("mitsuba", "udm1's samplers inside Mitsuba 3 (udm1.mitsuba) against Mitsuba's own",
+        Step("mitsuba", "udm1's samplers inside Mitsuba 3 (its native plugin) against Mitsuba's own",
              [[py, str(ROOT / "bench" / "bench_mitsuba_sampler.py"), "--out", str(out / "mitsuba"), *mitsuba_args]],
              ["mitsuba/results.json"]),
         Step("tolerance", "Integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's families",

@@ -495,7 +495,8 @@ def mitsuba_section(doc, out: Path, state):
         return
     results = load(out, "mitsuba/results.json")
     doc.para("Mitsuba 3's Cornell box (its path integrator) rendered with Mitsuba's own samplers and with udm1's "
-             "(`udm1.mitsuba`, bench/bench_mitsuba_sampler.py): RMSE against an independent-sampler reference at "
+             "(the native plugin of integrations/mitsuba3, or `udm1.mitsuba`'s Python sampler where it cannot be built; "
+             "bench/bench_mitsuba_sampler.py): RMSE against an independent-sampler reference at "
              "equal spp, render time relative to Mitsuba's independent sampler, and the time each needs to reach "
              "the independent sampler's error.")
     for res in results:
@@ -504,7 +505,7 @@ def mitsuba_section(doc, out: Path, state):
             continue
         v = res["variant"]
         doc.para(f"**{v}**, {res['size']} x {res['size']}, {res['seeds']} renders per point, reference "
-                 f"{res['ref_spp']} spp.")
+                 f"{res['ref_spp']} spp; udm1's rows: its {res.get('udm1', 'Python sampler')}.")
         doc.table(f"mitsuba_{v}", f"{v}: equal spp",
                   [("sampler", "sampler", ""), ("spp", "spp", "d"), ("spp_taken", "spp taken", "d"),
                    ("rmse", "RMSE", ".5f"), ("seconds", "seconds", ".3f"),
