@@ -28,7 +28,7 @@ BENCHMARKS = ROOT / "BENCHMARKS.md"
 
 # Pages another branch adds (the Mitsuba 3 page): a link to one passes while it is absent and is checked
 # like any other once it exists.
-PAGES_PENDING = {"docs/mitsuba.md"}
+PAGES_PENDING: set[str] = set()  # pages linked before they are written (none)
 
 README_MAX_LINES = 150
 
