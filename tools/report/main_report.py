@@ -20,10 +20,12 @@ terminal, and records what each did in OUT/steps.json:
     renderers   with --full: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes
                 (bench/bench_pt_scenes.py; skipped with a message where ../shared is absent)
 
-then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
-the steps (a failed step is shown failed, with its error, and its numbers are not shown), the paper's
-claims from Figures 6, 8 and 10 next to ours with a verdict per claim, speed against error per
-application (tables and plots), and the machine, versions and commands. Every table of the index is also
+then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: first the
+verdict (per application, the best sampler at equal time and at equal spp, its gain over PRNG and over
+the best other sampler, and the machine), then the paper's claims from Figures 6, 8 and 10 next to ours
+with a verdict per claim, then the details: a table of the steps (a failed step is shown failed, with
+its error, and its numbers are not shown), speed against error per application (tables and plots), and
+the machine, versions and commands. Every table of the index is also
 in OUT/report.json (raw numbers, with the format each cell is shown with) and OUT/csv/<table>.csv.
 
 Resumable: a step whose command, programs and scripts are unchanged since it last finished is reused
@@ -43,6 +45,7 @@ import math
 import os
 import platform
 import re
+import resource
 import shutil
 import subprocess
 import sys
@@ -96,7 +99,7 @@ def plan(args, out: Path) -> list[Step]:
     noise_levels = "native,avx2" if args.full else "native"
     noise_anchor = ["--installed-anchor"] if args.quick else []  # (--quick: no FastNoiseSIMD build)
     tolerance_args = (["--trials", "1", "--dims", "2,8", "--families", "oscillatory,gaussian"] if args.quick else
-                      ["--trials", "50"] if args.full else ["--trials", "10"])
+                      ["--trials", "50"] if args.full else ["--trials", "10", "--dims", "2,8"])  # --full: d = 32 too
     if args.quick:
         mitsuba_args = ["--size", "32", "--spps", "4,16", "--seeds", "1", "--ref-spp", "256", "--scalar-size", "16",
                         "--scalar-spps", "4", "--scalar-seeds", "1"]
@@ -208,7 +211,7 @@ EXPECTED = {"default": {"sequences": 30, "samplers": 85, "throughput": 8, "noise
             "full": {"sequences": 60, "samplers": 170, "throughput": 25, "noise": 120, "ao": 900, "pt": 900,
                      "tent": 15, "mitsuba": 600, "tolerance": 400, "screen": 450, "crown": 900, "accuracy": 900,
                      "renderers": 2700}}
-TICK = 15.0  # seconds between two progress lines of a running step
+TICK = float(os.environ.get("UDM1_REPORT_TICK") or 15.0)  # seconds between two progress lines of a running step
 
 
 def duration(seconds: float) -> str:
@@ -315,7 +318,7 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
         if reusable[k]:
             log(f"[{label}] reused: unchanged since it finished at {old.get('finished')} ({old.get('seconds', 0):.0f} s)")
             state[step.name] = {**record, "status": "reused", "seconds": old.get("seconds", 0.0), "error": "",
-                                "finished": old.get("finished")}
+                                "cpu_seconds": old.get("cpu_seconds"), "finished": old.get("finished")}
             continue
         if only is not None and step.name not in only:
             log(f"[{label}] not run (not in --only, and no finished result to reuse)")
@@ -328,6 +331,7 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
         # written before it runs, so that an interrupted step is not "ok" on the next run (later steps keep theirs)
         state_path.write_text(json.dumps({**previous, **state}, indent=1))
         PROGRESS.start(label, estimate[k], after)
+        cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         try:
             for i, cmd in enumerate(step.commands):
                 run_command(cmd, out, step.stdout.get(i), step.name)
@@ -339,7 +343,9 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
             status, error = "failed", str(exc)
         finally:
             PROGRESS.end()
+        cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)  # the processor time of its programs, every core
         state[step.name].update(status=status, error=error, seconds=time.time() - t0,
+                                cpu_seconds=cpu1.ru_utime + cpu1.ru_stime - cpu0.ru_utime - cpu0.ru_stime,
                                 finished=time.strftime("%Y-%m-%d %H:%M:%S"))
         log(f"[{label}] {status} in {time.time() - t0:.0f} s" + (f": {error}" if error else ""))
         state_path.write_text(json.dumps({**previous, **state}, indent=1))
@@ -507,8 +513,8 @@ def main(argv=None) -> int:
     state = run_steps(steps, out, args)
     log("writing index.html, report.md, report.json and csv/ from the steps' results")
     doc = Document()
-    figures = summary.build(doc, out, steps, state, mode)
     info = machine_info(Path(args.build))
+    figures = summary.build(doc, out, steps, state, mode, info)
     doc.heading(2, "Machine, versions and commands", "machine")
     doc.table("machine", "machine", [("key", "key", ""), ("value", "value", "")],
               [{"key": k, "value": str(v)} for k, v in info.items()])
