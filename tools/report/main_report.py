@@ -30,6 +30,11 @@ in OUT/report.json (raw numbers, with the format each cell is shown with) and OU
 
 Resumable: a step whose command, programs and scripts are unchanged since it last finished is reused
 (--fresh redoes everything); a failed or interrupted step runs again. Exit status 1 if a step failed.
+References are kept by content in OUT/cache (report_common.cached_reference): a step, or a later run,
+asking for the same tool, scene and settings reuses the image. While a step runs, a line every 15 s gives
+its elapsed time and the estimated time left (EXPECTED, or the step's last time in OUT, scaled by this
+run's pace). The default configuration keeps the verdicts' seeds and leaves the long sweeps (AO and PT to
+1024 spp, the screen step's 4 seeds, tolerance at d = 32) and the shared scenes to --full.
 
     python tools/report/main_report.py --build build --out report [--quick | --full]
 """
@@ -310,7 +315,8 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
     if any(to_run):
         log(f"{sum(to_run)} step(s) to run, about {duration(total)} in all on 2 cores (a line every {TICK:.0f} s "
             "on long steps)")
-    for k, step in enumerate(steps):
+    pace = [0.0, 0.0]  # the estimates and the times of the steps finished in this run: the estimates that follow
+    for k, step in enumerate(steps):  # are scaled by their ratio (a slower or busier machine than the table's)
         label = f"{k + 1}/{len(steps)} {step.name}"
         key = keys[k]
         old = previous.get(step.name, {})
@@ -324,13 +330,17 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
             log(f"[{label}] not run (not in --only, and no finished result to reuse)")
             state[step.name] = {**record, "status": "not run", "seconds": 0.0, "error": ""}
             continue
-        after = sum(e or 0 for e, r in zip(estimate[k + 1:], to_run[k + 1:]) if r)
-        log(f"[{label}] {step.title}" + (f" (about {duration(estimate[k])})" if estimate[k] else ""))
+        scale = pace[1] / pace[0] if pace[0] > 0 else 1.0
+        after = scale * sum(e or 0 for e, r in zip(estimate[k + 1:], to_run[k + 1:]) if r)
+        expected = estimate[k] * scale if estimate[k] else None
+        log(f"[{label}] {step.title}" + (f" (about {duration(expected)}" + (
+            f"; the estimates x{scale:.2f}, this run's pace so far" if abs(scale - 1) > 0.1 else "") + ")"
+            if expected else ""))
         t0 = time.time()
         state[step.name] = {**record, "status": "running", "seconds": 0.0, "error": ""}
         # written before it runs, so that an interrupted step is not "ok" on the next run (later steps keep theirs)
         state_path.write_text(json.dumps({**previous, **state}, indent=1))
-        PROGRESS.start(label, estimate[k], after)
+        PROGRESS.start(label, expected, after)
         cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         try:
             for i, cmd in enumerate(step.commands):
@@ -348,6 +358,9 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
                                 cpu_seconds=cpu1.ru_utime + cpu1.ru_stime - cpu0.ru_utime - cpu0.ru_stime,
                                 finished=time.strftime("%Y-%m-%d %H:%M:%S"))
         log(f"[{label}] {status} in {time.time() - t0:.0f} s" + (f": {error}" if error else ""))
+        if status == "ok" and estimate[k]:
+            pace[0] += estimate[k]
+            pace[1] += time.time() - t0
         state_path.write_text(json.dumps({**previous, **state}, indent=1))
     state_path.write_text(json.dumps(state, indent=1))
     return state

@@ -116,7 +116,11 @@ def db(x: float) -> str:
 
 
 def times(x: float) -> str:
-    return "exact" if math.isinf(x) else f"{x:.3g}x"
+    return "exact" if math.isinf(x) else (f"{x:.2f}x" if x < 10 else f"{x:.3g}x")
+
+
+def seeds_of(n: int, what: str = "seed") -> str:
+    return f"{n} {what}" + ("" if n == 1 else "s")
 
 
 def psnr_rows(application: str, when: str, rows: list[dict], note: str) -> dict:
@@ -162,19 +166,19 @@ def verdict_section(doc, out: Path, steps, state, mode: str, machine: dict):
                              "best": best["sampler"], "figure": f"rel. RMSE {best['relative_rmse']:.3g} at N = {n}",
                              "over_prng": f"{times(ratio(cost(prng), cost(best)))} {what}", "peer": peer["sampler"],
                              "over_peer": f"{times(ratio(cost(peer), cost(best)))} {what}",
-                             "basis": f"{reps} randomizations"})
+                             "basis": seeds_of(reps, "randomization")})
     if done(state, "ao"):
         ao = load(out, "ao.json")
         seeds = ao["figure6"][0]["n_seeds"]
         rows.append(psnr_rows("ambient occlusion (udm1-ao)", f"equal spp ({ao['figure6'][0]['spp']})", ao["figure6"],
-                              f"{seeds} seeds"))
+                              seeds_of(seeds)))
         rows.append(psnr_rows("ambient occlusion (udm1-ao)", "equal time", ao["equal_time"],
-                              f"{seeds} seeds, EPISWR's {ao['budget_seconds'] * 1e3:.0f} ms"))
+                              f"{seeds_of(seeds)}, EPISWR's {ao['budget_seconds'] * 1e3:.0f} ms"))
     for _, _, sc in pt_scenes(out, state):
         app = f"path tracing (udm1-pt), {sc['title']}"
-        rows.append(psnr_rows(app, f"equal spp ({sc['spp']})", sc["figure"], f"{sc['seeds']} seeds"))
+        rows.append(psnr_rows(app, f"equal spp ({sc['spp']})", sc["figure"], seeds_of(sc["seeds"])))
         rows.append(psnr_rows(app, "equal time", sc["equal_time"],
-                              f"{sc['seeds']} seeds, PRNG's {sc['budget_seconds']:.2f} s"))
+                              f"{seeds_of(sc['seeds'])}, PRNG's {sc['budget_seconds']:.2f} s"))
     if done(state, "screen"):
         summ = load(out, "screen.json")["summary"]
         for source, name in (("ao", "screen-space, ambient occlusion"), ("pt", "screen-space, path tracing")):
@@ -194,7 +198,7 @@ def verdict_section(doc, out: Path, steps, state, mode: str, machine: dict):
                          "over_peer": f"{times(ratio(share[peer], share[best]))}",
                          "basis": f"each scheme's median over the counts it was measured at (every count 1 .. "
                                   f"{load(out, 'screen.json')['spp_max']} for shift and progressive), "
-                                  f"{load(out, 'screen.json')['seeds']} seeds"})
+                                  f"{seeds_of(load(out, 'screen.json')['seeds'])}"})
     if done(state, "noise"):
         simd = load(out, "noise_simd.json")["rows"]
         for group in dict.fromkeys(r["group"] for r in simd):
