@@ -207,8 +207,9 @@ def step_key(step: Step, shared: str) -> str:
     return h.hexdigest()
 
 
-# Seconds each step takes on a 2-core machine in each configuration (BENCHMARKS.md, "The main report"): the
-# estimate of the time left before a step has finished once in this output folder (then its last time is used).
+# Rough seconds each step takes on an idle 2-core machine in each configuration: the estimate of the time left
+# before a step has finished once in this output folder (then its last time there is used), scaled by this run's
+# pace (a busier or slower machine). BENCHMARKS.md, "The main report", has measured times.
 EXPECTED = {"default": {"sequences": 30, "samplers": 85, "throughput": 8, "noise": 12, "ao": 80, "pt": 80, "tent": 8,
                         "mitsuba": 9, "tolerance": 40, "screen": 150},
             "quick": {"sequences": 6, "samplers": 8, "throughput": 3, "noise": 10, "ao": 6, "pt": 5, "tent": 2,
