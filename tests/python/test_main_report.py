@@ -2,11 +2,13 @@
 every figure, page and table it links exists; the numbers in index.html are those of report.json, and
 those come from the steps' own JSON; every sampler a step ran is in every table made from it; a second
 run reuses the finished steps; a failed step is shown failed (its stale numbers are not shown); an
-interrupted step runs again."""
+interrupted step runs again. The report opens with the verdict (the best sampler per application, at equal
+spp and at equal time, with the machine), then the paper's claims, then the details."""
 
 import csv
 import json
 import os
+import re
 import subprocess
 import sys
 from html.parser import HTMLParser
@@ -28,8 +30,8 @@ def run(out, *extra, noise=None):
            "--build", ENV["UDM1_BUILD_DIR"], "--bench-samplers", ENV["UDM1_BENCH_SAMPLERS"],
            "--bench-noise", ENV["UDM1_BENCH_NOISE"], "--noise", noise or ENV["UDM1_NOISE_TOOL"],
            "--ao", ENV["UDM1_AO_TOOL"], "--pt", ENV["UDM1_PT_TOOL"], *extra]
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=900,
-                          env={**os.environ, "PYTHONPATH": str(ROOT / "python")})
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=900,  # a progress line every second
+                          env={**os.environ, "PYTHONPATH": str(ROOT / "python"), "UDM1_REPORT_TICK": "1"})
 
 
 class Tables(HTMLParser):
@@ -107,12 +109,57 @@ def check_page(out: Path) -> dict:
     return report
 
 
+def check_verdict_first(out: Path, report: dict):
+    """The first screen is the verdict: the best sampler per application, at equal spp and at equal time, each
+    the one the step's own numbers make best, with the machine; then the paper's claims; then the details."""
+    md = (out / "report.md").read_text()
+    heads = [line for line in md.splitlines() if line.startswith("#")]
+    assert heads[0].startswith("# udm1 report: which sampler") and heads[1] == "## Verdict", heads[:3]
+    assert heads[2] == "## The paper's claims next to ours" and heads.index("## Details") == 3, heads[:5]
+    assert report["machine"]["cpu"] in md.split("## Verdict")[0] and f"{report['machine']['cores']} cores" in md
+    assert list(parse(out / "index.html").tables)[:2] == ["verdict", "claims"]  # the page's order too
+    rows = report["tables"]["verdict"]["rows"]
+    best = {(r["application"], r["when"].split(" (")[0]): r["best"] for r in rows}
+
+    def top(rs, key, low=False):
+        return (min if low else max)(rs, key=lambda r: r[key])["sampler"]
+
+    ao = json.loads((out / "ao.json").read_text())
+    assert best[("ambient occlusion (udm1-ao)", "equal spp")] == top(ao["figure6"], "psnr_mean")
+    assert best[("ambient occlusion (udm1-ao)", "equal time")] == top(ao["equal_time"], "psnr_mean")
+    for sc in json.loads((out / "pt.json").read_text())["scenes"]:
+        app = f"path tracing (udm1-pt), {sc['title']}"
+        assert best[(app, "equal spp")] == top(sc["figure"], "psnr_mean")
+        assert best[(app, "equal time")] == top(sc["equal_time"], "psnr_mean")
+    err = json.loads((out / "samplers.json").read_text())["error"]
+    integrands = {r["application"] for r in rows if r["application"].startswith("integration")}
+    assert len(integrands) == 3
+    for app in integrands:
+        integ = app.split(", ")[1].split(" ")[0]
+        n = max(r["n"] for r in err if r["integrand"] == integ)
+        at = [r for r in err if r["integrand"] == integ and r["n"] == n]
+        assert best[(app, "equal N")] == top(at, "relative_rmse", low=True)
+        for r in at:
+            r["cost"] = r["rmse"] ** 2 * r["seconds_per_estimate"]
+        assert best[(app, "equal time")] == top(at, "cost", low=True)
+    screen = {r["application"] for r in rows if r["application"].startswith("screen-space")}
+    assert screen == {"screen-space, ambient occlusion", "screen-space, path tracing"}
+    assert any(r["application"].startswith("noise") for r in rows)
+    for r in rows:  # each names its gain over PRNG (noise: over the other library) and over the best other
+        assert r["best"] and r["peer"] and r["peer"] != r["best"] and r["over_peer"], r
+        assert r["over_prng"] or r["application"].startswith("noise"), r
+
+
 def test_main_report(tmp_path):
     out = tmp_path / "report"
     r = run(out)
     assert r.returncode == 0, r.stderr[-3000:]
     assert "[1/10 sequences]" in r.stderr and "[10/10 screen]" in r.stderr  # progress on the terminal
+    # with the time elapsed and an estimate of the time left, in the step and in all
+    assert re.search(r"\[10/10 screen\] \d+ s elapsed; (about \d+ s left in this step, .* in all|past its estimate)",
+                     r.stderr), r.stderr[-3000:]
     report = check_page(out)
+    check_verdict_first(out, report)
     assert {s: v["status"] for s, v in report["steps"].items()} == {s: "ok" for s in report["steps"]}
     tables = report["tables"]
 
@@ -176,7 +223,7 @@ def test_main_report(tmp_path):
     assert all(v["status"] == "reused" for s, v in failed["steps"].items() if s != "noise")
     assert "noise_speed" not in failed["tables"] and "ao" in failed["tables"]
     steps_row = next(row for row in parse(out / "index.html").tables["steps"] if row[0] == "noise")
-    assert steps_row[2] == "failed" and "missing/udm1-noise" in steps_row[4]
+    assert steps_row[2] == "failed" and "missing/udm1-noise" in steps_row[5]
     assert "This step failed" in (out / "index.html").read_text()
 
     # an interrupted step (left "running") runs again; the failed one too; the others are reused

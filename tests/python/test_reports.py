@@ -74,9 +74,16 @@ def test_ao_report(tmp_path):
         rm = [row["rmse"] for row in sorted(data["sweep"], key=lambda x: x["spp"]) if row["sampler"] == s]
         assert rm[-1] < rm[0], (s, rm)
     assert {row["sampler"] for row in data["equal_time"]} == set(fig6)
-    # a second run reuses the cached references
+    # a second run reuses both references from the cache (kept by content: the tool's bytes and the settings)
+    cached = sorted(p.name for p in (tmp_path / "cache").iterdir())
+    assert len(cached) == 6  # two references, each .exr, .png and the tool's line
     r = run_report("ao_report.py", tmp_path, "--ao", AO)
-    assert r.returncode == 0 and "reused" in (tmp_path / "ao.json").read_text(), r.stderr
+    assert r.returncode == 0 and r.stderr.count("reference reused from") == 2, r.stderr
+    assert json.loads((tmp_path / "ao.json").read_text())["reference"] == data["reference"]
+    # other settings are another reference: a shorter occlusion ray renders (and keeps) two new ones
+    r = run_report("ao_report.py", tmp_path, "--ao", AO, "--maxdist", "0.5")
+    assert r.returncode == 0 and "reference reused from" not in r.stderr, r.stderr
+    assert len(list((tmp_path / "cache").iterdir())) == 12
 
 
 @pytest.mark.skipif(not PT, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
@@ -106,7 +113,9 @@ def test_pt_report(tmp_path):
     # the paper's numbers are shown next to ours
     assert "+1.47" in html and "+0.94" in html  # Halton's gain over PRNG in Figures 8 and 10
     r = run_report("pt_report.py", tmp_path, "--pt", PT)  # a second run reuses the cached references
-    assert r.returncode == 0 and "reused" in (tmp_path / "pt.json").read_text(), r.stderr
+    assert r.returncode == 0 and r.stderr.count("reference reused from") == 2, r.stderr
+    assert [sc["reference"] for sc in json.loads((tmp_path / "pt.json").read_text())["scenes"]] == \
+        [sc["reference"] for sc in data["scenes"]]
 
 
 def test_bad_output_folder(tmp_path):

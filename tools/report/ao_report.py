@@ -6,7 +6,7 @@ once by `udm1-ao reference` and reused while the scene and settings are the
 same). The report gives a table of PSNR (peak 1 on linear AO) and render time,
 with the PSNR's spread over seeds, a contact sheet of the images with their
 PSNR, an equal-time comparison (each sampler gets the time EPISWR takes at
-64 spp) and an spp sweep (16 to 1024) plotted as error against spp and
+64 spp) and an spp sweep (16 to 256; 1024 with --sweep-spps) plotted as error against spp and
 against time.
 
 Writes OUT/ao.md, OUT/ao.html, OUT/ao_*.png, OUT/ao.csv and OUT/ao.json;
@@ -33,7 +33,7 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from report_common import RendererTool, log, md_table, md_to_html, writable_folder  # noqa: E402
+from report_common import RendererTool, log, md_table, md_to_html, reference_cache, writable_folder  # noqa: E402
 
 # The paper's set for ambient occlusion (section 4.2.3), in its order, then the other samplers.
 PAPER_SET = ["pcg32", "cmj", "grps", "hammersley", "lp", "halton", "sobol", "wr-ao", "we", "wgr", "episwr"]
@@ -45,9 +45,9 @@ NAMES = {"pcg32": "PRNG (pcg32)", "cmj": "CMJ", "grps": "GRPS", "hammersley": "H
          "episwr": "EPISWR"}
 
 
-def AoTool(path: str, scene: str, size: str, maxdist: str | None) -> RendererTool:
+def AoTool(path: str, scene: str, size: str, maxdist: str | None, cache: Path | None = None) -> RendererTool:
     return RendererTool(path, "udm1-ao", ["--scene", scene, "--size", size] + (["--maxdist", maxdist] if maxdist else []),
-                        ms=True)
+                        ms=True, cache=cache)
 
 
 def summarize(rows, spp: int, seeds: int) -> list[dict]:
@@ -116,6 +116,8 @@ def main(argv=None) -> int:
     ap.add_argument("--ref-spp", type=int, default=8192, help="reference spp (default 8192, as the paper)")
     ap.add_argument("--seeds", type=int, default=4, help="seeds per PSNR (default 4; the sheets show seed 1)")
     ap.add_argument("--sweep-size", default="128x128", help="image size of the spp sweep (default 128x128)")
+    ap.add_argument("--sweep-spps", default="16,32,64,128,256",
+                    help="spp of the sweep (default 16,32,64,128,256; the main report's --full adds 512,1024)")
     ap.add_argument("--quick", action="store_true", help="a small image and few spp, for tests")
     args = ap.parse_args(argv)
     if not Path(args.ao).exists():
@@ -129,10 +131,17 @@ def main(argv=None) -> int:
         return 1
     if args.quick:
         args.size, args.sweep_size, args.ref_spp, args.seeds, args.spp = "48x48", "32x32", 1024, 2, 16
-    spps = [4, 16, 64] if args.quick else [16, 32, 64, 128, 256, 512, 1024]
+    try:
+        spps = [4, 16, 64] if args.quick else sorted({int(x) for x in args.sweep_spps.split(",")})
+    except ValueError:
+        spps = []
+    if not spps or not all(1 <= n <= 1 << 20 for n in spps):
+        print(f"ao_report: --sweep-spps '{args.sweep_spps}' is not a list of spp in 1..1048576", file=sys.stderr)
+        return 2
     folder = out / "ao"
     folder.mkdir(exist_ok=True)
-    tool = AoTool(args.ao, args.scene, args.size, args.maxdist)
+    cache = reference_cache(out)
+    tool = AoTool(args.ao, args.scene, args.size, args.maxdist, cache)
     t0 = time.time()
     samplers = PAPER_SET + OTHERS
     ref = folder / f"reference-{args.size}-{args.ref_spp}spp.exr"
@@ -144,7 +153,7 @@ def main(argv=None) -> int:
         r["png"] = f"{r['sampler']}-{args.spp}spp.png"
     budget = next(r["seconds"] for r in fig6 if r["sampler"] == "episwr")
     # the sweep on a smaller image with its own reference, so that it fits in the main job
-    small = AoTool(args.ao, args.scene, args.sweep_size, args.maxdist)
+    small = AoTool(args.ao, args.scene, args.sweep_size, args.maxdist, cache)
     small_ref = folder / f"reference-{args.sweep_size}-{args.ref_spp}spp.exr"
     log(f"spp sweep {spps[0]}..{spps[-1]} at {args.sweep_size} (reference: {args.ref_spp} spp, reused if made before)")
     small.reference(args.ref_spp, small_ref, folder / f"reference-{args.sweep_size}.png")

@@ -20,14 +20,21 @@ terminal, and records what each did in OUT/steps.json:
     renderers   with --full: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes
                 (bench/bench_pt_scenes.py; skipped with a message where ../shared is absent)
 
-then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: a table of
-the steps (a failed step is shown failed, with its error, and its numbers are not shown), the paper's
-claims from Figures 6, 8 and 10 next to ours with a verdict per claim, speed against error per
-application (tables and plots), and the machine, versions and commands. Every table of the index is also
+then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: first the
+verdict (per application, the best sampler at equal time and at equal spp, its gain over PRNG and over
+the best other sampler, and the machine), then the paper's claims from Figures 6, 8 and 10 next to ours
+with a verdict per claim, then the details: a table of the steps (a failed step is shown failed, with
+its error, and its numbers are not shown), speed against error per application (tables and plots), and
+the machine, versions and commands. Every table of the index is also
 in OUT/report.json (raw numbers, with the format each cell is shown with) and OUT/csv/<table>.csv.
 
 Resumable: a step whose command, programs and scripts are unchanged since it last finished is reused
 (--fresh redoes everything); a failed or interrupted step runs again. Exit status 1 if a step failed.
+References are kept by content in OUT/cache (report_common.cached_reference): a step, or a later run,
+asking for the same tool, scene and settings reuses the image. While a step runs, a line every 15 s gives
+its elapsed time and the estimated time left (EXPECTED, or the step's last time in OUT, scaled by this
+run's pace). The default configuration keeps the verdicts' seeds and leaves the long sweeps (AO and PT to
+1024 spp, the screen step's 4 seeds, tolerance at d = 32) and the shared scenes to --full.
 
     python tools/report/main_report.py --build build --out report [--quick | --full]
 """
@@ -43,9 +50,11 @@ import math
 import os
 import platform
 import re
+import resource
 import shutil
 import subprocess
 import sys
+import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -95,7 +104,7 @@ def plan(args, out: Path) -> list[Step]:
     noise_levels = "native,avx2" if args.full else "native"
     noise_anchor = ["--installed-anchor"] if args.quick else []  # (--quick: no FastNoiseSIMD build)
     tolerance_args = (["--trials", "1", "--dims", "2,8", "--families", "oscillatory,gaussian"] if args.quick else
-                      ["--trials", "50"] if args.full else ["--trials", "10"])
+                      ["--trials", "50"] if args.full else ["--trials", "10", "--dims", "2,8"])  # --full: d = 32 too
     if args.quick:
         mitsuba_args = ["--size", "32", "--spps", "4,16", "--seeds", "1", "--ref-spp", "256", "--scalar-size", "16",
                         "--scalar-spps", "4", "--scalar-seeds", "1"]
@@ -106,7 +115,10 @@ def plan(args, out: Path) -> list[Step]:
                         "--scalar-spps", "16", "--scalar-seeds", "1"]
     ao = [py, str(HERE / "ao_report.py"), "--ao", tools["ao"], *o, *q]
     if args.full:
-        ao += ["--size", "512x512", "--sweep-size", "256x256"]
+        ao += ["--size", "512x512", "--sweep-size", "256x256", "--sweep-spps", "16,32,64,128,256,512,1024"]
+    screen = [py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]
+    if args.full:  # more seeds, and udm1-pt's reference at 8192 spp rather than the pt step's own 4096
+        screen += ["--seeds", "4", "--pt-ref-spp", "8192"]
     pt = [py, str(HERE / "pt_report.py"), "--pt", tools["pt"], *o, *q] + (["--full"] if args.full else [])
     return [
         Step("sequences", "Sequences: points, discrepancy, constant-set check, exactness",
@@ -137,7 +149,7 @@ def plan(args, out: Path) -> list[Step]:
              [[py, str(ROOT / "bench" / "bench_integrate.py"), "--out", str(out / "tolerance"), *tolerance_args]],
              ["tolerance/results.json"]),
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
-             [[py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]], ["screen.json"],
+             [screen], ["screen.json"],
              "screen.html"),
     ] + crown_step(args, py, tools["pt"], out) + accuracy_step(args, py, tools["pt"], out) + \
         renderers_step(args, py, tools["pt"], out)
@@ -153,7 +165,8 @@ def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
         return []
     return [Step("crown", "Path tracing: the Crown, the paper's Figure 10 scene (udm1-pt, 100 x 140)",
                  [[py, str(HERE / "pt_report.py"), "--pt", pt, "--out", str(out / "crown"), "--scene", str(crown),
-                   "--size", "100x140", "--sweep-size", "50x70"]], ["crown/pt.json"], "crown/pt.html")]
+                   "--size", "100x140", "--sweep-size", "50x70", "--sweep-spps", "16,64,256,1024"]], ["crown/pt.json"],
+                 "crown/pt.html")]
 
 
 def accuracy_step(args, py: str, pt: str, out: Path) -> list[Step]:
@@ -194,11 +207,70 @@ def step_key(step: Step, shared: str) -> str:
     return h.hexdigest()
 
 
+# Rough seconds each step takes on an idle 2-core machine in each configuration: the estimate of the time left
+# before a step has finished once in this output folder (then its last time there is used), scaled by this run's
+# pace (a busier or slower machine). BENCHMARKS.md, "The main report", has measured times.
+EXPECTED = {"default": {"sequences": 30, "samplers": 85, "throughput": 8, "noise": 12, "ao": 80, "pt": 80, "tent": 8,
+                        "mitsuba": 9, "tolerance": 40, "screen": 150},
+            "quick": {"sequences": 6, "samplers": 8, "throughput": 3, "noise": 10, "ao": 6, "pt": 5, "tent": 2,
+                      "mitsuba": 8, "tolerance": 4, "screen": 15},
+            "full": {"sequences": 60, "samplers": 170, "throughput": 25, "noise": 120, "ao": 900, "pt": 900,
+                     "tent": 15, "mitsuba": 600, "tolerance": 400, "screen": 450, "crown": 900, "accuracy": 900,
+                     "renderers": 2700}}
+TICK = float(os.environ.get("UDM1_REPORT_TICK") or 15.0)  # seconds between two progress lines of a running step
+
+
+def duration(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 90 else f"{seconds / 60:.1f} min"
+
+
+class Progress:
+    """A line every TICK seconds while a step runs: its elapsed time and the estimated time left, in the step
+    and in the whole job (the estimates of the steps still to run)."""
+
+    def __init__(self):
+        self.lock = threading.Lock()
+        self.stop = threading.Event()
+        self.thread = None
+
+    def say(self, line: str):
+        with self.lock:
+            print(line, file=sys.stderr, flush=True)
+
+    def start(self, label: str, estimate: float | None, after: float):
+        """`after`: the estimated seconds of the steps that follow this one."""
+        self.stop.clear()
+        t0 = time.time()
+
+        def tick():
+            while not self.stop.wait(TICK):
+                el = time.time() - t0
+                if estimate is None:
+                    left = "no estimate for this step yet"
+                elif el <= estimate:
+                    left = f"about {duration(estimate - el)} left in this step, {duration(estimate - el + after)} in all"
+                else:  # past its estimate: say so rather than show a negative time
+                    left = f"past its estimate of {duration(estimate)}; then about {duration(after)} for the rest"
+                self.say(f"[report] [{label}] {duration(el)} elapsed; {left}")
+
+        self.thread = threading.Thread(target=tick, daemon=True)
+        self.thread.start()
+
+    def end(self):
+        self.stop.set()
+        if self.thread:
+            self.thread.join()
+
+
+PROGRESS = Progress()
+
+
 def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) -> None:
     """Run one command with its stderr shown as progress; its stdout goes to a file written under a temporary
     name and renamed on success. Raises RuntimeError with the command's last error line on failure."""
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT / "python"),
-                                                                    os.environ.get("PYTHONPATH")]))}
+                                                                    os.environ.get("PYTHONPATH")])),
+           "UDM1_REPORT_CACHE": str(out / "cache")}  # references by content, shared by the steps (report_common.py)
     target = out / stdout_name if stdout_name else None
     tmp = target.with_name(target.name + ".tmp") if target else None
     try:
@@ -210,7 +282,7 @@ def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) 
     for line in proc.stderr:
         line = line.rstrip()
         if line:
-            print(f"  [{label}] {line.removeprefix('[report] ')}", file=sys.stderr, flush=True)
+            PROGRESS.say(f"  [{label}] {line.removeprefix('[report] ')}")
             last = (last + [line])[-3:]
     if proc.wait() != 0:
         if tmp and tmp.exists():
@@ -232,27 +304,45 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
         previous = {}
     state = {}
     only = set(args.only.split(",")) if args.only else None
-    for k, step in enumerate(steps):
+    mode = "quick" if args.quick else ("full" if args.full else "default")
+    keys = [step_key(step, shared) for step in steps]
+    reusable = [previous.get(st.name, {}).get("status") in ("ok", "reused") and previous[st.name].get("key") == key
+                and all((out / o).exists() for o in st.outputs) for st, key in zip(steps, keys)]
+    to_run = [not r and (only is None or st.name in only) for st, r in zip(steps, reusable)]
+    # the estimate: this step's last time in this folder in this configuration, else the table's
+    estimate = [previous.get(st.name, {}).get("seconds") if previous.get(st.name, {}).get("status") in ("ok", "reused") and
+                previous[st.name].get("mode") == mode else EXPECTED.get(mode, {}).get(st.name) for st in steps]
+    total = sum(e or 0 for e, r in zip(estimate, to_run) if r)
+    if any(to_run):
+        log(f"{sum(to_run)} step(s) to run, about {duration(total)} in all on 2 cores (a line every {TICK:.0f} s "
+            "on long steps)")
+    pace = [0.0, 0.0]  # the estimates and the times of the steps finished in this run: the estimates that follow
+    for k, step in enumerate(steps):  # are scaled by their ratio (a slower or busier machine than the table's)
         label = f"{k + 1}/{len(steps)} {step.name}"
-        key = step_key(step, shared)
+        key = keys[k]
         old = previous.get(step.name, {})
-        record = {"title": step.title, "commands": [" ".join(c) for c in step.commands], "key": key}
-        reusable = old.get("status") in ("ok", "reused") and old.get("key") == key and \
-            all((out / o).exists() for o in step.outputs)
-        if reusable:
+        record = {"title": step.title, "commands": [" ".join(c) for c in step.commands], "key": key, "mode": mode}
+        if reusable[k]:
             log(f"[{label}] reused: unchanged since it finished at {old.get('finished')} ({old.get('seconds', 0):.0f} s)")
             state[step.name] = {**record, "status": "reused", "seconds": old.get("seconds", 0.0), "error": "",
-                                "finished": old.get("finished")}
+                                "cpu_seconds": old.get("cpu_seconds"), "finished": old.get("finished")}
             continue
         if only is not None and step.name not in only:
             log(f"[{label}] not run (not in --only, and no finished result to reuse)")
             state[step.name] = {**record, "status": "not run", "seconds": 0.0, "error": ""}
             continue
-        log(f"[{label}] {step.title}")
+        scale = pace[1] / pace[0] if pace[0] > 0 else 1.0
+        after = scale * sum(e or 0 for e, r in zip(estimate[k + 1:], to_run[k + 1:]) if r)
+        expected = estimate[k] * scale if estimate[k] else None
+        log(f"[{label}] {step.title}" + (f" (about {duration(expected)}" + (
+            f"; the estimates x{scale:.2f}, this run's pace so far" if abs(scale - 1) > 0.1 else "") + ")"
+            if expected else ""))
         t0 = time.time()
         state[step.name] = {**record, "status": "running", "seconds": 0.0, "error": ""}
         # written before it runs, so that an interrupted step is not "ok" on the next run (later steps keep theirs)
         state_path.write_text(json.dumps({**previous, **state}, indent=1))
+        PROGRESS.start(label, expected, after)
+        cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
         try:
             for i, cmd in enumerate(step.commands):
                 run_command(cmd, out, step.stdout.get(i), step.name)
@@ -262,9 +352,16 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
             status, error = "ok", ""
         except RuntimeError as exc:
             status, error = "failed", str(exc)
+        finally:
+            PROGRESS.end()
+        cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)  # the processor time of its programs, every core
         state[step.name].update(status=status, error=error, seconds=time.time() - t0,
+                                cpu_seconds=cpu1.ru_utime + cpu1.ru_stime - cpu0.ru_utime - cpu0.ru_stime,
                                 finished=time.strftime("%Y-%m-%d %H:%M:%S"))
         log(f"[{label}] {status} in {time.time() - t0:.0f} s" + (f": {error}" if error else ""))
+        if status == "ok" and estimate[k]:
+            pace[0] += estimate[k]
+            pace[1] += time.time() - t0
         state_path.write_text(json.dumps({**previous, **state}, indent=1))
     state_path.write_text(json.dumps(state, indent=1))
     return state
@@ -430,8 +527,8 @@ def main(argv=None) -> int:
     state = run_steps(steps, out, args)
     log("writing index.html, report.md, report.json and csv/ from the steps' results")
     doc = Document()
-    figures = summary.build(doc, out, steps, state, mode)
     info = machine_info(Path(args.build))
+    figures = summary.build(doc, out, steps, state, mode, info)
     doc.heading(2, "Machine, versions and commands", "machine")
     doc.table("machine", "machine", [("key", "key", ""), ("value", "value", "")],
               [{"key": k, "value": str(v)} for k, v in info.items()])

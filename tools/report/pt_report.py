@@ -42,7 +42,7 @@ import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from report_common import RendererTool, log, md_table, md_to_html, writable_folder  # noqa: E402
+from report_common import RendererTool, log, md_table, md_to_html, reference_cache, writable_folder  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[2]
 SHARED = ROOT.parent / "shared" / "scenes"
@@ -58,8 +58,8 @@ PAPER = {"Figure 8 (San Miguel)": {"pcg32": 25.509749, "halton": 26.980754, "sob
                                "wmmr": 23.553944, "hwmmr": 23.677106}}
 
 
-def PtTool(path: str, scene: str, size: str) -> RendererTool:
-    return RendererTool(path, "udm1-pt", ["--scene", scene, "--size", size], ms=False)
+def PtTool(path: str, scene: str, size: str, cache: Path | None = None) -> RendererTool:
+    return RendererTool(path, "udm1-pt", ["--scene", scene, "--size", size], ms=False, cache=cache)
 
 
 def summarize(rows, spp: int) -> list[dict]:
@@ -173,6 +173,7 @@ def main(argv=None) -> int:
     ap.add_argument("--scene", help="this scene only (a .pbrt file or builtin:NAME), e.g. the Crown")
     ap.add_argument("--size", default="100x140", help="with --scene: image size (default 100x140)")
     ap.add_argument("--sweep-size", default="50x70", help="with --scene: the sweep's image size (default 50x70)")
+    ap.add_argument("--sweep-spps", default=None, help="spp of the sweep (default 16,64,256; --full 16,64,256,1024)")
     ap.add_argument("--quick", action="store_true", help="tiny sizes and spp, for tests")
     args = ap.parse_args(argv)
     if not Path(args.pt).exists():
@@ -184,7 +185,14 @@ def main(argv=None) -> int:
     spp = args.spp or (512 if args.full else 256)
     ref_spp = args.ref_spp or (8192 if args.full else 4096)
     seeds = args.seeds
-    sweep_spps = [16, 64, 256, 1024]
+    try:
+        sweep_spps = sorted({int(x) for x in args.sweep_spps.split(",")}) if args.sweep_spps else \
+            ([16, 64, 256, 1024] if args.full else [16, 64, 256])
+    except ValueError:
+        sweep_spps = []
+    if not sweep_spps or not all(1 <= n <= 1 << 20 for n in sweep_spps):
+        print(f"pt_report: --sweep-spps '{args.sweep_spps}' is not a list of spp in 1..1048576", file=sys.stderr)
+        return 2
     scenes = [("builtin:cornell", "Cornell box (built in)", "128x128" if args.full else "96x96", "64x64")]
     if args.full:
         for name, size, small in (("cornell-box", "128x128", "64x64"), ("veach-mis", "192x120", "96x60")):
@@ -207,7 +215,8 @@ def main(argv=None) -> int:
     results, sections, csv_rows = [], [], []
     for k, (scene, title, size, small_size) in enumerate(scenes):
         tag = f"s{k}"
-        tool, small = PtTool(args.pt, scene, size), PtTool(args.pt, scene, small_size)
+        cache = reference_cache(out)
+        tool, small = PtTool(args.pt, scene, size, cache), PtTool(args.pt, scene, small_size, cache)
         ref = folder / f"{tag}-reference-{size}-{ref_spp}spp.exr"
         log(f"{title}: reference {ref_spp} spp at {size}, sobol-owen (reused if made by the same scene and settings)")
         ref_line = tool.reference(ref_spp, ref, folder / f"{tag}-reference.png")

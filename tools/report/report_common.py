@@ -3,8 +3,11 @@ small Markdown-to-HTML converter (static pages that open from disk)."""
 
 from __future__ import annotations
 
+import hashlib
 import html
+import os
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -28,13 +31,61 @@ def writable_folder(path: str, tool: str) -> Path | None:
     return out
 
 
+def file_digest(path: str) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def reference_cache(out: Path) -> Path:
+    """Where references are kept by content: $UDM1_REPORT_CACHE (the main report sets it, so that its steps share
+    them), else OUT/cache."""
+    return Path(os.environ.get("UDM1_REPORT_CACHE") or Path(out) / "cache")
+
+
+def cached_reference(tool: str, args: list[str], exr: Path, png: Path | None, cache: Path) -> str:
+    """`tool reference ARGS -o exr [--png png]`, rendered once per content: the key is the tool's own bytes and
+    ARGS (scene, size, spp, ...), so any step or later run asking for the same reference reuses the file (the
+    renders are deterministic: same inputs, bit-identical output). Returns the tool's first stdout line."""
+    h = hashlib.sha256(file_digest(tool).encode())
+    h.update("\0".join(args).encode())
+    scene = next((args[i + 1] for i, a in enumerate(args[:-1]) if a == "--scene"), "")
+    if os.path.isfile(scene):  # a scene file: its content too (what it includes is named by the file)
+        h.update(file_digest(scene).encode())
+    key = h.hexdigest()[:24]
+    cache.mkdir(parents=True, exist_ok=True)
+    c_exr, c_png, c_txt = (cache / f"{key}{ext}" for ext in (".exr", ".png", ".txt"))
+    if not (c_exr.exists() and c_png.exists() and c_txt.exists()):
+        tmp = cache / f"{key}.tmp{os.getpid()}"
+        r = subprocess.run([tool, "reference", *args, "-o", f"{tmp}.exr", "--png", f"{tmp}.png"],
+                           capture_output=True, text=True)
+        if r.returncode != 0:
+            for ext in (".exr", ".png"):
+                Path(f"{tmp}{ext}").unlink(missing_ok=True)
+            raise RuntimeError(f"{Path(tool).name} reference {' '.join(args)}: {r.stderr.strip()}")
+        line = (r.stdout.splitlines() or [""])[0]
+        Path(f"{tmp}.exr").replace(c_exr)
+        Path(f"{tmp}.png").replace(c_png)
+        c_txt.write_text(line.replace(f"{tmp}.exr", "<reference>") + "\n")
+        log(f"reference rendered and kept as {c_exr.name} in {cache}")
+    else:
+        log(f"reference reused from {cache / c_exr.name} (same tool, scene and settings)")
+    shutil.copyfile(c_exr, exr)
+    if png is not None:
+        shutil.copyfile(c_png, png)
+    return c_txt.read_text().rstrip("\n").replace("<reference>", str(exr))
+
+
 class RendererTool:
     """udm1-ao or udm1-pt with a report's scene options (`common`): one-shot runs, cached references, and
     batches of renders in one process (`sweep`) whose CSV lines are turned into rows as they arrive,
     with progress on stderr."""
 
-    def __init__(self, path: str, name: str, common: list[str], ms: bool):
+    def __init__(self, path: str, name: str, common: list[str], ms: bool, cache: Path | None = None):
         self.path, self.name, self.common, self.ms = path, name, common, ms  # ms: progress times in ms, else s
+        self.cache = cache  # references by content (cached_reference); None: rendered every time
 
     def run(self, *args: str) -> str:
         r = subprocess.run([self.path, *args], capture_output=True, text=True)
@@ -43,6 +94,8 @@ class RendererTool:
         return r.stdout
 
     def reference(self, spp: int, path: Path, png: Path) -> str:
+        if self.cache is not None:
+            return cached_reference(self.path, [*self.common, "--spp", str(spp)], path, png, self.cache)
         return self.run("reference", *self.common, "--spp", str(spp), "-o", str(path), "--png", str(png)).splitlines()[0]
 
     def sweep(self, samplers, spps, seeds: int, ref: Path, images: Path | None = None, note: str = "",

@@ -1,8 +1,9 @@
 """The main report's content: tables and plots made from the steps' JSON and text outputs.
 
-`build(doc, out, steps, state, mode)` adds, in order: the steps table, the paper's claims with a verdict
-each, the paper's path-tracing numbers next to ours, the speed-against-error plots, and one section per
-application. A step that failed or did not run is shown as such, and none of its (possibly stale) numbers
+`build(doc, out, steps, state, mode, machine)` adds, in order: the verdict (per application, the best
+sampler at equal time and at equal spp, its gain over PRNG and over the best other sampler, and the
+machine), the paper's claims with a verdict each, then the details: the steps table, the paper's
+path-tracing numbers next to ours, the speed-against-error plots, and one section per application. A step that failed or did not run is shown as such, and none of its (possibly stale) numbers
 are read. Every sampler a step ran appears in each table made from that step.
 """
 
@@ -110,16 +111,133 @@ def parse_simd_noise(out: Path) -> list[dict]:
 
 # ---- sections --------------------------------------------------------------------------------------------------
 
+def db(x: float) -> str:
+    return f"{x:+.2f} dB"
+
+
+def times(x: float) -> str:
+    return "exact" if math.isinf(x) else (f"{x:.2f}x" if x < 10 else f"{x:.3g}x")
+
+
+def seeds_of(n: int, what: str = "seed") -> str:
+    return f"{n} {what}" + ("" if n == 1 else "s")
+
+
+def psnr_rows(application: str, when: str, rows: list[dict], note: str) -> dict:
+    """The best of `rows` (mean PSNR over seeds) against PRNG and against the best other sampler; "tie" when the
+    difference is within two standard errors (pt_report.compare)."""
+    ranked = sorted(rows, key=lambda r: -r["psnr_mean"])
+    best, peer = ranked[0], ranked[1]
+    prng = next(r for r in rows if r["sampler"] == "pcg32")
+    tie = compare(rows, best["sampler"], peer["sampler"]) == "tie"
+    return {"application": application, "when": when, "best": best["sampler"],
+            "figure": f"PSNR {best['psnr_mean']:.2f} dB" + (f" at {best['spp']} spp" if when == "equal time" else ""),
+            "over_prng": db(best["psnr_mean"] - prng["psnr_mean"]), "peer": peer["sampler"],
+            "over_peer": db(best["psnr_mean"] - peer["psnr_mean"]) + (" (a tie within the seeds' spread)" if tie else ""),
+            "basis": note}
+
+
+def verdict_section(doc, out: Path, steps, state, mode: str, machine: dict):
+    """The first screen: which sampler to use in each application, and by how much."""
+    doc.heading(1, "udm1 report: which sampler, and how much it gains")
+    cpu = machine.get("cpu", "?")
+    doc.para(f"Measured on **{cpu}**, {machine.get('cores', '?')} cores, {machine.get('date', '')}; configuration "
+             f"**{mode}**. Per application, the best sampler at equal samples (spp or N) and at equal time (every "
+             "sampler given the same time), its gain over PRNG (pcg32) and over the best other sampler. PSNR in dB "
+             "(higher is better); integration: how many times lower the RMSE (equal N) or the time to the same "
+             "error (equal time, RMSE^2 x time) is.")
+    doc.heading(2, "Verdict", "verdict")
+    rows = []
+    if done(state, "samplers"):
+        err = load(out, "samplers.json")["error"]
+        reps = load(out, "samplers.json")["reps"]
+        for integ in (SMOOTH_2D, DISCONTINUOUS_2D, SMOOTH_8D):
+            n = max((r["n"] for r in err if r["integrand"] == integ), default=None)
+            at = [r for r in err if r["integrand"] == integ and r["n"] == n]
+            if not at or not any(r["sampler"] == "pcg32" for r in at):
+                continue
+            for when, cost, what in (("equal N", lambda r: r["relative_rmse"], "lower RMSE"),
+                                     ("equal time", lambda r: r["rmse"] ** 2 * r["seconds_per_estimate"],
+                                      "less time to its error")):
+                ranked = sorted(at, key=cost)
+                best, peer = ranked[0], ranked[1]
+                prng = next(r for r in at if r["sampler"] == "pcg32")
+                rows.append({"application": f"integration, {integ} (d={best['d']})", "when": when,
+                             "best": best["sampler"], "figure": f"rel. RMSE {best['relative_rmse']:.3g} at N = {n}",
+                             "over_prng": f"{times(ratio(cost(prng), cost(best)))} {what}", "peer": peer["sampler"],
+                             "over_peer": f"{times(ratio(cost(peer), cost(best)))} {what}",
+                             "basis": seeds_of(reps, "randomization")})
+    if done(state, "ao"):
+        ao = load(out, "ao.json")
+        seeds = ao["figure6"][0]["n_seeds"]
+        rows.append(psnr_rows("ambient occlusion (udm1-ao)", f"equal spp ({ao['figure6'][0]['spp']})", ao["figure6"],
+                              seeds_of(seeds)))
+        rows.append(psnr_rows("ambient occlusion (udm1-ao)", "equal time", ao["equal_time"],
+                              f"{seeds_of(seeds)}, EPISWR's {ao['budget_seconds'] * 1e3:.0f} ms"))
+    for _, _, sc in pt_scenes(out, state):
+        app = f"path tracing (udm1-pt), {sc['title']}"
+        rows.append(psnr_rows(app, f"equal spp ({sc['spp']})", sc["figure"], seeds_of(sc["seeds"])))
+        rows.append(psnr_rows(app, "equal time", sc["equal_time"],
+                              f"{seeds_of(sc['seeds'])}, PRNG's {sc['budget_seconds']:.2f} s"))
+    if done(state, "screen"):
+        summ = load(out, "screen.json")["summary"]
+        for source, name in (("ao", "screen-space, ambient occlusion"), ("pt", "screen-space, path tracing")):
+            med = {}
+            for r in summ:
+                if r["source"] == source:
+                    med.setdefault(r["scheme"], []).append(r["median_low"])
+            if "shift" not in med:
+                continue
+            share = {k: sum(v) / len(v) for k, v in med.items()}
+            ranked = sorted(share, key=share.get)
+            best, peer = ranked[0], ranked[1]
+            rows.append({"application": name, "when": "equal spp (same cost)", "best": best,
+                         "figure": f"low-frequency share {share[best]:.2f} (white noise 1)",
+                         "over_prng": f"{times(ratio(share['shift'], share[best]))} less low-frequency error energy "
+                                      "than per-pixel shifts", "peer": peer,
+                         "over_peer": f"{times(ratio(share[peer], share[best]))}",
+                         "basis": f"each scheme's median over the counts it was measured at (every count 1 .. "
+                                  f"{load(out, 'screen.json')['spp_max']} for shift and progressive), "
+                                  f"{seeds_of(load(out, 'screen.json')['seeds'])}"})
+    if done(state, "noise"):
+        simd = load(out, "noise_simd.json")["rows"]
+        for group in dict.fromkeys(r["group"] for r in simd):
+            rs = [r for r in simd if r["group"] == group]
+            best = max(rs, key=lambda r: r["rate"])
+            # the best other: the fastest of the other library (the anchor's) if udm1 is fastest, else udm1's fastest
+            others = [r for r in rs if r["method"].startswith("udm1") != best["method"].startswith("udm1")]
+            if not others:
+                continue
+            peer = max(others, key=lambda r: r["rate"])
+            rows.append({"application": f"noise, {group}", "when": "equal time (evaluations/s, 1 thread)",
+                         "best": best["method"], "figure": f"{best['rate']:.3g} per second",
+                         "over_prng": "", "peer": peer["method"],
+                         "over_peer": times(best["rate"] / peer["rate"]) + " faster", "basis": f"against {best['anchor']}"})
+    if not rows:
+        doc.para("**No verdict**: none of the samplers, ao, pt, screen and noise steps finished (see the steps table).")
+        return
+    doc.table("verdict", "verdict", [
+        ("application", "application", ""), ("when", "at", ""), ("best", "best", ""), ("figure", "its figure", ""),
+        ("over_prng", "over PRNG", ""), ("peer", "best other", ""), ("over_peer", "over the best other", ""),
+        ("basis", "over", "")], rows)
+    doc.para("Then: the paper's claims with a verdict each, and the details (every step, every sampler). Pages with "
+             "every detail: " + ", ".join(f"[{s.name}]({s.page})" for s in steps if s.page and done(state, s.name))
+             + ".")
+
+
 def steps_section(doc, steps, state, mode: str):
-    doc.heading(1, "udm1 report: speed against error, every sampler, every application")
+    doc.heading(2, "Details", "details")
     doc.para(f"Configuration: **{mode}**. Each step is a program of its own (commands in report.json); a step "
-             "whose inputs have not changed since it last finished is reused on the next run. Pages with every "
-             "detail: " + ", ".join(f"[{s.name}]({s.page})" for s in steps if s.page and done(state, s.name)) + ".")
+             "whose inputs have not changed since it last finished is reused on the next run.")
     doc.heading(2, "Steps", "steps")
     rows = [{"step": s.name, "what": s.title, "status": state[s.name]["status"], "seconds": state[s.name]["seconds"],
-             "error": state[s.name].get("error") or ""} for s in steps]
+             "cpu_seconds": state[s.name].get("cpu_seconds"), "error": state[s.name].get("error") or ""} for s in steps]
     doc.table("steps", "steps", [("step", "step", ""), ("what", "what", ""), ("status", "status", ""),
-                                 ("seconds", "time (s)", ".1f"), ("error", "error", "")], rows)
+                                 ("seconds", "time (s)", ".1f"), ("cpu_seconds", "processor time (s)", ".1f"),
+                                 ("error", "error", "")], rows)
+    doc.para("Processor time: the user and system time of the step's programs, summed over the cores. Above the "
+             "step's time, it used more than one core; far below it on a single-threaded step, it waited for a "
+             "processor (a machine shared with other work).")
 
 
 def claims_section(doc, out: Path, state):
@@ -622,9 +740,10 @@ def guarded(doc, section, *args):
         return None
 
 
-def build(doc, out: Path, steps, state: dict, mode: str) -> list[str]:
-    steps_section(doc, steps, state, mode)
+def build(doc, out: Path, steps, state: dict, mode: str, machine: dict) -> list[str]:
+    guarded(doc, verdict_section, out, steps, state, mode, machine)
     guarded(doc, claims_section, out, state)
+    steps_section(doc, steps, state, mode)
     guarded(doc, pt_gains_section, out, state)
     figures = guarded(doc, plots_section, out, state) or []
     doc.heading(2, "Speed against error", "speed")

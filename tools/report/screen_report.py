@@ -45,7 +45,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from report_common import log, md_table, md_to_html, writable_folder  # noqa: E402
+from report_common import cached_reference, log, md_table, md_to_html, reference_cache, writable_folder  # noqa: E402
 
 SCHEMES = ["shift", "progressive", "fixed-N", "Z-order"]
 STYLE = {"shift": ("tab:gray", "--"), "progressive": ("tab:blue", "-"), "fixed-N": ("tab:orange", "-"),
@@ -146,7 +146,7 @@ def render_each(tool, common, sampler, randomize, spps, seed, folder, truth, err
         path.unlink()
 
 
-def measure_renderer(tool, common, truth, spp_max, grid, seeds, folder, keep=()):
+def measure_renderer(tool, common, truth, spp_max, grid, seeds, folder, keep=(), label=""):
     errors = Errors(keep)
     pow2 = [k for k in grid if k & (k - 1) == 0]
     for seed in range(1, seeds + 1):
@@ -154,6 +154,7 @@ def measure_renderer(tool, common, truth, spp_max, grid, seeds, folder, keep=())
         render_prefixes(tool, common, "wr", "screen", spp_max, seed, folder, truth, errors, "progressive")
         render_each(tool, common, "wr", "screen-fixed", grid, seed, folder, truth, errors, "fixed-N")
         render_each(tool, common, "sobol-owen", "screen", pow2, seed, folder, truth, errors, "Z-order")
+        log(f"  {label}seed {seed}/{seeds}: the four schemes rendered")
     return errors
 
 
@@ -330,7 +331,10 @@ def main(argv=None) -> int:
     ap.add_argument("--ao", required=True, help="path of udm1-ao")
     ap.add_argument("--pt", required=True, help="path of udm1-pt")
     ap.add_argument("--out", default="report")
-    ap.add_argument("--seeds", type=int, default=4)
+    ap.add_argument("--seeds", type=int, default=2, help="seeds per count (default 2; the main report's --full: 4)")
+    ap.add_argument("--pt-ref-spp", type=int, default=4096,
+                    help="udm1-pt's reference spp (default 4096, the pt step's own reference, reused from the cache; "
+                         "the main report's --full: 8192)")
     ap.add_argument("--quick", action="store_true", help="small images, up to 16 spp, one seed: for tests")
     args = ap.parse_args(argv)
     for name in ("ao", "pt"):
@@ -356,11 +360,14 @@ def main(argv=None) -> int:
 
     ao_common = ["--scene", "builtin:cornell", "--size", "32x32" if q else "128x128"]
     ref = folder / "ao-reference.exr"
-    run(args.ao, "reference", *ao_common, "--spp", "1024" if q else "8192", "-o", str(ref))
+    cache = reference_cache(out)
+    log(f"ao reference ({'1024' if q else '8192'} spp), then {len(pairs)} dimension pairs x {seeds} seed(s)")
+    cached_reference(args.ao, [*ao_common, "--spp", "1024" if q else "8192"], ref, None, cache)
     ao_truth = display(read_exr(ref))
     for j in pairs:
         errors = measure_renderer(args.ao, ao_common + ["--direction-dims", str(2 * j)], ao_truth, spp_max, grid,
-                                  seeds, folder, keep if j == 0 else ())
+                                  seeds, folder, keep if j == 0 else (),
+                                  label=f"ao pair {j}: ")
         if j == 0:
             ao_errors = errors.images
         rows += errors.rows("ao", j)
@@ -368,13 +375,19 @@ def main(argv=None) -> int:
             f"{max(r['low_share'] for r in rows if r['source'] == 'ao' and r['pair'] == j and r['scheme'] == 'progressive'):.2f}")
     pt_common = ["--scene", "builtin:cornell", "--size", "24x24" if q else "96x96"]
     ref = folder / "pt-reference.exr"
-    run(args.pt, "reference", *pt_common, "--spp", "512" if q else "8192", "-o", str(ref))
+    log(f"pt reference ({512 if q else args.pt_ref_spp} spp), then {seeds} seed(s)")
+    cached_reference(args.pt, [*pt_common, "--spp", str(512 if q else args.pt_ref_spp)], ref, None, cache)
     pt_truth = display(read_exr(ref))
-    errors = measure_renderer(args.pt, pt_common, pt_truth, spp_max, grid, seeds, folder)
+    errors = measure_renderer(args.pt, pt_common, pt_truth, spp_max, grid, seeds, folder, label="pt: ")
     rows += errors.rows("pt", "all")
     log(f"pt: worst progressive low-frequency share "
         f"{max(r['low_share'] for r in rows if r['source'] == 'pt' and r['scheme'] == 'progressive'):.2f}")
-    rows += measure_shapes(24 if q else 64, spp_max, grid, seeds, pairs)
+    # the integrands through the library cost no render: at least 4 seeds there, whose RMSE against per-pixel
+    # shifts is then within the 2 % target's resolution (2 seeds move it by up to 4 %)
+    shape_seeds = seeds if q else max(seeds, 4)
+    log(f"2D integrands on {len(pairs)} dimension pairs through the library, {shape_seeds} seeds")
+    rows += measure_shapes(24 if q else 64, spp_max, grid, shape_seeds, pairs)
+    log("temporal axis")
     temporal_rows = [temporal("ao", args.ao, ao_common, ao_truth, 3 if q else 8, 16, folder),
                      temporal("pt", args.pt, pt_common, pt_truth, 3 if q else 8, 16, folder)]
 
@@ -427,10 +440,12 @@ def main(argv=None) -> int:
 Progressive screen randomization (`--randomize screen` on a Weyl sequence) against per-pixel shifts, the
 fixed-N screen scheme (`--randomize screen-fixed`, rendered at each N: its best case) and Z-order Owen-Sobol
 (`--randomize screen` on sobol-owen, powers of two). Low-frequency share: the error image's power below 1/8
-cycle per pixel relative to its mean (1 = white noise), mean over {seeds} seed(s); the worst over every count
+cycle per pixel relative to its mean (1 = white noise), mean over {seeds} seed(s) for the renders and
+{shape_seeds} for the 2D integrands; the worst over every count
 measured (every count 1 .. {spp_max} for shift and progressive, the grid {", ".join(map(str, grid))} for
 fixed-N, its powers of two for Z-order). Renders are measured as displayed (values clipped to [0, 1]). Sources: udm1-ao with its direction on one dimension pair, udm1-pt (all dimensions), and two 2D
-integrands on one dimension pair through the library. Made in {time.time() - t0:.0f} s by
+integrands on one dimension pair through the library. References (Owen-Sobol): udm1-ao {1024 if q else 8192} spp,
+udm1-pt {512 if q else args.pt_ref_spp} spp. Made in {time.time() - t0:.0f} s by
 `python tools/report/screen_report.py`. Raw numbers: [screen.json](screen.json).
 
 Targets for the progressive scheme: low-frequency share at most {TARGET_LOW} at every count and pair:
