@@ -85,8 +85,11 @@ def fastnoisesimd_build(build: Path, level: str, installed: bool = False) -> Pat
     """pyfastnoisesimd built from its PyPI sdist with its kernels up to `level` ("native": all that its
     setup compiles; "avx2": --with-avx512=no) into build/bench_noise/fastnoisesimd-LEVEL/lib, reused once
     built: the folder to put on sys.path, or None (with the reason on stderr) where it cannot be built."""
-    if installed and level == "native" and importlib.util.find_spec("pyfastnoisesimd") is not None:
-        return Path()  # the installed wheel, as it is (--installed-anchor: no build)
+    if installed and level == "native":  # the installed wheel, as it is (--installed-anchor: no build)
+        if importlib.util.find_spec("pyfastnoisesimd") is not None:
+            return Path()
+        print("bench_noise: pyfastnoisesimd is not installed (--installed-anchor: no build)", file=sys.stderr)
+        return None
     top = build / "bench_noise" / f"fastnoisesimd-{level}"
     lib = top / "lib"
     if list(lib.glob("pyfastnoisesimd/extension*.so")):
@@ -219,7 +222,8 @@ def main(argv=None) -> int:
     ap.add_argument("--levels", default="native,avx2", help="comma-separated: native, avx2, baseline")
     ap.add_argument("--build", default=str(ROOT / "build"), help="where FastNoiseSIMD's builds go")
     ap.add_argument("--installed-anchor", action="store_true",
-                    help="native level: the installed pyfastnoisesimd wheel, no build (for quick runs and tests: the "
+                    help="native level: the installed pyfastnoisesimd wheel, no build (FastNoise Lite where it is not "
+                         "installed; for quick runs and tests: the "
                          "wheel measured slower than its sdist built here, so not the anchor of quoted figures)")
     ap.add_argument("--child", default="", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
