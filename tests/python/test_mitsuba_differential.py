@@ -31,10 +31,8 @@ mi = pytest.importorskip("mitsuba", reason="Mitsuba 3 is not installed (python/r
 import drjit as dr  # noqa: E402
 
 import udm1.mitsuba  # noqa: E402
+from mitsuba_reference import INFO, PRESETS, RANDOMIZE, f32, info_of, last_line, library, reference, rng_of  # noqa: E402,F401
 
-INFO = {p.name: p for p in udm1.presets()}
-PRESETS = [p.name for p in udm1.presets()] + [p.name + "+tent" for p in udm1.presets()]
-RANDOMIZE = ("default", "none", "shift", "owen", "permute", "screen")
 W, H, SPP, SPP_PASS = 3, 2, 4, 2  # the llvm wavefront: 3 x 2 pixels, 4 samples in two passes of 2
 DRAWS = 9  # per sample: 1D and 2D draws, past every D below
 SCALAR_DRAWS = 20  # the scalar sampler's too, and past the 16 it draws in one cursor fill
@@ -45,41 +43,20 @@ def variant(name):
     udm1.mitsuba.register(native=False)  # the Python sampler (test_mitsuba_native.py tests the plugin)
 
 
-def rng_of(*key) -> np.random.Generator:
-    """A generator of its own per case (reproducible, different in every case)."""
-    return np.random.default_rng(zlib.crc32(repr(key).encode()))
 
 
-def info_of(preset):
-    return INFO[preset[: -len("+tent")] if preset.endswith("+tent") else preset]
 
 
 def dims_of(preset) -> int:
     return min(5, info_of(preset).max_dimensions)
 
 
-def reference(preset, randomize, d, seed, spp):
-    """The library's sequence of these properties, as the sampler's docstring maps them; or the
-    library's refusal (the exception)."""
-    try:
-        return udm1.Sequence(preset, d, point_count=spp if info_of(preset).point_set else 0, seed=seed,
-                             randomize=True if randomize == "default" else randomize,
-                             screen_spp=spp if randomize == "screen" else 0)
-    except ValueError as exc:
-        return exc
 
 
-def f32(values):
-    """The library's float32 value from its double: the top 24 bits, exactly."""
-    return (np.floor(np.asarray(values) * 2.0**24) * 2.0**-24).astype(np.float32)
 
 
-def library(seq, streams, indices, n):
-    return f32(seq.points_at(np.asarray(streams, np.uint64), np.asarray(indices, np.uint64), dims=range(0, n)))
 
 
-def last_line(exc) -> str:
-    return str(exc).strip().splitlines()[-1]
 
 
 def assert_refused(props, *words):

@@ -41,11 +41,9 @@ if shutil.which("cmake") is None or not (shutil.which("c++") or shutil.which("g+
 import drjit as dr  # noqa: E402
 
 import udm1.mitsuba  # noqa: E402
+from mitsuba_reference import INFO, PRESETS, RANDOMIZE, f32, info_of, last_line, library, reference, rng_of  # noqa: E402,F401
 from udm1 import mitsuba_build  # noqa: E402
 
-INFO = {p.name: p for p in udm1.presets()}
-PRESETS = [p.name for p in udm1.presets()] + [p.name + "+tent" for p in udm1.presets()]
-RANDOMIZE = ("default", "none", "shift", "owen", "permute", "screen")
 EVERY_RANDOMIZATION = ("wr", "wopt+tent", "sobol", "sobol-owen", "pmj02", "halton", "epis")
 W, H, SPP, SPP_PASS = 3, 2, 4, 2  # the llvm wavefront: 3 x 2 pixels, 4 samples in two passes of 2
 DRAWS = 9  # per sample, past every D below
@@ -78,33 +76,16 @@ def randomizations(preset):
     return ("default", RANDOMIZE[1 + k % 5])
 
 
-def rng_of(*key):
-    return np.random.default_rng(zlib.crc32(repr(key).encode()))
 
 
-def info_of(preset):
-    return INFO[preset.removesuffix("+tent")]
 
 
-def reference(preset, randomize, d, seed, spp):
-    try:
-        return udm1.Sequence(preset, d, point_count=spp if info_of(preset).point_set else 0, seed=seed,
-                             randomize=True if randomize == "default" else randomize,
-                             screen_spp=spp if randomize == "screen" else 0)
-    except ValueError as exc:
-        return exc
 
 
-def f32(values):
-    return (np.floor(np.asarray(values) * 2.0**24) * 2.0**-24).astype(np.float32)
 
 
-def library(seq, streams, indices, n):
-    return f32(seq.points_at(np.asarray(streams, np.uint64), np.asarray(indices, np.uint64), dims=range(0, n)))
 
 
-def last_line(exc) -> str:
-    return str(exc).strip().splitlines()[-1]
 
 
 def assert_refused(props, *words):
@@ -256,7 +237,9 @@ def test_render_equals_the_python_sampler_s(plugin, name):
                     "sampler": {"type": kind, "preset": preset, "randomize": randomize, "sample_count": spp,
                                 "dimensions": min(4, info_of(preset).max_dimensions), "seed": 99, **film}}})
                 images.append(np.array(mi.render(scene, seed=5, spp=spp)))
-            assert np.array_equal(images[0], images[1]), f"{name} {preset}/{randomize} {spp} spp"
+            # equal up to the order of the film's float32 sums (llvm_ad_rgb adds the lanes' samples into a pixel with
+            # atomic adds on several threads: a few ulp, run to run); a different draw moves a pixel by far more
+            np.testing.assert_allclose(images[0], images[1], rtol=0, atol=2e-7, err_msg=f"{name} {preset}/{randomize} {spp} spp")
 
 
 def render_means(sampler: dict, res: int, spp: int, seeds) -> np.ndarray:

@@ -1,0 +1,48 @@
+"""What udm1's Mitsuba samplers (the Python one, udm1/mitsuba.py, and the native plugin, integrations/mitsuba3) must
+draw: the library's values of the same properties, as float32, for test_mitsuba_differential.py and
+test_mitsuba_native.py; and the one line a refusal must end with."""
+
+from __future__ import annotations
+
+import zlib
+
+import numpy as np
+
+import udm1
+
+INFO = {p.name: p for p in udm1.presets()}
+PRESETS = [p.name for p in udm1.presets()] + [p.name + "+tent" for p in udm1.presets()]
+RANDOMIZE = ("default", "none", "shift", "owen", "permute", "screen")
+
+
+def rng_of(*key) -> np.random.Generator:
+    """A generator of its own per case (reproducible, different in every case)."""
+    return np.random.default_rng(zlib.crc32(repr(key).encode()))
+
+
+def info_of(preset):
+    return INFO[preset.removesuffix("+tent")]
+
+
+def reference(preset, randomize, d, seed, spp):
+    """The library's sequence of these properties, as the sampler's docstring maps them; or the
+    library's refusal (the exception)."""
+    try:
+        return udm1.Sequence(preset, d, point_count=spp if info_of(preset).point_set else 0, seed=seed,
+                             randomize=True if randomize == "default" else randomize,
+                             screen_spp=spp if randomize == "screen" else 0)
+    except ValueError as exc:
+        return exc
+
+
+def f32(values):
+    """The library's float32 value from its double: the top 24 bits, exactly."""
+    return (np.floor(np.asarray(values) * 2.0**24) * 2.0**-24).astype(np.float32)
+
+
+def library(seq, streams, indices, n):
+    return f32(seq.points_at(np.asarray(streams, np.uint64), np.asarray(indices, np.uint64), dims=range(0, n)))
+
+
+def last_line(exc) -> str:
+    return str(exc).strip().splitlines()[-1]
