@@ -46,3 +46,18 @@ def library(seq, streams, indices, n):
 
 def last_line(exc) -> str:
     return str(exc).strip().splitlines()[-1]
+
+
+def lane_streams(randomize, render_seed, pixel, width):
+    """Each llvm lane's library stream: (y << 32) | x for the screen randomization, else (seed << 32) + pixel."""
+    if randomize == "screen":
+        return ((pixel // width).astype(np.uint64) << np.uint64(32)) | (pixel % width).astype(np.uint64)
+    return (np.uint64(render_seed) << np.uint64(32)) + pixel.astype(np.uint64)
+
+
+def pass_mismatches(got, seq, streams, first_index, draws):
+    """A pass's draws (one array per dimension, evaluated) against the library's at these streams and indices:
+    (got, want, the (lane, dimension) pairs that differ)."""
+    got = np.stack([np.array(v) for v in got], 1)
+    want = library(seq, streams, first_index, draws)
+    return got, want, np.argwhere(got != want)

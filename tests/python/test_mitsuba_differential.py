@@ -31,7 +31,8 @@ mi = pytest.importorskip("mitsuba", reason="Mitsuba 3 is not installed (python/r
 import drjit as dr  # noqa: E402
 
 import udm1.mitsuba  # noqa: E402
-from mitsuba_reference import INFO, PRESETS, RANDOMIZE, f32, info_of, last_line, library, reference, rng_of  # noqa: E402,F401
+from mitsuba_reference import (INFO, PRESETS, RANDOMIZE, f32, info_of, lane_streams, last_line, library,  # noqa: E402,F401
+                               pass_mismatches, reference, rng_of)
 
 W, H, SPP, SPP_PASS = 3, 2, 4, 2  # the llvm wavefront: 3 x 2 pixels, 4 samples in two passes of 2
 DRAWS = 9  # per sample: 1D and 2D draws, past every D below
@@ -111,16 +112,11 @@ def test_llvm_sampler_equals_the_library(randomize):
         if s is None:
             continue
         s.seed(render_seed, W * H * SPP_PASS)
-        if randomize == "screen":
-            streams = ((pixel // W).astype(np.uint64) << np.uint64(32)) | (pixel % W).astype(np.uint64)
-        else:
-            streams = (np.uint64(render_seed) << np.uint64(32)) + pixel.astype(np.uint64)
+        streams = lane_streams(randomize, render_seed, pixel, W)
         for p in range(SPP // SPP_PASS):
             got = draw(s, DRAWS)
             dr.eval(got)
-            got = np.stack([np.array(v) for v in got], 1)
-            want = library(seq, streams, p * SPP_PASS + lane % SPP_PASS, DRAWS)
-            where = np.argwhere(got != want)
+            got, want, where = pass_mismatches(got, seq, streams, p * SPP_PASS + lane % SPP_PASS, DRAWS)
             if where.size:
                 bad.append(f"{preset}/{randomize} pass {p}: (lane, dim) {where[:3].tolist()}: {got[tuple(where[0])]} "
                            f"for {want[tuple(where[0])]}")

@@ -41,7 +41,8 @@ if shutil.which("cmake") is None or not (shutil.which("c++") or shutil.which("g+
 import drjit as dr  # noqa: E402
 
 import udm1.mitsuba  # noqa: E402
-from mitsuba_reference import INFO, PRESETS, RANDOMIZE, f32, info_of, last_line, library, reference, rng_of  # noqa: E402,F401
+from mitsuba_reference import (INFO, PRESETS, RANDOMIZE, f32, info_of, lane_streams, last_line, library,  # noqa: E402,F401
+                               pass_mismatches, reference, rng_of)
 from udm1 import mitsuba_build  # noqa: E402
 
 EVERY_RANDOMIZATION = ("wr", "wopt+tent", "sobol", "sobol-owen", "pmj02", "halton", "epis")
@@ -127,16 +128,11 @@ def test_llvm_values_are_the_library_s(plugin):
                 continue
             s = mi.load_dict({"type": "udm1", **props})
             s.seed(render_seed, W * H * SPP_PASS)
-            if randomize == "screen":
-                streams = ((pixel // W).astype(np.uint64) << np.uint64(32)) | (pixel % W).astype(np.uint64)
-            else:
-                streams = (np.uint64(render_seed) << np.uint64(32)) + pixel.astype(np.uint64)
+            streams = lane_streams(randomize, render_seed, pixel, W)
             for p in range(SPP // SPP_PASS):
                 got = draw(s, DRAWS)
                 dr.eval(got)
-                got = np.stack([np.array(v) for v in got], 1)
-                want = library(seq, streams, p * SPP_PASS + lane % SPP_PASS, DRAWS)
-                where = np.argwhere(got != want)
+                got, want, where = pass_mismatches(got, seq, streams, p * SPP_PASS + lane % SPP_PASS, DRAWS)
                 if where.size:
                     bad.append(f"{preset}/{randomize} pass {p}: (lane, dim) {where[:3].tolist()}")
                 s.advance()

@@ -64,7 +64,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-from report_common import inline, log, md_table, writable_folder  # noqa: E402
+from report_common import file_digest, inline, log, md_table, writable_folder  # noqa: E402
 import report_summary as summary  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
@@ -185,14 +185,6 @@ def renderers_step(args, py: str, pt: str, out: Path) -> list[Step]:
     return [Step("renderers", "Path tracing: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes",
                  [[py, str(ROOT / "bench" / "bench_pt_scenes.py"), "--tool", pt, "--out", str(out / "renderers")]],
                  ["renderers/pt_scenes.json"], "renderers/pt_scenes.md")]
-
-
-def file_digest(path: str) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for chunk in iter(lambda: f.read(1 << 20), b""):
-            h.update(chunk)
-    return h.hexdigest()
 
 
 def step_key(step: Step, shared: str) -> str:
