@@ -93,9 +93,15 @@ test)
     udm1_bootstrap "$ROOT"
     build build -DCMAKE_BUILD_TYPE=Release
     udm1_log "running every test (ctest in build/; the report steps' tests run once, below, against the sanitized tools)"
-    # the tools' test files that run again below against the sanitized tools: here only their release_only tests
+    # The test files that run again below, against the sanitized tools or the sanitized library: here only their
+    # release_only tests (tests/python/conftest.py). The package's tests that drive the tools (distributed renders,
+    # the census) run here whole: the sanitized library's run below has no tools.
     SANITIZED_TOOL_TESTS="test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py test_hardening.py"
-    UDM1_SANITIZED_LATER="${SANITIZED_TOOL_TESTS// /,}" ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_reports$'
+    PACKAGE_TESTS="$(cd tests/python && ls test_*.py |
+        grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study|readme_example)')"
+    later="$SANITIZED_TOOL_TESTS $(echo "$PACKAGE_TESTS" | grep -v -E '^test_(distributed|scene_census)[.]py$')"
+    UDM1_SANITIZED_LATER="$(echo $later | tr ' ' ',')" \
+        ctest --test-dir build -j "$JOBS" --output-on-failure -E '^python[.]test_reports$'
     udm1_log "building and running the C and C++ tests under AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/)"
     build build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUDM1_SANITIZE=ON
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
@@ -108,10 +114,9 @@ test)
     udm1_log "the Python tests of the package against the sanitized library (libasan and libubsan preloaded;"
     udm1_log "leak detection off there: the interpreter itself keeps memory until exit)"
     (cd tests/python && LD_PRELOAD="$(gcc -print-file-name=libasan.so):$(gcc -print-file-name=libubsan.so)" \
-        ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+        ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 UDM1_SANITIZED=1 \
         UDM1_LIBRARY="$ROOT/build-asan/libudm1/libudm1.so.1" PYTHONPATH="$ROOT/python" \
-        "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --dist loadfile \
-        $(ls test_*.py | grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study|readme_example)'))
+        "$PY" -m pytest -q -p no:cacheprovider -n "$JOBS" --dist loadfile $PACKAGE_TESTS)
     udm1_log "the tools' tests again and the report steps' tests, against the sanitized tools and benchmarks of build-asan"
     udm1_log "(ASan, LSan, UBSan; the reports' own Python runs on the release library; two pytest runs side by side)"
     asan_tools_pytest() { # asan_tools_pytest <log> <test files...>: one pytest run, its own temporary folder
