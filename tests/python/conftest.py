@@ -4,7 +4,7 @@ release run and once against the sanitized tools or the sanitized library (ASan,
 - The marker release_only(why): a test whose code paths the sanitized run (UDM1_SANITIZED=1) already exercises
   in smaller cases, such as a statistical check of an estimator over many seeds, a repeat at other parameters or
   a second load of a large scene. It runs in the release run and is skipped, with its reason, against the
-  sanitized tools.
+  sanitized tools or library.
 - UDM1_SANITIZED_LATER=file,file,...: the release run of ./run.sh test names the test files that run again, whole,
   against the sanitized tools or library; in the release run only their release_only tests run (the rest are
   skipped, with that reason), so that every test runs once, where it checks most. A plain ctest (no variable) runs
@@ -16,7 +16,7 @@ import pytest
 
 
 def pytest_configure(config):
-    config.addinivalue_line("markers", "release_only(why): skipped against the sanitized tools (UDM1_SANITIZED=1)")
+    config.addinivalue_line("markers", "release_only(why): skipped against the sanitized tools or library (UDM1_SANITIZED=1)")
 
 
 def pytest_collection_modifyitems(config, items):

@@ -34,6 +34,7 @@ def test_figure_of_merit_is_the_wrap_around_discrepancy(ks, n):
     assert expected == pytest.approx(udm1.discrepancy_random(n, 2, "WD"), rel=1e-12)
 
 
+@pytest.mark.release_only("reruns the whole search (NumPy); the other tests of this file run its library calls under the sanitizers")
 def test_preset_is_the_search_result():
     ns = np.unique(np.round(np.geomspace(WOPT_ARGS["n_min"], WOPT_ARGS["n_max"], 48)).astype(int))
     ks = alpha_search.search(alpha_search.primes_upto(WOPT_ARGS["max_prime"]), WOPT_ARGS["dims"], ns)

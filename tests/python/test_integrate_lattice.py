@@ -107,6 +107,7 @@ def test_transform_is_the_aliased_fourier_coefficients():
         assert np.allclose(mag, expect, atol=1e-9), h
 
 
+@pytest.mark.release_only("a coverage check over many seeds; the other tests of this file run its code under the sanitizers")
 @pytest.mark.parametrize("f,d,exact,tol", [(oscillatory, 3, OSC_EXACT, 1e-6), (product_peak, 2, PEAK_EXACT, 1e-4)])
 def test_bound_covers_the_integral(f, d, exact, tol):
     covers = checks = 0

@@ -41,6 +41,7 @@ def product_peak(x):  # Genz's product peak, d = 2: prod 1 / (c^-2 + (x - w)^2)
 PEAK_EXACT = math.prod(c * (math.atan(c * (1 - w)) + math.atan(c * w)) for c, w in ((2.0, 0.3), (3.0, 0.6)))
 
 
+@pytest.mark.release_only("a coverage check over 300 seeds; the other tests of this file run its code under the sanitizers")
 @pytest.mark.parametrize("sampler,f,d,exact,tol", [
     ("wr", oscillatory, 3, OSC_EXACT, 2e-4),
     ("sobol-owen", oscillatory, 3, OSC_EXACT, 2e-4),
@@ -89,6 +90,7 @@ def test_transforms_keep_the_integral_and_periodize(name):
     assert edge[0] == pytest.approx(edge[1], abs=1e-12) and edge[2] == pytest.approx(edge[3], abs=1e-12)
 
 
+@pytest.mark.release_only("a long run at two chunk sizes; test_integrate_inputs.py runs the chunking under the sanitizers")
 def test_result_does_not_depend_on_the_chunks():
     a = udm1.integrate(oscillatory, "wr", 3, abs_tol=1e-5, seed=5)
     b = udm1.integrate(oscillatory, "wr", 3, abs_tol=1e-5, seed=5, chunk=777)

@@ -47,6 +47,7 @@ def test_every_power_of_two_is_a_lattice(m):
     assert got == {tuple(int(v) for v in (k * z) % n) for k in range(n)}
 
 
+@pytest.mark.release_only("reruns the search (NumPy); the other tests of this file run the library's lattice under the sanitizers")
 def test_generating_vector_is_the_search_tools():
     sys.path.insert(0, str(ROOT / "tools"))
     import lattice_search

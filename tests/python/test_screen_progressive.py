@@ -58,6 +58,7 @@ def test_every_prefix_is_the_same_points_bulk_per_sample_split():
     assert np.array_equal(at, seq.points(100, stream=s))
 
 
+@pytest.mark.release_only("a statistical check over many seeds; the other tests of this file run its code under the sanitizers")
 def test_each_pixel_unbiased_over_seeds():
     # a pixel's estimate of the area of a disk, 3 samples, over 2000 seeds: mean within 4 standard errors
     est = []

@@ -104,6 +104,7 @@ def low_share(err):
     return p[(r > 0) & (r < n / 8)].mean() / p[r > 0].mean()
 
 
+@pytest.mark.release_only("a statistical check over many seeds; the other tests of this file run its code under the sanitizers")
 @pytest.mark.parametrize("preset", ["wr", "wopt", "rd"])
 def test_error_is_blue_noise_at_no_cost_in_mse(preset):
     shift = [error_image(preset, "shift", s) for s in range(1, 7)]
