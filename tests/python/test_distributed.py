@@ -266,7 +266,7 @@ def test_distributed_render_equals_one_process(client, tool, tmp_path):
 
     # every split and merge tree with udm1-pt; udm1-ao (the same machinery over another tool's files) on one tiled
     # split with a merge tree
-    splits = ((3, None, 16), (10, (16, 11), 16), (12, None, 2), (30, (27, 30), 3))
+    splits = ((3, None, 16), (10, (16, 11), 16), (6, None, 2), (12, (27, 30), 3))
     for tasks, tile, fan_in in (splits if tool == "pt" else splits[3:]):
         out = tmp_path / f"d{tasks}.exr"
         res = ud.render(exe, str(out), spp=12, args=args, png=str(tmp_path / f"d{tasks}.png"), tasks=tasks, tile=tile,
