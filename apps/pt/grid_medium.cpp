@@ -8,14 +8,17 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace udm1pt {
 
 MajorantIterator::MajorantIterator(Vec3 o, Vec3 d, double t_min, double t_max, const MajorantGrid *grid, Vec3 sigma_t)
     : t_min_(t_min), t_max_(t_max), grid_(grid), sigma_t_(sigma_t)
 {
     if (!grid) return;
-    const int res = MajorantGrid::RES;
     for (int a = 0; a < 3; ++a) {  // (pbrt-v4's DDA set-up, axis by axis)
+        const int res = grid->res[a];
         double entry = o[a] + d[a] * t_min;
         voxel_[a] = (int)std::clamp(entry * res, 0.0, (double)(res - 1));
         delta_t_[a] = 1 / (std::fabs(d[a]) * res);
@@ -67,7 +70,6 @@ Vec3 blackbody_rgb(double kelvin)
 
 GridMedium::GridMedium(const udm1scene::Medium &m) : m_(m), extent_(m.p1 - m.p0), sigma_t_(m.sigma_a + m.sigma_s)
 {
-    const int res = MajorantGrid::RES;
     if (m.kind == udm1scene::Medium::Cloud) {
         udm1_noise_desc desc;
         udm1_noise_desc_init(&desc);
@@ -75,6 +77,13 @@ GridMedium::GridMedium(const udm1scene::Medium &m) : m_(m), extent_(m.p1 - m.p0)
         if (udm1_noise_create(&desc, &noise_) != UDM1_OK) throw std::runtime_error(std::string("udm1-pt: noise: ") + udm1_last_error());
         return;
     }
+    emissive_ = m.emissive();
+    if (m.kind == udm1scene::Medium::NanoVDB) {
+        nanovdb_majorants();
+        if (emissive_) blackbody_table(0, m.vdb_temperature->max_value());  // (its values are not negative)
+        return;
+    }
+    const int res = MajorantGrid::RES;
     grid_.max.resize((size_t)res * res * res);
     for (int z = 0; z < res; ++z)
         for (int y = 0; y < res; ++y)
@@ -82,16 +91,59 @@ GridMedium::GridMedium(const udm1scene::Medium &m) : m_(m), extent_(m.p1 - m.p0)
                 grid_.max[(size_t)x + res * ((size_t)y + res * (size_t)z)] = (float)max_value(
                     m.density, Vec3((double)x / res, (double)y / res, (double)z / res),
                     Vec3((double)(x + 1) / res, (double)(y + 1) / res, (double)(z + 1) / res));
-    emissive_ = m.emissive();
     if (!m.temperature.empty()) {  // the blackbody's RGB over the temperatures the grid holds
-        double hi = FIRST_KELVIN;
-        for (float t : m.temperature) hi = std::max(hi, ((double)t - m.temperature_offset) * m.temperature_scale);
-        hi = std::min(hi, 1e6);
-        bb_step_ = std::max(1.0, (hi - FIRST_KELVIN) / 16384);
-        int n = (int)std::ceil((hi - FIRST_KELVIN) / bb_step_) + 2;
-        blackbody_.resize(n);
-        for (int i = 0; i < n; ++i) blackbody_[i] = blackbody_rgb(FIRST_KELVIN + i * bb_step_);
+        auto [lo, hi] = std::minmax_element(m.temperature.begin(), m.temperature.end());
+        blackbody_table(*lo, *hi);
     }
+}
+
+// The blackbody's RGB from FIRST_KELVIN to the hottest temperature grid values in [lo, top] give (either end:
+// the map to kelvin is linear, its scale of either sign); above 1e6 K no table: blackbody() computes it exactly.
+void GridMedium::blackbody_table(double lo, double top)
+{
+    double hi = FIRST_KELVIN;
+    for (double t : {lo, top}) hi = std::max(hi, (t - m_.temperature_offset) * m_.temperature_scale);
+    hi = std::min(hi, 1e6);
+    bb_step_ = std::max(1.0, (hi - FIRST_KELVIN) / 16384);
+    int n = (int)std::ceil((hi - FIRST_KELVIN) / bb_step_) + 2;
+    blackbody_.resize(n);
+    for (int i = 0; i < n; ++i) blackbody_[i] = blackbody_rgb(FIRST_KELVIN + i * bb_step_);
+}
+
+void GridMedium::nanovdb_majorants()
+{
+    const udm1scene::NanoVdbGrid &g = *m_.vdb_density;
+    const int res = MajorantGrid::NANOVDB_RES;
+    grid_.res[0] = grid_.res[1] = grid_.res[2] = res;
+    grid_.max.assign((size_t)res * res * res, 0.0f);
+    // each cell's box in the medium's space, in the grid's index space, widened by one voxel for the
+    // trilinear lookups (truncated as pbrt-v4 truncates it) and clipped to the tree's index box; the cell's
+    // majorant the largest voxel there (at least 0). The cells are independent: any split gives the same grid.
+    tbb::parallel_for(tbb::blocked_range<int>(0, res * res), [&](const tbb::blocked_range<int> &r) {
+        for (int yz = r.begin(); yz < r.end(); ++yz) {
+            const int y = yz % res, z = yz / res;
+            for (int x = 0; x < res; ++x) {
+                Vec3 lo, hi;
+                const int c[3] = {x, y, z};
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = m_.p0[a] + (m_.p1[a] - m_.p0[a]) * ((double)c[a] / res);
+                    hi[a] = m_.p0[a] + (m_.p1[a] - m_.p0[a]) * ((double)(c[a] + 1) / res);
+                }
+                Vec3 i0 = g.index_of(lo), i1 = g.index_of(hi);
+                int n0[3], n1[3];
+                for (int a = 0; a < 3; ++a) {
+                    double a0 = std::min(i0[a], i1[a]) - 1, a1 = std::max(i0[a], i1[a]) + 1;  // (a map may flip an axis)
+                    n0[a] = (int)std::clamp(std::trunc(a0), (double)g.index_min(a), (double)g.index_max(a) + 1);
+                    n1[a] = (int)std::clamp(std::trunc(a1), (double)g.index_min(a) - 1, (double)g.index_max(a));
+                }
+                float mx = 0;
+                for (int k = n0[2]; k <= n1[2]; ++k)
+                    for (int j = n0[1]; j <= n1[1]; ++j)
+                        for (int i = n0[0]; i <= n1[0]; ++i) mx = std::max(mx, g.voxel(i, j, k));
+                grid_.max[(size_t)x + res * ((size_t)y + res * (size_t)z)] = mx;
+            }
+        }
+    });
 }
 
 GridMedium::~GridMedium() { udm1_noise_destroy(noise_); }
@@ -181,6 +233,15 @@ GridMedium::Point GridMedium::at(Vec3 p) const
     if (noise_) {
         double d = cloud_density(pm);
         out.sigma_a = m_.sigma_a * d, out.sigma_s = m_.sigma_s * d;
+        return out;
+    }
+    if (m_.kind == udm1scene::Medium::NanoVDB) {  // (pbrt-v4's NanoVDBMedium::SamplePoint)
+        double d = m_.vdb_density->value(pm);
+        out.sigma_a = m_.sigma_a * d, out.sigma_s = m_.sigma_s * d;
+        if (emissive_) {
+            double kelvin = (m_.vdb_temperature->value(pm) - m_.temperature_offset) * m_.temperature_scale;
+            if (kelvin > FIRST_KELVIN) out.Le = blackbody(kelvin) * m_.le_scale[0];
+        }
         return out;
     }
     Vec3 u((pm.x - m_.p0.x) / extent_.x, (pm.y - m_.p0.y) / extent_.y, (pm.z - m_.p0.z) / extent_.z);

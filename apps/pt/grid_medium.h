@@ -1,9 +1,10 @@
 // grid_medium.h - pbrt-v4's heterogeneous media as its VolPathIntegrator samples them, in RGB: the density of
-// a "uniformgrid" (trilinear between its samples, pbrt-v4's SampledGrid) or a "cloud" (pbrt-v4's procedural
-// cloud over Perlin noise, udm1's improved noise with Perlin's table) at a point, the coefficients and
-// emission there, and the majorants along a ray: for a uniform grid pbrt-v4's 16 x 16 x 16 grid of the
-// density's maxima over the box and a 3D DDA through its cells, for a cloud one majorant over the box (its
-// density is at most 1). Delta tracking against these majorants (estimator.h) is unbiased: each majorant
+// a "uniformgrid" (trilinear between its samples, pbrt-v4's SampledGrid), a "nanovdb" grid (trilinear between
+// its voxels, nanovdb_grid.h) or a "cloud" (pbrt-v4's procedural cloud over Perlin noise, udm1's improved
+// noise with Perlin's table) at a point, the coefficients and emission there, and the majorants along a ray:
+// for a uniform grid pbrt-v4's 16 x 16 x 16 grid of the density's maxima over the box, for a NanoVDB grid its
+// 64 x 64 x 64 grid of the maxima of the voxels each cell's trilinear lookups can reach, and a 3D DDA through
+// the cells; for a cloud one majorant over the box (its density is at most 1). Delta tracking against these majorants (estimator.h) is unbiased: each majorant
 // bounds sigma_t everywhere along its piece of the ray.
 #pragma once
 
@@ -25,12 +26,14 @@ struct MajorantSegment {
     Vec3 sigma_maj;
 };
 
-// pbrt-v4's MajorantGrid: RES^3 cells over the unit box (the medium's box mapped to [0, 1]^3), each holding
-// a bound of the density over the cell (x fastest).
+// pbrt-v4's MajorantGrid: res[0] x res[1] x res[2] cells over the unit box (the medium's box mapped to
+// [0, 1]^3), each holding a bound of the density over the cell (x fastest): RES^3 for a uniform grid,
+// NANOVDB_RES^3 for a NanoVDB grid, as pbrt-v4 sizes them.
 struct MajorantGrid {
-    static constexpr int RES = 16;
+    static constexpr int RES = 16, NANOVDB_RES = 64;
+    int res[3] = {RES, RES, RES};
     std::vector<float> max;
-    double at(int x, int y, int z) const { return max[(size_t)x + RES * ((size_t)y + RES * (size_t)z)]; }
+    double at(int x, int y, int z) const { return max[(size_t)x + res[0] * ((size_t)y + res[1] * (size_t)z)]; }
 };
 
 // The majorant segments of a ray through a medium's box, in order: a DDA through a MajorantGrid's cells (one
@@ -53,7 +56,7 @@ private:
     int step_[3] = {0, 0, 0}, limit_[3] = {0, 0, 0}, voxel_[3] = {0, 0, 0};
 };
 
-// A uniformgrid or cloud medium of a scene, ready to sample (immutable: threads share it).
+// A uniformgrid, nanovdb or cloud medium of a scene, ready to sample (immutable: threads share it).
 class GridMedium {
 public:
     explicit GridMedium(const udm1scene::Medium &m);
@@ -78,6 +81,8 @@ public:
     bool emissive() const { return emissive_; }
 
 private:
+    void nanovdb_majorants();  // pbrt-v4's NanoVDBMedium majorant grid
+    void blackbody_table(double lo, double top);  // blackbody_ over the temperatures of grid values in [lo, top]
     double lookup(const std::vector<float> &values, Vec3 unit) const;  // trilinear, 0 outside (SampledGrid)
     double max_value(const std::vector<float> &values, Vec3 lo, Vec3 hi) const;  // over a box of the unit cube
 

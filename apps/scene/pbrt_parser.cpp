@@ -165,9 +165,6 @@ private:
     bool has_peek_ = false;
 };
 
-// Why a "nanovdb" medium is refused: its files need a NanoVDB reader, which the build does not have.
-const std::string NANOVDB_REFUSAL = " (its .nvdb file needs a NanoVDB reader, which udm1-pt's build does not have)";
-
 // The targets of pbrt-v4's Attribute directive, whose parameters are defaults for the directives of that kind.
 enum Target { SHAPE, LIGHT, MATERIAL, MEDIUM, TEXTURE, TARGETS };
 const char *const TARGET_NAMES[TARGETS] = {"shape", "light", "material", "medium", "texture"};
@@ -1338,10 +1335,10 @@ private:
         return TextureInput();
     }
 
-    // MakeNamedMedium: pbrt-v4's "homogeneous", "uniformgrid" and "cloud" media with its parameters and defaults
-    // (sigma_a and sigma_s 1, scale 1, g 0, no emission; a homogeneous medium's preset in place of sigma_a and
-    // sigma_s), in linear sRGB; a grid medium placed by the transform in force. pbrt-v4's "rgbgrid" and
-    // "nanovdb" are recorded by name: refused where Integrator "volpath" renders a shape or the camera in one.
+    // MakeNamedMedium: pbrt-v4's "homogeneous", "uniformgrid", "cloud" and "nanovdb" media with its parameters and
+    // defaults (sigma_a and sigma_s 1, scale 1, g 0, no emission; a homogeneous medium's preset in place of
+    // sigma_a and sigma_s), in linear sRGB; a grid medium placed by the transform in force. pbrt-v4's "rgbgrid" is
+    // recorded by name: refused where Integrator "volpath" renders a shape or the camera in one.
     void on_MakeNamedMedium(const Call &c)
     {
         Lexer &lex = c.lex;
@@ -1354,13 +1351,13 @@ private:
         std::string type = ps.get_string("type", "");
         if (type.empty()) throw SceneError(here + ": MakeNamedMedium \"" + name + "\" has no \"string type\"");
         if (scene_.media_where.empty()) scene_.media_where = here;
-        if (type == "rgbgrid" || type == "nanovdb") {
+        if (type == "rgbgrid") {
             media_[name] = {-1, type, here};
             return;
         }
-        if (type != "homogeneous" && type != "uniformgrid" && type != "cloud")
+        if (type != "homogeneous" && type != "uniformgrid" && type != "cloud" && type != "nanovdb")
             throw SceneError(here + ": MakeNamedMedium \"" + name + "\": type \"" + type +
-                             "\" is not supported (homogeneous, uniformgrid and cloud; pbrt-v4's rgbgrid and nanovdb are not "
+                             "\" is not supported (homogeneous, uniformgrid, cloud and nanovdb; pbrt-v4's rgbgrid is not "
                              "modelled)");
         Medium m;
         m.name = name, m.where = here;
@@ -1372,6 +1369,11 @@ private:
                       "p0", "p1", "temperatureoffset", "temperaturecutoff", "temperaturescale"},
                  "MakeNamedMedium \"" + type + "\"");
             m.kind = Medium::UniformGrid;
+        } else if (type == "nanovdb") {
+            only(ps, {"type", "sigma_a", "sigma_s", "scale", "g", "filename", "gridname", "temperaturename", "Lescale",
+                      "temperatureoffset", "temperaturecutoff", "temperaturescale"},
+                 "MakeNamedMedium \"" + type + "\"");
+            m.kind = Medium::NanoVDB;
         } else {
             only(ps, {"type", "sigma_a", "sigma_s", "g", "density", "wispiness", "frequency", "p0", "p1"},
                  "MakeNamedMedium \"" + type + "\"");
@@ -1429,6 +1431,7 @@ private:
         if (!same(st_.ctm[0], st_.ctm[1]))  // pbrt-v4 warns and takes the start transform
             scene_.notes.push_back(m->where + ": " + what + ": an animated transform; the medium takes the start "
                                    "transform, as pbrt-v4 takes it");
+        if (m->kind == Medium::NanoVDB) return nanovdb_medium(ps, m);
         if (m->kind == Medium::Cloud) {
             m->cloud_density = ps.get_float("density", 1.0);
             m->wispiness = ps.get_float("wispiness", 1.0);
@@ -1472,6 +1475,50 @@ private:
             throw SceneError(temperature->where + ": " + what + ": both \"Le\" and \"temperature\" (pbrt-v4 refuses them together)");
         if (ps.find("Le")) m->Le = emission(ps, "Le", "MakeNamedMedium");
         if (ps.find("Lescale")) grid("Lescale", false, &m->le_scale);
+        m->temperature_offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.0));
+        m->temperature_scale = ps.get_float("temperaturescale", 1.0);
+        if (!std::isfinite(m->temperature_offset) || !std::isfinite(m->temperature_scale))
+            throw SceneError(m->where + ": " + what + ": the temperature's offset and scale must be finite");
+    }
+
+    // A "nanovdb" medium's grids, read with NanoVDB's reader (nanovdb_grid.h) from the file pbrt-v4's path rule
+    // finds: the float grid "gridname" (default "density"; pbrt-v4 needs it) and, if the file has it, the float
+    // grid "temperaturename" (default "temperature"), which makes the medium glow as pbrt-v4's does. The box
+    // is the grids' world boxes together, in the medium's space (the transform in force, grid_medium).
+    void nanovdb_medium(const ParamSet &ps, Medium *m)
+    {
+        const std::string what = "MakeNamedMedium \"" + m->name + "\"";
+        const Param *file = ps.find("filename", "string");
+        if (!file || ps.get_string("filename", "").empty())
+            throw SceneError((file ? file->where : m->where) + ": " + what + ": no \"string filename\" (pbrt-v4 needs it)");
+        const std::string path = resolve(ps.get_string("filename", ""));
+        auto load = [&](const std::string &grid) -> std::shared_ptr<const NanoVdbGrid> {
+            try {
+                return NanoVdbGrid::load(path, grid);
+            } catch (const std::runtime_error &e) {
+                throw SceneError(file->where + ": " + what + ": \"" + path + "\" " + e.what());
+            }
+        };
+        const std::string density = ps.get_string("gridname", "density");
+        m->vdb_density = load(density);
+        if (!m->vdb_density)
+            throw SceneError(file->where + ": " + what + ": \"" + path + "\" has no grid named \"" + density +
+                             "\" (pbrt-v4 needs its density grid)");
+        m->vdb_temperature = load(ps.get_string("temperaturename", "temperature"));
+        m->p0 = m->vdb_density->world_min(), m->p1 = m->vdb_density->world_max();
+        if (m->vdb_temperature)
+            for (int k = 0; k < 3; ++k) {
+                m->p0[k] = std::min(m->p0[k], m->vdb_temperature->world_min()[k]);
+                m->p1[k] = std::max(m->p1[k], m->vdb_temperature->world_max()[k]);
+            }
+        for (int k = 0; k < 3; ++k)
+            if (!(m->p1[k] > m->p0[k]) || !std::isfinite(m->p1[k] - m->p0[k]))
+                throw SceneError(file->where + ": " + what + ": \"" + path + "\": the box of its grids' active voxels is empty "
+                                 "along an axis");
+        double le_scale = ps.get_float("Lescale", 1.0);
+        if (!std::isfinite(le_scale))
+            throw SceneError(ps.find("Lescale")->where + ": " + what + ": Lescale must be finite");
+        m->le_scale = {(float)le_scale};
         m->temperature_offset = ps.get_float("temperatureoffset", ps.get_float("temperaturecutoff", 0.0));
         m->temperature_scale = ps.get_float("temperaturescale", 1.0);
         if (!std::isfinite(m->temperature_offset) || !std::isfinite(m->temperature_scale))
@@ -1556,8 +1603,8 @@ private:
                 throw SceneError(mi_where + ": MediumInterface: medium \"" + name + "\" was not made (used by " + user + ")");
             if (it->second.index < 0 && volpath && rendered)
                 throw SceneError(it->second.where + ": MakeNamedMedium \"" + name + "\": type \"" + it->second.type +
-                                 "\" is not modelled" + (it->second.type == "nanovdb" ? NANOVDB_REFUSAL : std::string()) +
-                                 ", and " + user + " is in it under Integrator \"volpath\" (homogeneous, uniformgrid and cloud media only)");
+                                 "\" is not modelled, and " + user +
+                                 " is in it under Integrator \"volpath\" (homogeneous, uniformgrid, cloud and nanovdb media only)");
             return it->second.index;
         };
         scene_.camera.medium = find(camera_media_[0], camera_media_[1], "the Camera at " + camera_media_[2], true);
@@ -2097,7 +2144,7 @@ private:
     bool geometry_only_ = false;
     std::set<std::string> ignored_kinds_;
     struct NamedMedium {
-        int index;  // Scene::media, or -1 for a medium not modelled (rgbgrid, nanovdb)
+        int index;  // Scene::media, or -1 for a medium not modelled (rgbgrid)
         std::string type, where;
     };
     std::map<std::string, NamedMedium> media_;           // MakeNamedMedium's, by name

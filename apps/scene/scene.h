@@ -5,10 +5,12 @@
 #pragma once
 
 #include "math.h"
+#include "nanovdb_grid.h"
 #include "pixel_filter.h"
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -114,9 +116,14 @@ struct Material {
 //                (t - temperature_offset) * temperature_scale, none at or below 100 K.
 //   Cloud        pbrt-v4's procedural "cloud": sigma_a and sigma_s times a density in [0, 1] made of Perlin
 //                noise (cloud_density, wispiness, frequency) in the box [p0, p1]; no emission.
+//   NanoVDB      pbrt-v4's "nanovdb": sigma_a and sigma_s times the trilinear density of the file's float grid
+//                `vdb_density` (nanovdb_grid.h) at the point of the medium's space; [p0, p1] the box of the
+//                grid's active voxels (with the temperature grid's, if any). Emission where the file has a
+//                temperature grid and le_scale (one value) > 0: le_scale times the RGB of pbrt-v4's blackbody at
+//                (t - temperature_offset) * temperature_scale, none at or below 100 K, as for a uniform grid.
 // A grid medium is placed by medium_from_world, the inverse of the transform at its MakeNamedMedium.
 struct Medium {
-    enum Kind { Homogeneous, UniformGrid, Cloud } kind = Homogeneous;
+    enum Kind { Homogeneous, UniformGrid, Cloud, NanoVDB } kind = Homogeneous;
     std::string name;
     Vec3 sigma_a, sigma_s, Le;
     double g = 0;
@@ -128,11 +135,13 @@ struct Medium {
     std::vector<float> density, le_scale{1.0f}, temperature;  // le_scale: 1 value or nx ny nz; temperature: none or nx ny nz
     double temperature_offset = 0, temperature_scale = 1;
     double cloud_density = 1, wispiness = 1, frequency = 5;
+    std::shared_ptr<const NanoVdbGrid> vdb_density, vdb_temperature;  // the nanovdb medium's grids
     // Whether it may glow (the rendering adds its emission).
     bool emissive() const
     {
         if (kind == Cloud) return false;
         if (kind == UniformGrid && !temperature.empty()) return true;
+        if (kind == NanoVDB) return vdb_temperature && le_scale[0] > 0;
         return Le.x > 0 || Le.y > 0 || Le.z > 0;
     }
 };
