@@ -10,6 +10,7 @@
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/SampleFromVoxels.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -47,12 +48,13 @@ void check_segments(const std::string &path)
     uint64_t at = 0;
     for (int segment = 0; at < size; ++segment) {
         nanovdb::io::Header h;
-        if (size - at < sizeof h) bad("is truncated (a segment header is cut off)");
-        is.read(reinterpret_cast<char *>(&h), sizeof h);
-        at += sizeof h;
-        if (h.magic != NANOVDB_MAGIC_NUMBER)
+        h.magic = 0;
+        is.read(reinterpret_cast<char *>(&h), (std::streamsize)std::min<uint64_t>(sizeof h, size - at));
+        if (h.magic != NANOVDB_MAGIC_NUMBER)  // (a short file's first bytes too)
             bad(segment == 0 ? "is not a NanoVDB file (it does not begin with NanoVDB's magic number)"
                              : "is damaged (a segment does not begin with NanoVDB's magic number)");
+        if (size - at < sizeof h) bad("is truncated (a segment header is cut off)");
+        at += sizeof h;
         if (h.version.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
             bad("is of NanoVDB file format " + std::to_string(h.version.getMajor()) + ", this reader reads format " +
                 std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + " (pbrt-v4's)");
