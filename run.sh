@@ -96,7 +96,7 @@ test)
     # The test files that run again below, against the sanitized tools or the sanitized library: here only their
     # release_only tests (tests/python/conftest.py). The package's tests that drive the tools (distributed renders,
     # the census) run here whole: the sanitized library's run below has no tools.
-    SANITIZED_TOOL_TESTS="test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py test_hardening.py"
+    SANITIZED_TOOL_TESTS="test_tool_seq.py test_tool_noise.py test_tool_ao.py test_tool_pt.py test_tool_pt_nanovdb.py test_hardening.py"
     PACKAGE_TESTS="$(cd tests/python && ls test_*.py |
         grep -v -E 'test_(tool_|reports|main_report|hardening|package_wheel|mitsuba|kronecker_bayes_study|readme_example)')"
     later="$SANITIZED_TOOL_TESTS $(echo "$PACKAGE_TESTS" | grep -v -E '^test_(distributed|scene_census)[.]py$')"
