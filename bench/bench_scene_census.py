@@ -7,7 +7,9 @@ collection's .pbrt text copied, its other files linked, the collection folder un
 the scene names that is absent gets a small valid stand-in (tools/pbrt_placeholders.py), placed where
 pbrt-v4 reads it: names are relative to the directory of the main scene file, in included files too
 (tools/pbrt_references.py). No stand-in is made for a .pbrt include whose text is absent (it is reported as
-not readable), nor where none can be written (NanoVDB grids, measured BSDF tables), which is reported.
+not readable), nor where none can be written (measured BSDF tables; NanoVDB grids unless --nvdb-writer names
+the tests' writer, tests/cpp/nvdb_write.cpp, which writes a fog sphere with a temperature grid through
+NanoVDB's own builder), which is reported.
 
 With --absent-includes empty, a .pbrt include whose text is absent (not fetched, or not held by the index the
 text was read through: mostly the large files of inline meshes) is an empty file in the overlay (but for one
@@ -34,7 +36,7 @@ Writes DIR/census.md (also printed) and DIR/census.json.
 
     python bench/bench_scene_census.py [--collection DIR] [--tool build/bin/udm1-pt] [--out build/census]
                                        [--only SUBSTRING,...] [--size 16x16] [--timeout 120] [--readme-table]
-                                       [--absent-includes report|empty]
+                                       [--absent-includes report|empty] [--nvdb-writer build/bin/udm1_test_nvdb_write]
 """
 
 from __future__ import annotations
@@ -106,9 +108,14 @@ EMPTY_INCLUDE = ("# udm1 census: this include's text is absent from the collecti
 CONDENSED = ".condensed"  # the collection's condensed transcriptions of files whose full text is absent
 
 
-def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict, empty_includes: bool = False) -> dict:
+NVDB_STAND_IN = "a NanoVDB fog sphere with a temperature grid (NanoVDB's builder, through --nvdb-writer)"
+
+
+def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict, empty_includes: bool = False,
+                  nvdb_writer: str = "") -> dict:
     """Stand-ins in the overlay for what the scene names and the collection lacks, the condensed texts it is
-    read with (copied into the overlay where the full text would be); what could not be made."""
+    read with (copied into the overlay where the full text would be); what could not be made. With nvdb_writer
+    (the tests' udm1_test_nvdb_write) an absent .nvdb grid gets a stand-in too."""
     condensed_dir = collection / CONDENSED
     main_rel = main.relative_to(collection).as_posix()
     condensed = []
@@ -145,6 +152,12 @@ def prepare_scene(main: Path, collection: Path, overlay: Path, manifest: dict, e
             continue
         data, what = stand_in(ref.name, ref.normal_map)
         target = overlay / rel
+        if data is None and nvdb_writer and ref.name.lower().endswith(".nvdb"):
+            if rel not in made:
+                target.parent.mkdir(parents=True, exist_ok=True)
+                subprocess.run([nvdb_writer, str(target), "fire"], check=True, capture_output=True)
+                made[rel] = NVDB_STAND_IN
+            continue
         if data is None:
             blocked[rel] = what
             continue
@@ -303,7 +316,8 @@ def census(args) -> dict:
                        feature="text not available (main file not fetched)", stand_ins={}, blocked={}, unreadable={})
             rows.append(row)
             continue
-        prep = prepare_scene(collection / rel, collection, overlay, manifest, args.absent_includes == "empty")
+        prep = prepare_scene(collection / rel, collection, overlay, manifest, args.absent_includes == "empty",
+                             args.nvdb_writer)
         run = run_scene(args.tool, overlay / rel, overlay, args.size, args.timeout,
                         images / (rel.replace("/", "__") + ".exr"))
         row.update(judge(run, prep))
@@ -427,6 +441,9 @@ def main(argv=None) -> int:
     ap.add_argument("--absent-includes", choices=("report", "empty"), default="report",
                     help="a .pbrt include whose text is absent: reported as not readable (default), or an empty "
                          "file so that the rest of the scene is judged (labelled)")
+    ap.add_argument("--nvdb-writer", default="",
+                    help="the tests' NanoVDB writer (build/bin/udm1_test_nvdb_write): absent .nvdb grids get a stand-in "
+                         "(a fog sphere with a temperature grid) in place of being reported as impossible")
     args = ap.parse_args(argv)
     if not args.collection.is_dir():
         print(f"skipped: the pbrt-v4 scene collection's text is absent ({args.collection}; "
@@ -436,6 +453,11 @@ def main(argv=None) -> int:
         print(f"bench_scene_census: {args.tool}: no such renderer (build it, or give --tool)", file=sys.stderr)
         return 2
     args.tool = str(Path(args.tool).resolve())  # the renderer runs in each scene's folder
+    if args.nvdb_writer:
+        if not Path(args.nvdb_writer).is_file():
+            print(f"bench_scene_census: {args.nvdb_writer}: no such NanoVDB writer (built where NanoVDB is)", file=sys.stderr)
+            return 2
+        args.nvdb_writer = str(Path(args.nvdb_writer).resolve())
     if args.pbrt:
         if not Path(args.pbrt).is_file():
             print(f"bench_scene_census: {args.pbrt}: no such pbrt-v4 (give --pbrt '' for none)", file=sys.stderr)

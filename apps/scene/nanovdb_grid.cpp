@@ -103,7 +103,7 @@ void check_tree(const FloatGrid &grid, uint64_t size, float *max)
     const auto *tree_data = grid.tree().data();
     if (!inside(tree_data, sizeof *tree_data)) bad("is damaged (its tree lies outside the grid)");
     const uint64_t root_offset = tree_data->mNodeOffset[3];
-    if (root_offset > size) bad("is damaged (its root lies outside the grid)");
+    if (root_offset < sizeof *tree_data || root_offset > size) bad("is damaged (its root lies outside the grid)");
     const Root &root = grid.tree().root();
     if (!inside(&root, sizeof(Root))) bad("is damaged (its root lies outside the grid)");
     const auto *rd = root.data();

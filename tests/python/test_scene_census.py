@@ -295,3 +295,33 @@ def test_absent_includes_empty_judges_the_rest_and_is_labelled(tmp_path):
                                  "--only", "partial"], capture_output=True, text=True, timeout=300)
     row = json.loads((tmp_path / "out2" / "census.json").read_text())["rows"][0]
     assert row["result"] == "not readable" and "partial/geometry/big.pbrt" in row["unreadable"]
+
+
+NVDB_WRITER = str(pathlib.Path(TOOL).parent / "udm1_test_nvdb_write") if TOOL else ""
+
+
+@needs_tool
+@pytest.mark.skipif(not NVDB_WRITER or not pathlib.Path(NVDB_WRITER).is_file(),
+                    reason="udm1_test_nvdb_write is not built (no NanoVDB in this build)")
+def test_nvdb_stand_ins_with_the_writer(tmp_path):
+    # with --nvdb-writer an absent NanoVDB grid gets a stand-in NanoVDB's builder wrote, where pbrt-v4 reads it,
+    # and a scene whose medium renders it (in a sphere) renders; without it, it is reported as impossible
+    col = tmp_path / "col"
+    scene = ('Integrator "volpath"\n' + VIEW + LIGHT + 'AttributeBegin\nTranslate -2 -2 -2\n'
+             'MakeNamedMedium "m" "string type" "nanovdb" "string filename" "grids/smoke.nvdb"\nAttributeEnd\n'
+             'AttributeBegin\nMaterial "interface"\nMediumInterface "m" ""\nShape "sphere" "float radius" 1.5\nAttributeEnd\n')
+    (col / "vdb").mkdir(parents=True)
+    (col / "vdb" / "vdb.pbrt").write_text(scene)
+    rows = {}
+    for flag in ([], ["--nvdb-writer", NVDB_WRITER]):
+        out = tmp_path / f"out{len(flag)}"
+        r = subprocess.run(CENSUS + ["--collection", str(col), "--tool", TOOL, "--out", str(out), "--pbrt", "", *flag],
+                           capture_output=True, text=True, timeout=600)
+        assert r.returncode == 0, r.stderr
+        rows[bool(flag)] = json.loads((out / "census.json").read_text())["rows"][0]
+        assert not (col / "vdb" / "grids").exists()  # (the collection untouched)
+    assert rows[False]["result"] == "refused" and rows[False]["blocked"] == {"vdb/grids/smoke.nvdb": stand_in("x.nvdb")[1]}
+    assert "cannot be opened" in rows[False]["refusal"], rows[False]
+    assert rows[True]["result"] == "renders", rows[True]
+    assert rows[True]["stand_ins"] == {"vdb/grids/smoke.nvdb": bench_scene_census.NVDB_STAND_IN}
+    assert (tmp_path / "out2" / "overlay" / "vdb" / "grids" / "smoke.nvdb").read_bytes()[:8] == b"NanoVDB0"
