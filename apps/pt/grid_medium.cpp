@@ -133,14 +133,11 @@ void GridMedium::nanovdb_majorants()
                 int n0[3], n1[3];
                 for (int a = 0; a < 3; ++a) {
                     double a0 = std::min(i0[a], i1[a]) - 1, a1 = std::max(i0[a], i1[a]) + 1;  // (a map may flip an axis)
+                    if (!(a0 <= a1)) a0 = g.index_min(a), a1 = g.index_max(a);  // (not finite: the whole tree)
                     n0[a] = (int)std::clamp(std::trunc(a0), (double)g.index_min(a), (double)g.index_max(a) + 1);
                     n1[a] = (int)std::clamp(std::trunc(a1), (double)g.index_min(a) - 1, (double)g.index_max(a));
                 }
-                float mx = 0;
-                for (int k = n0[2]; k <= n1[2]; ++k)
-                    for (int j = n0[1]; j <= n1[1]; ++j)
-                        for (int i = n0[0]; i <= n1[0]; ++i) mx = std::max(mx, g.voxel(i, j, k));
-                grid_.max[(size_t)x + res * ((size_t)y + res * (size_t)z)] = mx;
+                grid_.max[(size_t)x + res * ((size_t)y + res * (size_t)z)] = std::max(0.0f, g.max_voxel(n0, n1));
             }
         }
     });

@@ -238,6 +238,16 @@ double NanoVdbGrid::value(Vec3 w) const
 
 float NanoVdbGrid::voxel(int x, int y, int z) const { return impl_->grid->tree().getValue(nanovdb::Coord(x, y, z)); }
 
+float NanoVdbGrid::max_voxel(const int lo[3], const int hi[3]) const
+{
+    auto acc = impl_->grid->getAccessor();  // (a cached walk down the tree: neighbouring voxels share nodes)
+    float mx = -INFINITY;
+    for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i) mx = std::max(mx, acc.getValue(nanovdb::Coord(i, j, k)));
+    return mx;
+}
+
 }  // namespace udm1scene
 
 #else  // no NanoVDB in this build
@@ -257,6 +267,7 @@ NanoVdbGrid::NanoVdbGrid(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 NanoVdbGrid::~NanoVdbGrid() = default;
 double NanoVdbGrid::value(Vec3) const { return 0; }
 float NanoVdbGrid::voxel(int, int, int) const { return 0; }
+float NanoVdbGrid::max_voxel(const int *, const int *) const { return 0; }
 Vec3 NanoVdbGrid::index_of(Vec3 w) const { return w; }
 
 }  // namespace udm1scene

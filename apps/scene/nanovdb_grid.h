@@ -36,6 +36,8 @@ public:
     double value(Vec3 world) const;
     // The value of the voxel at integer index (x, y, z) (the background outside the tree).
     float voxel(int x, int y, int z) const;
+    // The largest voxel value of the inclusive index box lo..hi (-infinity where it is empty).
+    float max_voxel(const int lo[3], const int hi[3]) const;
     // A point of world space in index space (the grid's single-precision map, as pbrt-v4 maps it).
     Vec3 index_of(Vec3 world) const;
     // The world-space box of the active voxels the file records (pbrt-v4's worldBBox) and the inclusive
