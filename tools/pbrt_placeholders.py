@@ -22,7 +22,7 @@ SIZE = 4  # image stand-ins are SIZE x SIZE
 IMAGE_EXTENSIONS = (".png", ".exr", ".pfm", ".tga", ".hdr")
 SPECTRUM_EXTENSIONS = (".spd", ".txt", ".csv")
 NO_STAND_IN = {
-    ".nvdb": "a NanoVDB grid (no valid grid can be written without a NanoVDB library)",
+    ".nvdb": "a NanoVDB grid (written only by NanoVDB's builder: bench_scene_census.py --nvdb-writer)",
     ".bsdf": "a measured BSDF table (its tensor format is not reproduced here)",
     ".jpg": "a JPEG image (no JPEG encoder here)",
     ".jpeg": "a JPEG image (no JPEG encoder here)",

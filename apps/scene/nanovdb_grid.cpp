@@ -40,46 +40,46 @@ namespace {
 void check_segments(const std::string &path)
 {
     std::ifstream is(path, std::ios::binary);
-    if (!is) bad("cannot be opened");
+    if (!is) bad("cannot open the NanoVDB file");
     is.seekg(0, std::ios::end);
     const uint64_t size = (uint64_t)is.tellg();
     is.seekg(0);
-    if (size == 0) bad("is empty (not a NanoVDB file)");
+    if (size == 0) bad("empty (not a NanoVDB file)");
     uint64_t at = 0;
     for (int segment = 0; at < size; ++segment) {
         nanovdb::io::Header h;
         h.magic = 0;
         is.read(reinterpret_cast<char *>(&h), (std::streamsize)std::min<uint64_t>(sizeof h, size - at));
         if (h.magic != NANOVDB_MAGIC_NUMBER)  // (a short file's first bytes too)
-            bad(segment == 0 ? "is not a NanoVDB file (it does not begin with NanoVDB's magic number)"
-                             : "is damaged (a segment does not begin with NanoVDB's magic number)");
-        if (size - at < sizeof h) bad("is truncated (a segment header is cut off)");
+            bad(segment == 0 ? "not a NanoVDB file (it does not begin with NanoVDB's magic number)"
+                             : "damaged (a segment does not begin with NanoVDB's magic number)");
+        if (size - at < sizeof h) bad("truncated (a segment header is cut off)");
         at += sizeof h;
         if (h.version.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
-            bad("is of NanoVDB file format " + std::to_string(h.version.getMajor()) + ", this reader reads format " +
+            bad("NanoVDB file format " + std::to_string(h.version.getMajor()) + ", this reader reads format " +
                 std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + " (pbrt-v4's)");
         if (h.codec != nanovdb::io::Codec::NONE)
-            bad("is compressed (ZIP or BLOSC), which pbrt-v4 does not read: write it uncompressed");
-        if (h.gridCount == 0) bad("is damaged (a segment without grids)");
+            bad("compressed (ZIP or BLOSC), which pbrt-v4 does not read: write it uncompressed");
+        if (h.gridCount == 0) bad("damaged (a segment without grids)");
         uint64_t data = 0;
         for (int g = 0; g < h.gridCount; ++g) {
             nanovdb::io::MetaData m;
-            if (size - at < sizeof m) bad("is truncated (a grid record is cut off)");
+            if (size - at < sizeof m) bad("truncated (a grid record is cut off)");
             is.read(reinterpret_cast<char *>(&m), sizeof m);
             at += sizeof m;
-            if (m.nameSize == 0 || m.nameSize > size - at) bad("is truncated (a grid name is cut off)");
+            if (m.nameSize == 0 || m.nameSize > size - at) bad("truncated (a grid name is cut off)");
             std::vector<char> name(m.nameSize);
             is.read(name.data(), m.nameSize);
             at += m.nameSize;
-            if (name.back() != '\0') bad("is damaged (a grid name does not end)");
-            if (m.gridSize != m.fileSize) bad("is damaged (a grid's size in memory and on disk differ, uncompressed)");
-            if (m.gridSize < sizeof(nanovdb::GridData)) bad("is damaged (a grid smaller than its header)");
+            if (name.back() != '\0') bad("damaged (a grid name does not end)");
+            if (m.gridSize != m.fileSize) bad("damaged (a grid's size in memory and on disk differ, uncompressed)");
+            if (m.gridSize < sizeof(nanovdb::GridData)) bad("damaged (a grid smaller than its header)");
             data += m.fileSize;
-            if (data > size - at) bad("is truncated (its grids need more bytes than it has)");
+            if (data > size - at) bad("truncated (its grids need more bytes than it has)");
         }
         at += data;
         is.seekg((std::streamoff)at);
-        if (!is) bad("cannot be read");
+        if (!is) bad("cannot read the NanoVDB file");
     }
 }
 
@@ -87,7 +87,7 @@ bool finite3(const nanovdb::Vec3R &v) { return std::isfinite(v[0]) && std::isfin
 
 // Every node the tree links to inside the buffer, 32-byte aligned, the node counts the tree records, every
 // value finite and not negative; *max the largest value.
-void check_tree(const FloatGrid &grid, uint64_t size, float *max)
+void check_tree(const FloatGrid &grid, uint64_t size, const std::string &what, float *max)
 {
     const uint8_t *begin = reinterpret_cast<const uint8_t *>(&grid), *end = begin + size;
     auto inside = [&](const void *p, size_t bytes) {
@@ -96,19 +96,19 @@ void check_tree(const FloatGrid &grid, uint64_t size, float *max)
     };
     auto value = [&](float v) {
         if (!std::isfinite(v) || v < 0)
-            bad(std::string("has a ") + (std::isfinite(v) ? "negative" : "non-finite") + " value (" + std::to_string(v) +
+            bad(what + " holds a " + (std::isfinite(v) ? "negative" : "non-finite") + " value (" + std::to_string(v) +
                 "); densities and temperatures must be finite and not negative");
         if (v > *max) *max = v;
     };
     const auto *tree_data = grid.tree().data();
-    if (!inside(tree_data, sizeof *tree_data)) bad("is damaged (its tree lies outside the grid)");
+    if (!inside(tree_data, sizeof *tree_data)) bad("damaged (its tree lies outside the grid)");
     const uint64_t root_offset = tree_data->mNodeOffset[3];
-    if (root_offset < sizeof *tree_data || root_offset > size) bad("is damaged (its root lies outside the grid)");
+    if (root_offset < sizeof *tree_data || root_offset > size) bad("damaged (its root lies outside the grid)");
     const Root &root = grid.tree().root();
-    if (!inside(&root, sizeof(Root))) bad("is damaged (its root lies outside the grid)");
+    if (!inside(&root, sizeof(Root))) bad("damaged (its root lies outside the grid)");
     const auto *rd = root.data();
     if ((uint64_t)rd->mTableSize > (size - ((const uint8_t *)rd - begin) - sizeof(Root)) / sizeof(Root::Tile))
-        bad("is damaged (its root's table lies outside the grid)");
+        bad("damaged (its root's table lies outside the grid)");
     *max = 0;
     value(rd->mBackground);
     uint64_t counted[3] = {0, 0, 0};  // leaf, lower, upper
@@ -120,9 +120,9 @@ void check_tree(const FloatGrid &grid, uint64_t size, float *max)
         }
         const int64_t off = tile->child;
         const intptr_t from_begin = (const uint8_t *)rd - begin;
-        if (off < -from_begin || off > (int64_t)size - from_begin) bad("is damaged (a node lies outside the grid)");
+        if (off < -from_begin || off > (int64_t)size - from_begin) bad("damaged (a node lies outside the grid)");
         const Upper *upper = rd->getChild(tile);
-        if (!inside(upper, sizeof(Upper))) bad("is damaged (a node lies outside the grid)");
+        if (!inside(upper, sizeof(Upper))) bad("damaged (a node lies outside the grid)");
         ++counted[2];
         const auto *ud = upper->data();
         for (uint32_t n = 0; n < Upper::SIZE; ++n) {
@@ -131,9 +131,9 @@ void check_tree(const FloatGrid &grid, uint64_t size, float *max)
                 continue;
             }
             const int64_t uoff = ud->mTable[n].child, ufrom = (const uint8_t *)ud - begin;
-            if (uoff < -ufrom || uoff > (int64_t)size - ufrom) bad("is damaged (a node lies outside the grid)");
+            if (uoff < -ufrom || uoff > (int64_t)size - ufrom) bad("damaged (a node lies outside the grid)");
             const Lower *lower = ud->getChild(n);
-            if (!inside(lower, sizeof(Lower))) bad("is damaged (a node lies outside the grid)");
+            if (!inside(lower, sizeof(Lower))) bad("damaged (a node lies outside the grid)");
             ++counted[1];
             const auto *ld = lower->data();
             for (uint32_t k = 0; k < Lower::SIZE; ++k) {
@@ -142,9 +142,9 @@ void check_tree(const FloatGrid &grid, uint64_t size, float *max)
                     continue;
                 }
                 const int64_t loff = ld->mTable[k].child, lfrom = (const uint8_t *)ld - begin;
-                if (loff < -lfrom || loff > (int64_t)size - lfrom) bad("is damaged (a node lies outside the grid)");
+                if (loff < -lfrom || loff > (int64_t)size - lfrom) bad("damaged (a node lies outside the grid)");
                 const Leaf *leaf = ld->getChild(k);
-                if (!inside(leaf, sizeof(Leaf))) bad("is damaged (a node lies outside the grid)");
+                if (!inside(leaf, sizeof(Leaf))) bad("damaged (a node lies outside the grid)");
                 ++counted[0];
                 for (uint32_t v = 0; v < Leaf::SIZE; ++v) value(leaf->data()->getValue(v));
             }
@@ -153,11 +153,11 @@ void check_tree(const FloatGrid &grid, uint64_t size, float *max)
     // (the checksum's node manager takes the recorded counts and, breadth first, the recorded offsets)
     const size_t node_bytes[3] = {sizeof(Leaf), sizeof(Lower), sizeof(Upper)};
     for (int level = 0; level < 3; ++level) {
-        if (counted[level] != tree_data->mNodeCount[level]) bad("is damaged (its tree's node counts are not its nodes')");
+        if (counted[level] != tree_data->mNodeCount[level]) bad("damaged (its tree's node counts are not its nodes')");
         if (grid.isBreadthFirst() && counted[level] > 0) {
             const uint64_t first = ((const uint8_t *)tree_data - begin) + tree_data->mNodeOffset[level];
             if (tree_data->mNodeOffset[level] > size || first > size || counted[level] > (size - first) / node_bytes[level])
-                bad("is damaged (its tree's node offsets lie outside the grid)");
+                bad("damaged (its tree's node offsets lie outside the grid)");
         }
     }
 }
@@ -181,32 +181,32 @@ std::shared_ptr<const NanoVdbGrid> NanoVdbGrid::load(const std::string &path, co
     if (!impl->handle) return nullptr;
     const uint64_t size = impl->handle.size();
     if (size < sizeof(nanovdb::GridData) + sizeof(nanovdb::TreeData<3>) + sizeof(Root))
-        bad("is damaged (grid \"" + name + "\" is smaller than a grid's header)");
+        bad("damaged (grid \"" + name + "\" is smaller than a grid's header)");
     const auto *gd = reinterpret_cast<const nanovdb::GridData *>(impl->handle.data());
     const std::string what = "grid \"" + name + "\"";
-    if (gd->mMagic != NANOVDB_MAGIC_NUMBER || gd->mGridSize != size) bad("is damaged (" + what + "'s header)");
-    if (gd->mVersion.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER) bad("is damaged (" + what + "'s version)");
+    if (gd->mMagic != NANOVDB_MAGIC_NUMBER || gd->mGridSize != size) bad("damaged (" + what + "'s header)");
+    if (gd->mVersion.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER) bad("damaged (" + what + "'s version)");
     if (gd->mGridType != nanovdb::GridType::Float)
-        bad("has " + what + " of type " +
+        bad(what + " of type " +
             (gd->mGridType < nanovdb::GridType::End ? std::string(nanovdb::toStr(gd->mGridType)) : std::string("unknown")) +
             ", not float (pbrt-v4 reads float grids)");
     if (gd->mGridClass != nanovdb::GridClass::FogVolume && gd->mGridClass != nanovdb::GridClass::Unknown)
-        bad("has " + what + " of class " +
+        bad(what + " of class " +
             (gd->mGridClass < nanovdb::GridClass::End ? std::string(nanovdb::toStr(gd->mGridClass)) : std::string("unknown")) +
             ", not a fog volume (pbrt-v4 refuses it)");
     impl->grid = impl->handle.grid<float>();
-    if (!impl->grid) bad("is damaged (" + what + " is not a float grid)");
+    if (!impl->grid) bad("damaged (" + what + " is not a float grid)");
     const FloatGrid &grid = *impl->grid;
     const nanovdb::Map &map = grid.map();
     for (int i = 0; i < 9; ++i)
-        if (!std::isfinite(map.mMatF[i]) || !std::isfinite(map.mInvMatF[i])) bad("is damaged (" + what + "'s map is not finite)");
+        if (!std::isfinite(map.mMatF[i]) || !std::isfinite(map.mInvMatF[i])) bad("damaged (" + what + "'s map is not finite)");
     for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(map.mVecF[i])) bad("is damaged (" + what + "'s map is not finite)");
-    if (!finite3(grid.worldBBox().min()) || !finite3(grid.worldBBox().max())) bad("is damaged (" + what + "'s bounds are not finite)");
+        if (!std::isfinite(map.mVecF[i])) bad("damaged (" + what + "'s map is not finite)");
+    if (!finite3(grid.worldBBox().min()) || !finite3(grid.worldBBox().max())) bad("damaged (" + what + "'s bounds are not finite)");
     float max = 0;
-    check_tree(grid, size, &max);
+    check_tree(grid, size, what, &max);
     if (!nanovdb::validateChecksum(grid, nanovdb::ChecksumMode::Full))
-        bad("is damaged (" + what + "'s checksum is not its data's)");
+        bad("damaged (" + what + "'s checksum is not its data's)");
     std::shared_ptr<NanoVdbGrid> out(new NanoVdbGrid(std::move(impl)));
     const auto &wb = grid.worldBBox();
     const auto &ib = grid.indexBBox();

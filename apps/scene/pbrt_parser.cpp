@@ -1496,13 +1496,13 @@ private:
             try {
                 return NanoVdbGrid::load(path, grid);
             } catch (const std::runtime_error &e) {
-                throw SceneError(file->where + ": " + what + ": \"" + path + "\" " + e.what());
+                throw SceneError(file->where + ": " + what + ": " + path + ": " + e.what());
             }
         };
         const std::string density = ps.get_string("gridname", "density");
         m->vdb_density = load(density);
         if (!m->vdb_density)
-            throw SceneError(file->where + ": " + what + ": \"" + path + "\" has no grid named \"" + density +
+            throw SceneError(file->where + ": " + what + ": " + path + ": no grid named \"" + density +
                              "\" (pbrt-v4 needs its density grid)");
         m->vdb_temperature = load(ps.get_string("temperaturename", "temperature"));
         m->p0 = m->vdb_density->world_min(), m->p1 = m->vdb_density->world_max();
@@ -1513,7 +1513,7 @@ private:
             }
         for (int k = 0; k < 3; ++k)
             if (!(m->p1[k] > m->p0[k]) || !std::isfinite(m->p1[k] - m->p0[k]))
-                throw SceneError(file->where + ": " + what + ": \"" + path + "\": the box of its grids' active voxels is empty "
+                throw SceneError(file->where + ": " + what + ": " + path + ": the box of its grids' active voxels is empty "
                                  "along an axis");
         double le_scale = ps.get_float("Lescale", 1.0);
         if (!std::isfinite(le_scale))

@@ -194,8 +194,8 @@ void test_bad_files_are_refused()
         {"double", "density", "of type double, not float"},
         {"temperature-double", "temperature", "of type double, not float"},
         {"level-set", "density", "not a fog volume"},
-        {"negative", "density", "negative value"},
-        {"nan", "density", "non-finite value"},
+        {"negative", "density", "grid \"density\" holds a negative value"},
+        {"nan", "density", "grid \"density\" holds a non-finite value"},
     };
     for (const Case &c : cases) {
         std::string why = refusal(write(c.kind), c.grid);
@@ -203,7 +203,7 @@ void test_bad_files_are_refused()
     }
     CHECK(refusal(write("named")) == "(no grid)");  // (the parser names the missing grid)
     CHECK(NanoVdbGrid::load(g_dir + "/named.nvdb", "smoke") != nullptr);
-    CHECK(refusal(g_dir + "/absent.nvdb").find("cannot be opened") != std::string::npos);
+    CHECK(refusal(g_dir + "/absent.nvdb").find("cannot open the NanoVDB file") != std::string::npos);
     std::string text = g_dir + "/text.nvdb";
     std::ofstream(text) << "#VDB not really\n";
     CHECK(refusal(text).find("not a NanoVDB file") != std::string::npos);

@@ -320,8 +320,8 @@ def test_nvdb_stand_ins_with_the_writer(tmp_path):
         assert r.returncode == 0, r.stderr
         rows[bool(flag)] = json.loads((out / "census.json").read_text())["rows"][0]
         assert not (col / "vdb" / "grids").exists()  # (the collection untouched)
-    assert rows[False]["result"] == "refused" and rows[False]["blocked"] == {"vdb/grids/smoke.nvdb": stand_in("x.nvdb")[1]}
-    assert "cannot be opened" in rows[False]["refusal"], rows[False]
+    assert rows[False]["result"] == "blocked" and rows[False]["blocked"] == {"vdb/grids/smoke.nvdb": stand_in("x.nvdb")[1]}
+    assert rows[False]["feature"] == "no stand-in (a NanoVDB grid)", rows[False]
     assert rows[True]["result"] == "renders", rows[True]
     assert rows[True]["stand_ins"] == {"vdb/grids/smoke.nvdb": bench_scene_census.NVDB_STAND_IN}
     assert (tmp_path / "out2" / "overlay" / "vdb" / "grids" / "smoke.nvdb").read_bytes()[:8] == b"NanoVDB0"

@@ -100,17 +100,17 @@ def test_fire_glows_without_lights_and_loops_agree(tmp_path):
 
 @needs_writer
 @pytest.mark.parametrize("kind,params,words", [
-    ("named", "", 'has no grid named "density" (pbrt-v4 needs its density grid)'),
-    ("named", '"string gridname" "velocity"', 'has no grid named "velocity"'),
-    ("double", "", 'has grid "density" of type double, not float'),
-    ("temperature-double", "", 'has grid "temperature" of type double, not float'),
+    ("named", "", 'no grid named "density" (pbrt-v4 needs its density grid)'),
+    ("named", '"string gridname" "velocity"', 'no grid named "velocity"'),
+    ("double", "", 'grid "density" of type double, not float'),
+    ("temperature-double", "", 'grid "temperature" of type double, not float'),
     ("level-set", "", "not a fog volume (pbrt-v4 refuses it)"),
-    ("negative", "", "has a negative value ("),
-    ("nan", "", "has a non-finite value"),
+    ("negative", "", 'grid "density" holds a negative value ('),
+    ("nan", "", 'grid "density" holds a non-finite value'),
     ("empty", "", "the box of its grids' active voxels is empty"),
-    ("text", "", "is not a NanoVDB file"),
-    ("truncated", "", "is truncated"),
-    ("absent", "", "cannot be opened"),
+    ("text", "", "not a NanoVDB file (it does not begin with NanoVDB's magic number)"),
+    ("truncated", "", "truncated (its grids need more bytes than it has)"),
+    ("absent", "", "cannot open the NanoVDB file"),
     ("sphere", '"rgb Le" [ 1 1 1 ]', "unsupported parameter 'Le'"),
 ])
 def test_bad_files_refused_with_file_and_line(kind, params, words, tmp_path):
