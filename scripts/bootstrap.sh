@@ -3,7 +3,7 @@
 #   python/requirements.txt into the virtual environment .venv.
 
 UDM1_DEBIAN_PACKAGES=(build-essential cmake ninja-build pkg-config binutils abigail-tools python3 python3-venv libopenimageio-dev
-                      libtbb-dev libembree-dev zlib1g-dev libnanovdb-dev povray libnoise-dev libllvm19
+                      libopenexr-dev libpng-dev libtbb-dev libembree-dev zlib1g-dev libnanovdb-dev povray libnoise-dev libllvm19
                       gcc-aarch64-linux-gnu g++-aarch64-linux-gnu qemu-user)
 
 udm1_log() { printf '[udm1] %s\n' "$*" >&2; }

@@ -1,46 +1,43 @@
 // image_read.cpp - see image_read.h.
 #include "udm1app/image_read.h"
 
-#include "image_calls.h"
+#include "exr_file.h"
+#include "oiio_module.h"
 #include "udm1app/cli.h"
 
-#include <OpenImageIO/imageio.h>
-
-#include <sys/stat.h>
-
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
-#include <new>
+#include <cstring>
+#include <fstream>
 
 namespace udm1app {
 
-void require_regular_file(const std::string &path)
-{
-    struct stat st;
-    if (stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) throw Error("cannot read '" + path + "': not a regular file", 1);
-}
-
 LoadedImage read_image(const std::string &path)
 {
-    auto in = open_image(path);
-    const OIIO::ImageSpec &spec = in->spec();
+    require_regular_file(path);
+    if (!std::ifstream(path, std::ios::binary)) throw Error("cannot read '" + path + "': " + std::strerror(errno), 1);
     LoadedImage img;
-    img.width = spec.width;
-    img.height = spec.height;
-    img.channels = spec.nchannels;
-    img.bits = (int)spec.format.size() * 8;
-    for (const OIIO::ParamValue &pv : spec.extra_attribs)
-        if (pv.name().string().rfind("udm1:", 0) == 0 && pv.type() == OIIO::TypeDesc::STRING)
-            img.attributes[pv.name().string()] = pv.get_string();
-    try {
-        img.pixels.resize(image_values(*in, path));
-    } catch (const std::bad_alloc &) {
-        throw Error("cannot read '" + path + "': not enough memory for its " + std::to_string(img.width) + "x" +
-                        std::to_string(img.height) + " pixels",
-                    1);
+    if (!is_exr_file(path)) {  // the other formats through OpenImageIO, loaded now
+        std::string error;
+        if (int code = oiio_calls("read", path).read_image(path, img, error)) throw Error(error, code);
+        return img;
     }
-    read_pixels(*in, path, OIIO::TypeDesc::FLOAT, img.pixels.data());
-    in->close();
+    ExrImage exr = decode_exr(path);
+    img.width = exr.width, img.height = exr.height, img.channels = (int)exr.channels.size(), img.bits = exr.bits;
+    for (const auto &kv : exr.attributes)
+        if (kv.first.rfind("udm1:", 0) == 0) img.attributes[kv.first] = kv.second;
+    img.pixels.resize(exr.pixels.size());
+    for (size_t i = 0; i < exr.pixels.size(); ++i) {
+        const uint32_t v = exr.pixels[i];
+        if (exr.channels[i % exr.channels.size()].uint) {
+            img.pixels[i] = (float)((double)v / 4294967295.0);  // as OpenImageIO converts them: 0 to 1
+        } else {
+            float f;
+            std::memcpy(&f, &v, sizeof f);
+            img.pixels[i] = f;
+        }
+    }
     return img;
 }
 

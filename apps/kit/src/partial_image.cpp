@@ -1,17 +1,19 @@
 // partial_image.cpp - see partial_image.h.
 #include "udm1app/partial_image.h"
 
-#include "image_calls.h"
+#include "exr_file.h"
 #include "udm1app/atomic_file.h"
 #include "udm1app/cli.h"
 #include "udm1app/image_read.h"
 
-#include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <limits>
 
 namespace udm1app {
@@ -55,49 +57,44 @@ std::vector<float> PartialImage::rgb() const
 void write_partial(AtomicFile &file, const PartialImage &p)
 {
     const std::string &path = file.path();
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out || std::string(out->format_name()) != "openexr") {
-        OIIO::geterror();
+    const size_t dot = path.find_last_of('.');
+    std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
+    for (char &c : ext) c = (char)std::tolower((unsigned char)c);
+    if (ext != "exr" || path.find('/', dot) != std::string::npos)
         throw Error("cannot write '" + path + "': images with exact sums are OpenEXR (.exr)", 2);
-    }
     const size_t nsum = p.channels.size();
-    OIIO::ImageSpec spec(p.width, p.height, 3 + 2 * (int)nsum, OIIO::TypeDesc::FLOAT);
-    spec.x = p.x0, spec.y = p.y0;
-    spec.full_x = 0, spec.full_y = 0, spec.full_width = p.full_width, spec.full_height = p.full_height;
-    spec.channelnames = {"R", "G", "B"};
-    spec.channelformats.assign(3, OIIO::TypeDesc::FLOAT);
+    ExrImage exr;
+    exr.full_width = p.full_width, exr.full_height = p.full_height;
+    exr.x0 = p.x0, exr.y0 = p.y0, exr.width = p.width, exr.height = p.height;
+    exr.channels = {{"R", false}, {"G", false}, {"B", false}};
     for (const std::string &c : p.channels)
-        for (const char *half : {".hi", ".lo"})
-            spec.channelnames.push_back("sum." + c + half), spec.channelformats.push_back(OIIO::TypeDesc::UINT);
-    spec.attribute("compression", "zip");
-    spec.attribute("DateTime", "");
-    spec.attribute("Software", "udm1");
-    spec.attribute("udm1:render", p.made_by);
+        for (const char *half : {".hi", ".lo"}) exr.channels.push_back({"sum." + c + half, true});
+    exr.attributes["Software"] = "udm1";
+    exr.attributes["udm1:render"] = p.made_by;
     std::string names;
     for (const std::string &c : p.channels) names += (names.empty() ? "" : ",") + c;
-    spec.attribute("udm1:channels", names);  // OpenEXR sorts channels by name: keep their order here
-    spec.attribute("udm1:spp", std::to_string(p.spp));
-    spec.attribute("udm1:first", std::to_string(p.first));
-    spec.attribute("udm1:count", std::to_string(p.count));
+    exr.attributes["udm1:channels"] = names;  // OpenEXR sorts channels by name: keep their order here
+    exr.attributes["udm1:spp"] = std::to_string(p.spp);
+    exr.attributes["udm1:first"] = std::to_string(p.first);
+    exr.attributes["udm1:count"] = std::to_string(p.count);
     char scale[40];
     std::snprintf(scale, sizeof scale, "%.17g", p.scale);
-    spec.attribute("udm1:scale", scale);
-    spec.attribute("udm1:nonfinite", std::to_string(p.nonfinite));
-    spec.attribute("udm1:clamped", std::to_string(p.clamped));
-    const size_t pixel_bytes = 3 * sizeof(float) + 2 * nsum * sizeof(uint32_t);
+    exr.attributes["udm1:scale"] = scale;
+    exr.attributes["udm1:nonfinite"] = std::to_string(p.nonfinite);
+    exr.attributes["udm1:clamped"] = std::to_string(p.clamped);
+    const size_t nc = exr.channels.size(), npix = (size_t)p.width * p.height;
     std::vector<float> shown = p.rgb();
-    std::vector<unsigned char> buf((size_t)p.width * p.height * pixel_bytes);
-    for (size_t i = 0; i < (size_t)p.width * p.height; ++i) {
-        unsigned char *px = &buf[i * pixel_bytes];
+    exr.pixels.resize(npix * nc);
+    for (size_t i = 0; i < npix; ++i) {
+        uint32_t *px = &exr.pixels[i * nc];
         std::memcpy(px, &shown[3 * i], 3 * sizeof(float));
         for (size_t c = 0; c < nsum; ++c) {
-            uint64_t v = (uint64_t)p.sum[nsum * i + c];
-            uint32_t hi = (uint32_t)(v >> 32), lo = (uint32_t)v;
-            std::memcpy(px + 12 + 8 * c, &hi, 4);
-            std::memcpy(px + 16 + 8 * c, &lo, 4);
+            const uint64_t v = (uint64_t)p.sum[nsum * i + c];
+            px[3 + 2 * c] = (uint32_t)(v >> 32), px[4 + 2 * c] = (uint32_t)v;
         }
     }
-    encode_image(*out, spec, OIIO::TypeDesc::UNKNOWN, buf.data(), file);
+    std::vector<unsigned char> bytes = encode_exr(exr, path);
+    file.write(bytes.data(), bytes.size());
 }
 
 void write_partial(const std::string &path, const PartialImage &p)
@@ -109,29 +106,40 @@ void write_partial(const std::string &path, const PartialImage &p)
 
 PartialImage read_partial(const std::string &path)
 {
-    auto in = open_image(path);
-    const OIIO::ImageSpec &spec = in->spec();
     const std::string not_ours = "'" + path + "' is not an udm1 image with exact sums";
+    if (!is_exr_file(path)) {
+        require_regular_file(path);
+        if (!std::ifstream(path, std::ios::binary)) throw Error("cannot read '" + path + "': " + std::strerror(errno), 1);
+        throw Error(not_ours, 2);
+    }
+    ExrImage exr = decode_exr(path);
+    auto attribute = [&](const char *name) {
+        auto at = exr.attributes.find(name);
+        return at == exr.attributes.end() ? std::string() : at->second;
+    };
+    auto channel = [&](const std::string &name) {
+        for (size_t c = 0; c < exr.channels.size(); ++c)
+            if (exr.channels[c].name == name) return (int)c;
+        return -1;
+    };
     PartialImage p;
-    p.made_by = spec.get_string_attribute("udm1:render");
-    if (p.made_by.empty() || spec.channelformats.size() != (size_t)spec.nchannels) throw Error(not_ours, 2);
+    p.made_by = attribute("udm1:render");
+    if (p.made_by.empty()) throw Error(not_ours, 2);
     // OpenEXR keeps channels in name order: find the summed ones by name, in the order written
     std::vector<int> where;
-    std::string names = spec.get_string_attribute("udm1:channels");
+    std::string names = attribute("udm1:channels");
     for (size_t at = 0; !names.empty() && at <= names.size();) {
         size_t comma = std::min(names.find(',', at), names.size());
         std::string name = names.substr(at, comma - at);
-        int hi = spec.channelindex("sum." + name + ".hi"), lo = spec.channelindex("sum." + name + ".lo");
-        if (name.empty() || hi < 0 || lo < 0 || spec.channelformats[hi] != OIIO::TypeDesc::UINT ||
-            spec.channelformats[lo] != OIIO::TypeDesc::UINT)
-            throw Error(not_ours, 2);
+        int hi = channel("sum." + name + ".hi"), lo = channel("sum." + name + ".lo");
+        if (name.empty() || hi < 0 || lo < 0 || !exr.channels[hi].uint || !exr.channels[lo].uint) throw Error(not_ours, 2);
         p.channels.push_back(name);
         where.push_back(hi), where.push_back(lo);
         at = comma + 1;
     }
     if (p.channels.empty()) throw Error(not_ours, 2);
     auto number = [&](const char *name) -> uint64_t {
-        std::string s = spec.get_string_attribute(name);
+        std::string s = attribute(name);
         char *end = nullptr;
         unsigned long long v = std::strtoull(s.c_str(), &end, 10);
         if (s.empty() || *end) throw Error("'" + path + "': bad attribute " + name, 2);
@@ -139,29 +147,23 @@ PartialImage read_partial(const std::string &path)
     };
     p.spp = number("udm1:spp"), p.first = number("udm1:first"), p.count = number("udm1:count");
     p.nonfinite = number("udm1:nonfinite"), p.clamped = number("udm1:clamped");
-    std::string scale = spec.get_string_attribute("udm1:scale");
+    std::string scale = attribute("udm1:scale");
     char *end = nullptr;
     p.scale = std::strtod(scale.c_str(), &end);
     if (scale.empty() || *end || !(p.scale > 0) || !std::isfinite(p.scale)) throw Error("'" + path + "': bad attribute udm1:scale", 2);
     if (p.count == 0 || p.first + p.count > p.spp || p.first + p.count < p.first)
         throw Error("'" + path + "': the sample range does not fit udm1:spp", 2);
-    p.x0 = spec.x, p.y0 = spec.y, p.width = spec.width, p.height = spec.height;
-    p.full_width = spec.full_width, p.full_height = spec.full_height;
-    if (spec.full_x != 0 || spec.full_y != 0 || p.x0 < 0 || p.y0 < 0 || p.width <= 0 || p.height <= 0 ||
-        (int64_t)p.x0 + p.width > p.full_width || (int64_t)p.y0 + p.height > p.full_height)
+    p.x0 = exr.x0, p.y0 = exr.y0, p.width = exr.width, p.height = exr.height;
+    p.full_width = exr.full_width, p.full_height = exr.full_height;
+    if (exr.full_x0 != 0 || exr.full_y0 != 0 || p.x0 < 0 || p.y0 < 0 || p.width <= 0 || p.height <= 0 || (int64_t)p.x0 + p.width > p.full_width ||
+        (int64_t)p.y0 + p.height > p.full_height)
         throw Error("'" + path + "': its data window is not inside its display window", 2);
-    std::vector<size_t> offset(spec.nchannels + 1, 0);  // byte offset of each channel in a native pixel
-    for (int c = 0; c < spec.nchannels; ++c) offset[c + 1] = offset[c] + spec.channelformats[c].size();
-    const size_t pixel_bytes = offset[spec.nchannels], nsum = p.channels.size();
-    std::vector<unsigned char> buf(image_values(*in, path) / spec.nchannels * pixel_bytes);
-    read_pixels(*in, path, OIIO::TypeDesc::UNKNOWN, buf.data());
+    const size_t nc = exr.channels.size(), nsum = p.channels.size();
     p.sum.resize((size_t)p.width * p.height * nsum);
     for (size_t i = 0; i < (size_t)p.width * p.height; ++i)
         for (size_t c = 0; c < nsum; ++c) {
-            uint32_t hi, lo;
-            std::memcpy(&hi, &buf[i * pixel_bytes + offset[where[2 * c]]], 4);
-            std::memcpy(&lo, &buf[i * pixel_bytes + offset[where[2 * c + 1]]], 4);
-            p.sum[nsum * i + c] = (int64_t)(((uint64_t)hi << 32) | lo);
+            const uint64_t hi = exr.pixels[i * nc + (size_t)where[2 * c]], lo = exr.pixels[i * nc + (size_t)where[2 * c + 1]];
+            p.sum[nsum * i + c] = (int64_t)((hi << 32) | lo);
         }
     return p;
 }
