@@ -1,5 +1,5 @@
-"""udm1-pt as the tool tests run it: the binary from UDM1_PT_TOOL, a run, a run that must succeed, and an
-EXR read as linear RGB (through Mitsuba's Bitmap)."""
+"""udm1-pt as the tool tests run it: the binary from UDM1_PT_TOOL, a run, a run that must succeed, an
+EXR read as linear RGB (through Mitsuba's Bitmap), and a small render of a scene's text."""
 
 import os
 import subprocess
@@ -24,3 +24,12 @@ def read_exr(path):
 
     mi.set_variant("scalar_rgb")
     return np.array(mi.Bitmap(str(path)), dtype=np.float64)[..., :3]
+
+
+def render_text(tmp_path, text, *args, name="s"):
+    """The scene `text` written to tmp_path/NAME.pbrt and rendered at 16 x 12, 8 spp: (its image, the run)."""
+    scene = tmp_path / f"{name}.pbrt"
+    scene.write_text(text)
+    out = tmp_path / f"{name}.exr"
+    r = ok("--scene", str(scene), "-o", str(out), "--size", "16x12", "--spp", "8", *args, cwd=tmp_path)
+    return read_exr(out), r

@@ -5,7 +5,7 @@ forms; bench/bench_accuracy.py compares the test scenes grid, grid-fire and clou
 
 import pytest
 from cli_checks import fails_cleanly
-from pt_tool import TOOL, ok, read_exr, run
+from pt_tool import TOOL, ok, read_exr, render_text, run
 
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
 
@@ -33,11 +33,7 @@ BASE = {"uniformgrid": dict(transform="", type="uniformgrid", params=GRID + ' "r
 
 
 def render(tmp_path, fields, *args, name="s"):
-    scene = tmp_path / f"{name}.pbrt"
-    scene.write_text(SCENE.format(**fields))
-    out = tmp_path / f"{name}.exr"
-    r = ok("--scene", str(scene), "-o", str(out), "--size", "16x12", "--spp", "8", *args, cwd=tmp_path)
-    return read_exr(out), r
+    return render_text(tmp_path, SCENE.format(**fields), *args, name=name)
 
 
 @pytest.mark.parametrize("kind,change", [
