@@ -5,7 +5,7 @@ forms; bench/bench_accuracy.py compares the test scenes grid, grid-fire and clou
 
 import pytest
 from cli_checks import fails_cleanly
-from pt_tool import TOOL, ok, read_exr, render_text, run
+from pt_tool import TOOL, render_text, run
 
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")
 
