@@ -237,7 +237,15 @@ windows)
     build build-windows "${WINDOWS[@]}"
     udm1_log "a Wine prefix of its own (build-windows/wineprefix), then every C test under wine64, the DLL's"
     udm1_log "exports against libudm1/udm1.symbols, and a consumer project's find_package(udm1) with the import library"
-    WINEPREFIX="$ROOT/build-windows/wineprefix" WINEDEBUG=-all cmake/toolchains/wine64-run.sh wineboot --init
+    # one Wine server for the whole run (-p: persistent, started before anything else of the prefix): without it
+    # the server exits whenever no test runs, and a test that starts just then loses its connection ("wine client
+    # error: recvmsg")
+    export WINEPREFIX="$ROOT/build-windows/wineprefix"
+    wineserver="$(command -v wineserver || echo /usr/lib/wine/wineserver)"
+    "$wineserver" -k 2>/dev/null || true
+    "$wineserver" -p
+    trap '"$wineserver" -k 2>/dev/null || true' EXIT
+    WINEDEBUG=-all cmake/toolchains/wine64-run.sh wineboot --init
     ctest --test-dir build-windows -j "$JOBS" --output-on-failure -L '^(c|abi|install)$'
     ;;
 *)
