@@ -1,6 +1,7 @@
 """What udm1's Mitsuba samplers (the Python one, udm1/mitsuba.py, and the native plugin, integrations/mitsuba3) must
 draw: the library's values of the same properties, as float32, for test_mitsuba_differential.py and
-test_mitsuba_native.py; and the one line a refusal must end with."""
+test_mitsuba_native.py; and the one line a refusal must end with. Also what the Mitsuba tests share: the draw
+pattern of a sample, and the render mean checked against the independent sampler's (test_mitsuba.py too)."""
 
 from __future__ import annotations
 
@@ -61,3 +62,26 @@ def pass_mismatches(got, seq, streams, first_index, draws):
     got = np.stack([np.array(v) for v in got], 1)
     want = library(seq, streams, first_index, draws)
     return got, want, np.argwhere(got != want)
+
+
+def draw(s, n):
+    """n draws of a sample: 1D, 2D, 1D, 2D, ... (a 2D draw takes two dimensions)."""
+    out = []
+    while len(out) < n:
+        if len(out) % 3 == 1 and len(out) + 2 <= n:
+            p = s.next_2d()
+            out += [p.x, p.y]
+        else:
+            out.append(s.next_1d())
+    return out
+
+
+def check_mean_against_independent(render_means, name, res, spp, samplers):
+    """Each udm1 sampler's Cornell-box mean (render_means(sampler, res, spp, seeds): one render's mean per seed)
+    within 5 standard deviations of the independent sampler's mean (the deviation over 16 renders)."""
+    indep = render_means({"type": "independent", "sample_count": spp}, res, spp, range(16))
+    mean, sd = indep.mean(), indep.std(ddof=1)
+    assert sd > 0
+    for extra in samplers:
+        ours = render_means({"type": "udm1", "sample_count": spp, **extra}, res, spp, [1])[0]
+        assert abs(ours - mean) < 5 * sd * (1 + 1 / 16) ** 0.5, f"{name} {extra}: mean {ours} against {mean} +- {sd}"

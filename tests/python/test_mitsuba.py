@@ -29,6 +29,7 @@ mi = pytest.importorskip("mitsuba", reason="Mitsuba 3 is not installed (python/r
 import drjit as dr  # noqa: E402
 
 import udm1.mitsuba  # noqa: E402
+from mitsuba_reference import check_mean_against_independent  # noqa: E402
 
 
 def variant(name):
@@ -102,9 +103,4 @@ def render_means(sampler: dict, res: int, spp: int, seeds) -> np.ndarray:
 ])
 def test_cornell_box_mean_equals_independent(name, res, spp, samplers):
     variant(name)
-    indep = render_means({"type": "independent", "sample_count": spp}, res, spp, range(16))
-    mean, sd = indep.mean(), indep.std(ddof=1)
-    assert sd > 0
-    for extra in samplers:
-        ours = render_means({"type": "udm1", "sample_count": spp, **extra}, res, spp, [1])[0]
-        assert abs(ours - mean) < 5 * sd * (1 + 1 / 16) ** 0.5, f"{name} {extra}: mean {ours} against {mean} +- {sd}"
+    check_mean_against_independent(render_means, name, res, spp, samplers)

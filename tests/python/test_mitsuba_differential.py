@@ -32,7 +32,7 @@ import drjit as dr  # noqa: E402
 
 import udm1.mitsuba  # noqa: E402
 from mitsuba_reference import (INFO, PRESETS, RANDOMIZE, f32, info_of, lane_streams, last_line, library,  # noqa: E402,F401
-                               pass_mismatches, reference, rng_of)
+                               check_mean_against_independent, draw, pass_mismatches, reference, rng_of)
 
 W, H, SPP, SPP_PASS = 3, 2, 4, 2  # the llvm wavefront: 3 x 2 pixels, 4 samples in two passes of 2
 DRAWS = 9  # per sample: 1D and 2D draws, past every D below
@@ -77,18 +77,6 @@ def load(props, bad):
     except Exception as exc:
         bad.append(f"{props['preset']}/{props['randomize']}: refused: {last_line(exc)}")
         return None
-
-
-def draw(s, n):
-    """n draws of a sample: 1D, 2D, 1D, 2D, ... (a 2D draw takes two dimensions)."""
-    out = []
-    while len(out) < n:
-        if len(out) % 3 == 1 and len(out) + 2 <= n:
-            p = s.next_2d()
-            out += [p.x, p.y]
-        else:
-            out.append(s.next_1d())
-    return out
 
 
 @pytest.mark.parametrize("randomize", RANDOMIZE)

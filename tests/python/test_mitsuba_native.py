@@ -42,7 +42,7 @@ import drjit as dr  # noqa: E402
 
 import udm1.mitsuba  # noqa: E402
 from mitsuba_reference import (INFO, PRESETS, RANDOMIZE, f32, info_of, lane_streams, last_line, library,  # noqa: E402,F401
-                               pass_mismatches, reference, rng_of)
+                               check_mean_against_independent, draw, pass_mismatches, reference, rng_of)
 from udm1 import mitsuba_build  # noqa: E402
 
 EVERY_RANDOMIZATION = ("wr", "wopt+tent", "sobol", "sobol-owen", "pmj02", "halton", "epis")
@@ -96,18 +96,6 @@ def assert_refused(props, *words):
     assert "udm1 sampler: " in line and len(str(e.value).strip().splitlines()) == 1, str(e.value)
     for w in words:
         assert w in line, f"{w!r} not in {line!r}"
-
-
-def draw(s, n):
-    """n draws: 1D, 2D, 1D, 2D, ..."""
-    out = []
-    while len(out) < n:
-        if len(out) % 3 == 1 and len(out) + 2 <= n:
-            p = s.next_2d()
-            out += [p.x, p.y]
-        else:
-            out.append(s.next_1d())
-    return out
 
 
 def test_llvm_values_are_the_library_s(plugin):
@@ -254,12 +242,7 @@ def render_means(sampler: dict, res: int, spp: int, seeds) -> np.ndarray:
 def test_cornell_box_mean_equals_independent(plugin, name, res, spp, samplers):
     """Within 5 standard deviations of the independent sampler's mean (the deviation over 16 renders)."""
     variant(name)
-    indep = render_means({"type": "independent", "sample_count": spp}, res, spp, range(16))
-    mean, sd = indep.mean(), indep.std(ddof=1)
-    assert sd > 0
-    for extra in samplers:
-        ours = render_means({"type": "udm1", "sample_count": spp, **extra}, res, spp, [1])[0]
-        assert abs(ours - mean) < 5 * sd * (1 + 1 / 16) ** 0.5, f"{name} {extra}: mean {ours} against {mean} +- {sd}"
+    check_mean_against_independent(render_means, name, res, spp, samplers)
 
 
 BAD = [({"sample_count": 0}, "sample_count 0"), ({"sample_count": -1}, "sample_count -1"),
