@@ -15,6 +15,7 @@
 #include <ImfStringAttribute.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <new>
@@ -58,7 +59,9 @@ Imf::FrameBuffer frame_buffer(ExrImage &image)
 
 bool is_exr_file(const std::string &path)
 {
+    require_regular_file(path);
     std::ifstream f(path, std::ios::binary);
+    if (!f) throw Error("cannot read '" + path + "': " + std::strerror(errno), 1);
     unsigned char magic[4] = {0, 0, 0, 0};
     f.read((char *)magic, 4);
     return f.gcount() == 4 && magic[0] == 0x76 && magic[1] == 0x2f && magic[2] == 0x31 && magic[3] == 0x01;

@@ -26,7 +26,8 @@ struct ExrImage {
     int bits = 32;  // read: 16 where every colour channel in the file is half
 };
 
-// Whether the file begins as an OpenEXR file does (its magic number); false if it cannot be read.
+// Whether the file begins as an OpenEXR file does (its magic number). Throws Error "cannot read 'path': ..." if it
+// is not a regular file or cannot be opened.
 bool is_exr_file(const std::string &path);
 
 // The file's bytes: zip-compressed scan lines, no time stamp. Throws Error naming `path` (used only for the

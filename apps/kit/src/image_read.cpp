@@ -6,17 +6,13 @@
 #include "udm1app/cli.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
 namespace udm1app {
 
 LoadedImage read_image(const std::string &path)
 {
-    require_regular_file(path);
-    if (!std::ifstream(path, std::ios::binary)) throw Error("cannot read '" + path + "': " + std::strerror(errno), 1);
     LoadedImage img;
     if (!is_exr_file(path)) {  // the other formats through OpenImageIO, loaded now
         std::string error;

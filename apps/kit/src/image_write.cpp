@@ -13,10 +13,7 @@
 
 namespace udm1app {
 
-namespace {
-
-// The extension of `path` in lower case ("" if none).
-std::string extension(const std::string &path)
+std::string image_extension(const std::string &path)
 {
     const size_t slash = path.find_last_of('/'), dot = path.find_last_of('.');
     if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
@@ -25,12 +22,10 @@ std::string extension(const std::string &path)
     return e;
 }
 
-}  // namespace
-
 void write_image(AtomicFile &file, const std::vector<float> &pixels, int width, int height, int channels, bool srgb,
                  int bits, const std::vector<std::pair<std::string, std::string>> &attributes)
 {
-    const std::string &path = file.path(), ext = extension(path);
+    const std::string &path = file.path(), ext = image_extension(path);
     // no time stamp: the same inputs give the same file, byte for byte, on every run
     std::vector<std::pair<std::string, std::string>> tags = {{"Software", "udm1"}};
     tags.insert(tags.end(), attributes.begin(), attributes.end());

@@ -5,15 +5,14 @@
 #include "udm1app/atomic_file.h"
 #include "udm1app/cli.h"
 #include "udm1app/image_read.h"
+#include "udm1app/image_write.h"
 
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <limits>
 
 namespace udm1app {
@@ -57,10 +56,7 @@ std::vector<float> PartialImage::rgb() const
 void write_partial(AtomicFile &file, const PartialImage &p)
 {
     const std::string &path = file.path();
-    const size_t dot = path.find_last_of('.');
-    std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
-    for (char &c : ext) c = (char)std::tolower((unsigned char)c);
-    if (ext != "exr" || path.find('/', dot) != std::string::npos)
+    if (image_extension(path) != "exr")
         throw Error("cannot write '" + path + "': images with exact sums are OpenEXR (.exr)", 2);
     const size_t nsum = p.channels.size();
     ExrImage exr;
@@ -107,11 +103,7 @@ void write_partial(const std::string &path, const PartialImage &p)
 PartialImage read_partial(const std::string &path)
 {
     const std::string not_ours = "'" + path + "' is not an udm1 image with exact sums";
-    if (!is_exr_file(path)) {
-        require_regular_file(path);
-        if (!std::ifstream(path, std::ios::binary)) throw Error("cannot read '" + path + "': " + std::strerror(errno), 1);
-        throw Error(not_ours, 2);
-    }
+    if (!is_exr_file(path)) throw Error(not_ours, 2);
     ExrImage exr = decode_exr(path);
     auto attribute = [&](const char *name) {
         auto at = exr.attributes.find(name);

@@ -25,4 +25,7 @@ void write_image(const std::string &path, const std::vector<float> &pixels, int 
 void write_image(AtomicFile &file, const std::vector<float> &pixels, int width, int height, int channels,
                  bool srgb = false, int bits = 8, const std::vector<std::pair<std::string, std::string>> &attributes = {});
 
+// The extension of `path`'s file name in lower case, without the dot ("" if it has none): what picks the format.
+std::string image_extension(const std::string &path);
+
 }  // namespace udm1app
