@@ -5,6 +5,8 @@
 // run (tests/cpp/nvdb_write.cpp) make the same files.
 #pragma once
 
+#include "nvdb_grid_values.h"
+
 #include <nanovdb/NanoVDB.h>
 #include <nanovdb/util/GridBuilder.h>
 #include <nanovdb/util/IO.h>
@@ -18,28 +20,6 @@
 namespace nvdb_grids {
 
 using Handle = nanovdb::GridHandle<nanovdb::HostBuffer>;
-
-// The smooth density of the "ramp" grid at voxel (i, j, k): in [0.05, 1.05] over its box, 0 outside.
-inline float ramp_density(int i, int j, int k)
-{
-    if (i < -12 || i > 11 || j < -6 || j > 13 || k < -9 || k > 9) return 0.0f;
-    return (float)(0.55 + 0.5 * std::sin(0.31 * i + 0.17) * std::cos(0.23 * j - 0.4) * std::cos(0.19 * k + 0.3));
-}
-// Its voxel size and origin: index (i, j, k) is at world RAMP_ORIGIN + RAMP_VOXEL * (i, j, k).
-constexpr double RAMP_VOXEL = 0.0625;
-inline nanovdb::Vec3d ramp_origin() { return nanovdb::Vec3d(0.3, -0.2, 0.1); }
-
-// The sphere of the "sphere" and "fire" files: radius 1 at (2, 2, 2), voxel size 0.1 (index (20, 20, 20)
-// at its centre: in one of the root's octants, so that the files stay small).
-constexpr double SPHERE_CENTRE = 2, SPHERE_VOXEL = 0.1;
-
-// The temperature of the fire sphere at voxel (i, j, k): hot inside, cooling outwards, 0 past radius 1.2.
-inline float fire_temperature(int i, int j, int k)
-{
-    i -= 20, j -= 20, k -= 20;
-    double r = 0.1 * std::sqrt((double)(i * i + j * j + k * k));
-    return r > 1.2 ? 0.0f : (float)(900 + 1400 * (1.2 - r));
-}
 
 // A grid of f's values over box (voxels where f is 0 left inactive); its checksum over the grid's headers
 // (NanoVDB's default, partial) or over all of it (full).
@@ -62,6 +42,7 @@ inline std::vector<Handle> grids(const std::string &kind)
     const CoordBBox ramp_box(Coord(-12, -6, -9), Coord(11, 13, 9)), fire_box(Coord(7), Coord(33));
     // (the sphere and the fire: full checksums; the others NanoVDB's default, a checksum of the headers only)
     const auto full = nanovdb::ChecksumMode::Full;
+    const nanovdb::Vec3d ramp_origin(RAMP_ORIGIN[0], RAMP_ORIGIN[1], RAMP_ORIGIN[2]);
     auto sphere = [&] {
         return nanovdb::createFogVolumeSphere<float>(1.0f, nanovdb::Vec3f((float)SPHERE_CENTRE), SPHERE_VOXEL, 3.0, nanovdb::Vec3d(0), "density",
                                                      nanovdb::StatsMode::Default, full);
@@ -72,12 +53,12 @@ inline std::vector<Handle> grids(const std::string &kind)
         out.push_back(sphere());
         out.push_back(build<float>("temperature", fire_temperature, fire_box, SPHERE_VOXEL, nanovdb::Vec3d(0), nanovdb::GridClass::FogVolume, full));
     } else if (kind == "ramp") {
-        out.push_back(build<float>("density", ramp_density, ramp_box, RAMP_VOXEL, ramp_origin()));
+        out.push_back(build<float>("density", ramp_density, ramp_box, RAMP_VOXEL, ramp_origin));
     } else if (kind == "named") {  // the sphere under another name, after an unrelated grid
-        out.push_back(build<float>("velocity_x", ramp_density, ramp_box, RAMP_VOXEL, ramp_origin()));
+        out.push_back(build<float>("velocity_x", ramp_density, ramp_box, RAMP_VOXEL, ramp_origin));
         out.push_back(nanovdb::createFogVolumeSphere<float>(1.0f, nanovdb::Vec3f((float)SPHERE_CENTRE), SPHERE_VOXEL, 3.0, nanovdb::Vec3d(0), "smoke"));
     } else if (kind == "double") {  // a density that is not float
-        out.push_back(build<double>("density", ramp_density, ramp_box, RAMP_VOXEL, ramp_origin()));
+        out.push_back(build<double>("density", ramp_density, ramp_box, RAMP_VOXEL, ramp_origin));
     } else if (kind == "temperature-double") {
         out.push_back(sphere());
         out.push_back(build<double>("temperature", fire_temperature, fire_box, SPHERE_VOXEL, nanovdb::Vec3d(0)));
@@ -85,20 +66,17 @@ inline std::vector<Handle> grids(const std::string &kind)
         out.push_back(nanovdb::createLevelSetSphere<float>(1.0f, nanovdb::Vec3f((float)SPHERE_CENTRE), SPHERE_VOXEL, 3.0, nanovdb::Vec3d(0), "density"));
     } else if (kind == "negative") {
         out.push_back(build<float>("density", [](int i, int j, int k) { return ramp_density(i, j, k) - (i == 3 && j == 4 && k == 5 ? 2 : 0); },
-                                   ramp_box, RAMP_VOXEL, ramp_origin()));
+                                   ramp_box, RAMP_VOXEL, ramp_origin));
     } else if (kind == "nan") {
         out.push_back(build<float>("density", [](int i, int j, int k) { return i == 3 && j == 4 && k == 5 ? NAN : ramp_density(i, j, k); },
-                                   ramp_box, RAMP_VOXEL, ramp_origin(), nanovdb::GridClass::Unknown));
+                                   ramp_box, RAMP_VOXEL, ramp_origin, nanovdb::GridClass::Unknown));
     } else if (kind == "empty") {  // a density grid without active voxels
-        out.push_back(build<float>("density", [](int, int, int) { return 0.0f; }, ramp_box, RAMP_VOXEL, ramp_origin()));
+        out.push_back(build<float>("density", [](int, int, int) { return 0.0f; }, ramp_box, RAMP_VOXEL, ramp_origin));
     } else {
         throw std::runtime_error("unknown kind \"" + kind + "\"");
     }
     return out;
 }
-
-inline const char *const KINDS_LIST[] = {"sphere", "fire", "ramp", "named", "double", "temperature-double", "level-set",
-                                         "negative", "nan", "empty"};
 
 // Writes the file of that kind at path (uncompressed, as pbrt-v4 reads them).
 inline void write(const std::string &path, const std::string &kind)

@@ -1,20 +1,23 @@
 // test_pt_nanovdb.cpp - udm1-pt's "nanovdb" medium (scene/nanovdb_grid.h, pt/grid_medium.h) on files NanoVDB's
-// own builder writes (nvdb_grids.h) into a temporary folder: the grids read back hold the builder's values
+// own builder writes (nvdb_grids.h, through the writer tool udm1_test_nvdb_write) into a temporary folder: the grids read back hold the builder's values
 // (voxel by voxel, and trilinear between voxels through the grid's map), the majorant grid bounds the
 // density everywhere in the box and along every ray's DDA segments, the medium's transform places it, the
 // temperature grid makes it glow, and every damaged file - truncated at any byte, a byte changed anywhere in
 // its headers or its data, not NanoVDB at all - and every grid pbrt-v4 cannot use is refused with a reason,
 // never read out of bounds (this test runs under the sanitizers too).
 #include "../c/check.h"
-#include "nvdb_grids.h"
+#include "nvdb_grid_values.h"
 #include "scene_text.h"
 
 #include "grid_medium.h"
 #include "nanovdb_grid.h"
 #include "scene.h"
 
+#include <nanovdb/util/IO.h>
+
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <random>
@@ -31,8 +34,14 @@ std::string g_dir;
 
 std::string write(const std::string &kind)
 {
+    // the writer (its path from the build: UDM1_NVDB_WRITER) compiles NanoVDB's builder once for every test
     std::string path = g_dir + "/" + kind + ".nvdb";
-    nvdb_grids::write(path, kind);
+    std::string cmd = std::string("'") + UDM1_NVDB_WRITER + "' '" + path + "' '" + kind + "'";
+    int status = std::system(cmd.c_str());
+    if (status != 0) {
+        std::fprintf(stderr, "test_pt_nanovdb: %s failed (status %d)\n", cmd.c_str(), status);
+        std::exit(1);
+    }
     return path;
 }
 
@@ -71,7 +80,7 @@ void test_values_are_the_builders()
     CHECKF(wrong == 0, "%d voxels differ from the builder's values", wrong);
     CHECK(g->index_min(0) == -12 && g->index_max(0) == 11 && g->index_min(1) == -6 && g->index_max(1) == 13);
     // the world box: voxel centres of the index box, as NanoVDB's builder records it (its corners at least)
-    const nanovdb::Vec3d o = nvdb_grids::ramp_origin();
+    const double *o = nvdb_grids::RAMP_ORIGIN;
     const double h = nvdb_grids::RAMP_VOXEL;
     CHECKF(std::fabs(g->world_min().x - (o[0] - 12 * h)) < 1e-9 && g->world_max().y >= o[1] + 13 * h - 1e-9,
            "world box %g .. %g", g->world_min().x, g->world_max().y);
