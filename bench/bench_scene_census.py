@@ -16,7 +16,8 @@ text was read through: mostly the large files of inline meshes) is an empty file
 tiny triangle far below the scene, so that what would be refused of its shapes is still seen), so that the
 rest of the scene is judged: such a scene says "empty includes" in the stand-ins column, the summary counts
 those that render apart, and it is not the scene as distributed (a named material or object defined in the
-absent file makes it refused, which is reported as such).
+absent file makes it refused, which is reported as such; parameters after the Include that continue the absent
+file's last directive, as pbrt-v4 reads them, make it not readable: its text is needed).
 
 Where a file's full text is absent but the collection folder holds a condensed transcription of it under
 .condensed/ (same path; every directive and parameter as in the file, the long numeric arrays of inline meshes
@@ -281,8 +282,18 @@ def judge(run: dict, scene: dict) -> dict:
         tried = opened.group("path")
     refusal = first.removeprefix("udm1-pt: ")
     result = "refused"
+    continued = re.match(r"expected a directive, found '\w+ \w+'", msg)
     if tried in scene["unreadable"]:
         result, refusal = "not readable", f"{tried}: {scene['unreadable'][tried]}"
+    elif continued and scene.get("emptied"):
+        # pbrt-v4 reads a parameter list on past the end of an included file: these parameters continue the last
+        # directive of an include that is only an empty stand-in here, so the scene cannot be judged without its text
+        result = "not readable"
+        refusal = (f"{m.group('file')}:{m.group('line')}: " if m else "") + (
+            "parameters that continue the last directive of an absent include (" + ", ".join(scene["emptied"])
+            + "): its text is needed")
+        out.update(result=result, refusal=refusal, feature="text not available (parameters continue an absent include)")
+        return out
     elif tried in scene["blocked"]:
         result, refusal = "blocked", f"{tried}: no stand-in: {scene['blocked'][tried]}"
     out.update(result=result, refusal=refusal, feature=feature_of(msg, tried, scene))

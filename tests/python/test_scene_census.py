@@ -274,10 +274,15 @@ def test_absent_includes_empty_judges_the_rest_and_is_labelled(tmp_path):
     # an absent include that defines a named material the main file uses: refused (named), never rendered
     (col / "named" / "named.pbrt").parent.mkdir(parents=True)
     (col / "named" / "named.pbrt").write_text(VIEW + LIGHT + 'Include "materials.pbrt"\nNamedMaterial "gone"\n' + TRIANGLE)
+    # an absent include whose last directive the main file's parameters continue (pbrt-v4 reads on past an
+    # included file's end): not judged on the empty stand-in, the include's text is needed
+    (col / "continued" / "continued.pbrt").parent.mkdir(parents=True)
+    (col / "continued" / "continued.pbrt").write_text(VIEW + LIGHT + 'AttributeBegin\nInclude "geometry/medium.pbrt"\n'
+                                                      '  "spectrum sigma_a" [ 300 20 830 20 ]\nAttributeEnd\n' + TRIANGLE)
     before = snapshot(col)
     out = tmp_path / "out"
     r = subprocess.run(CENSUS + ["--collection", str(col), "--tool", TOOL, "--out", str(out), "--pbrt", "",
-                                 "--only", "partial,named,plain", "--absent-includes", "empty"],
+                                 "--only", "partial,named,plain,continued", "--absent-includes", "empty"],
                        capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr
     rows = {row["scene"]: row for row in json.loads((out / "census.json").read_text())["rows"]}
@@ -286,8 +291,12 @@ def test_absent_includes_empty_judges_the_rest_and_is_labelled(tmp_path):
     assert partial["unreadable"] == {}
     assert named["result"] == "refused" and "gone" in named["refusal"] and named["emptied"] == ["named/materials.pbrt"]
     assert plain["result"] == "renders" and plain["emptied"] == []
+    continued = rows["continued/continued.pbrt"]
+    assert continued["result"] == "not readable" and continued["emptied"] == ["continued/geometry/medium.pbrt"], continued
+    assert continued["refusal"].startswith("continued/continued.pbrt:") and "its text is needed" in continued["refusal"]
     assert "empty includes (partial/geometry/big.pbrt) |" in r.stdout
-    assert "Results: renders 2 (of which 1 with absent includes empty), refused 1 (of which 1 with absent includes empty)" \
+    assert "Results: renders 2 (of which 1 with absent includes empty), not readable 1 (of which 1 with absent includes " \
+           "empty), refused 1 (of which 1 with absent includes empty)" \
         in r.stdout, r.stdout
     assert snapshot(col) == before  # the collection untouched: the empty files are in the overlay
     # without the option the same include is reported as not readable
