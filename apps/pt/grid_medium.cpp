@@ -1,6 +1,7 @@
 // grid_medium.cpp - see grid_medium.h.
 #include "grid_medium.h"
 
+#include "pbrt_noise.h"
 #include "spectrum.h"
 
 #include <algorithm>
@@ -71,10 +72,7 @@ Vec3 blackbody_rgb(double kelvin)
 GridMedium::GridMedium(const udm1scene::Medium &m) : m_(m), extent_(m.p1 - m.p0), sigma_t_(m.sigma_a + m.sigma_s)
 {
     if (m.kind == udm1scene::Medium::Cloud) {
-        udm1_noise_desc desc;
-        udm1_noise_desc_init(&desc);
-        desc.kind = UDM1_NOISE_IMPROVED;  // Perlin's improved noise and table: pbrt-v4's Noise()
-        if (udm1_noise_create(&desc, &noise_) != UDM1_OK) throw std::runtime_error(std::string("udm1-pt: noise: ") + udm1_last_error());
+        cloud_ = true;
         return;
     }
     emissive_ = m.emissive();
@@ -143,7 +141,7 @@ void GridMedium::nanovdb_majorants()
     });
 }
 
-GridMedium::~GridMedium() { udm1_noise_destroy(noise_); }
+GridMedium::~GridMedium() = default;
 
 Vec3 GridMedium::blackbody(double kelvin) const
 {
@@ -199,7 +197,7 @@ double GridMedium::grid_density(Vec3 unit) const { return lookup(m_.density, uni
 
 double GridMedium::cloud_density(Vec3 p) const
 {
-    auto noise = [&](Vec3 q) { return udm1_noise_3d(noise_, q.x, q.y, q.z); };
+    auto noise = [](Vec3 q) { return udm1scene::pbrt_noise(q); };
     Vec3 pp = p * m_.frequency;
     if (m_.wispiness > 0) {  // the point perturbed by the noise's gradient (finite differences, as pbrt-v4's DNoise)
         double vomega = 0.05 * m_.wispiness, vlambda = 10;
@@ -227,7 +225,7 @@ GridMedium::Point GridMedium::at(Vec3 p) const
 {
     Point out;
     Vec3 pm = m_.medium_from_world.point(p);
-    if (noise_) {
+    if (cloud_) {
         double d = cloud_density(pm);
         out.sigma_a = m_.sigma_a * d, out.sigma_s = m_.sigma_s * d;
         return out;
@@ -274,7 +272,7 @@ MajorantIterator GridMedium::majorants(Vec3 o, Vec3 d, double t_max) const
         t1 = far < t1 ? far : t1;
         if (t0 > t1) return MajorantIterator();
     }
-    return MajorantIterator(ou, du, t0, t1, noise_ ? nullptr : &grid_, sigma_t_);
+    return MajorantIterator(ou, du, t0, t1, cloud_ ? nullptr : &grid_, sigma_t_);
 }
 
 uint64_t tracking_seed(const double *v, int n)

@@ -1236,9 +1236,29 @@ private:
             if (tx.dimension == 2) texture_mapping(ps, here, &tx.mapping, &used);
             else if (!st_.ctm[0].affine() || !st_.ctm[0].inverse(&tx.mapping.texture_from_world))
                 throw SceneError(here + ": Texture checkerboard: its transform is singular or projective");
+        } else if (tx.type == "fbm" || tx.type == "wrinkled" || tx.type == "windy") {
+            if (tx.kind != "float")
+                throw SceneError(here + ": Texture \"" + tx.type + "\" is a float texture in pbrt-v4, not a " + tx.kind + " texture");
+            if (tx.type != "windy") {
+                used = {"octaves", "roughness"};
+                tx.octaves = ps.get_int("octaves", 8);
+                tx.omega = ps.get_float("roughness", 0.5);
+                if (tx.octaves < 0 || tx.octaves > 64)
+                    throw SceneError(ps.find("octaves")->where + ": Texture " + tx.type + ": octaves must be in [0, 64]");
+                if (!std::isfinite(tx.omega))
+                    throw SceneError(ps.find("roughness")->where + ": Texture " + tx.type + ": roughness must be finite");
+            }
+            if (!st_.ctm[0].affine() || !st_.ctm[0].inverse(&tx.mapping.texture_from_world))
+                throw SceneError(here + ": Texture " + tx.type + ": its transform is singular or projective");
+            if (noise_texture_note_.empty()) {
+                noise_texture_note_ = here;
+                scene_.notes.push_back(here + ": Texture \"" + tx.type + "\": udm1-pt traces no ray differentials, so its "
+                                       "noise sums every octave, where pbrt-v4 puts the average of those finer than a "
+                                       "pixel's footprint");
+            }
         } else {
             throw SceneError(here + ": Texture \"" + tx.type + "\" is not supported (imagemap, constant, scale, mix, "
-                                    "directionmix, checkerboard)");
+                                    "directionmix, checkerboard, fbm, wrinkled, windy)");
         }
         for (const Param &p : ps.params)
             if (std::find(used.begin(), used.end(), p.name) == used.end()) {
@@ -2154,6 +2174,7 @@ private:
                                                                    // have names of their own, as in pbrt-v4
     std::vector<bool> image_first_;   // per texture: an image texture, the first of its file
     std::set<std::string> image_files_;
+    std::string noise_texture_note_;  // where the first noise texture is (its note is made once)
     std::vector<PendingTexture> pending_textures_;
     std::vector<PendingAlpha> pending_alpha_;
     std::map<std::string, std::array<Mat4, 2>> coordinate_systems_;

@@ -82,6 +82,9 @@ struct TextureMapping {
 //   "directionmix" a tex1 + (1 - a) tex2, a = |n . dir| (n the geometric normal, dir in world space)
 //   "checkerboard" tex1 and tex2 in alternate squares of (s, t) through its mapping (dimension 2), or in
 //                  alternate cubes of the point in texture space (dimension 3)
+//   "fbm", "wrinkled", "windy" (float textures): pbrt-v4's solid noise sums (pbrt_noise.h) at the point in
+//                  texture space (texture_from_world): FBm and Turbulence of `octaves` octaves with weight
+//                  `omega` ("roughness"), and Windy
 struct Texture {
     std::string name, kind, type;  // kind "float" or "spectrum"
     std::string filename;          // imagemap: resolved against the main scene file's folder (resolve_path)
@@ -92,7 +95,9 @@ struct Texture {
     TextureInput tex1, tex2, amount;
     Vec3 dir{0, 1, 0};             // directionmix: unit, world space
     int dimension = 2;             // checkerboard
-    TextureMapping mapping;        // imagemap, checkerboard (dimension 2: its mapping; 3: texture_from_world)
+    int octaves = 8;               // fbm, wrinkled
+    double omega = 0.5;            // fbm, wrinkled: "roughness", each octave's weight over the one before
+    TextureMapping mapping;        // imagemap, checkerboard (dimension 2: its mapping; 3: texture_from_world), the noises
     std::string where;
 };
 
@@ -114,8 +119,8 @@ struct Material {
 //                normalizes it) times the grid le_scale (one value: everywhere), or, with a temperature grid,
 //                le_scale times the RGB of pbrt-v4's blackbody (normalized to 1 at its peak) at the temperature
 //                (t - temperature_offset) * temperature_scale, none at or below 100 K.
-//   Cloud        pbrt-v4's procedural "cloud": sigma_a and sigma_s times a density in [0, 1] made of Perlin
-//                noise (cloud_density, wispiness, frequency) in the box [p0, p1]; no emission.
+//   Cloud        pbrt-v4's procedural "cloud": sigma_a and sigma_s times a density in [0, 1] made of pbrt-v4's
+//                noise (pbrt_noise.h; cloud_density, wispiness, frequency) in the box [p0, p1]; no emission.
 //   NanoVDB      pbrt-v4's "nanovdb": sigma_a and sigma_s times the trilinear density of the file's float grid
 //                `vdb_density` (nanovdb_grid.h) at the point of the medium's space; [p0, p1] the box of the
 //                grid's active voxels (with the temperature grid's, if any). Emission where the file has a

@@ -1,6 +1,8 @@
 // textures.cpp - see textures.h.
 #include "textures.h"
 
+#include "pbrt_noise.h"
+
 #include "udm1app/image_read.h"
 
 #include <algorithm>
@@ -199,6 +201,11 @@ double Textures::value(int i, const TexturePoint &at) const
     if (t.type == "scale") {  // (pbrt-v4 skips the texture where the scale is 0)
         double sc = input_value(t.tex2, at);
         return sc == 0 ? 0 : input_value(t.tex1, at) * sc;
+    }
+    if (t.type == "fbm" || t.type == "wrinkled" || t.type == "windy") {
+        Vec3 p = t.mapping.texture_from_world.point(at.p);
+        return t.type == "fbm" ? pbrt_fbm(p, t.omega, t.octaves)
+               : t.type == "wrinkled" ? pbrt_turbulence(p, t.omega, t.octaves) : pbrt_windy(p);
     }
     double a;
     if (t.type == "mix") a = input_value(t.amount, at);

@@ -9,7 +9,7 @@
 //              image's alpha (where it is not 1 everywhere), a one-channel image's value; point-sampled,
 //              the first channel (pbrt-v4's MIPMap). A spectrum texture reads R, G, B (grey: the one
 //              channel three times), clamped to [0, 1] as pbrt-v4 clamps an albedo image.
-//   constant, scale, mix, directionmix, checkerboard: scene.h.
+//   constant, scale, mix, directionmix, checkerboard, fbm, wrinkled, windy: scene.h.
 // Spectrum textures are albedos (reflectance, transmittance, a medium's albedo): rgb() clamps the result to
 // [0, 1] per channel, as pbrt-v4's materials clamp theirs.
 #pragma once

@@ -648,7 +648,7 @@ void test_textures()
                   "unsupported parameter 'uscale'"));
     CHECK(refused(std::string(HEAD) + "Texture \"t\" \"float\" \"constant\"\nTexture \"u\" \"spectrum\" \"mix\" \"texture tex1\" \"t\"\n",
                   "texture \"t\" was not made (a spectrum texture)"));
-    CHECK(refused(std::string(HEAD) + "Texture \"t\" \"float\" \"wrinkled\"\n", "\"wrinkled\" is not supported"));
+    CHECK(refused(std::string(HEAD) + "Texture \"t\" \"float\" \"marble\"\n", "\"marble\" is not supported"));
 }
 
 // Conductor spectra given over part of the visible range: pbrt-v4 takes them as 0 outside their data. An eta
