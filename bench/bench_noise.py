@@ -225,10 +225,18 @@ def main(argv=None) -> int:
                     help="native level: the installed pyfastnoisesimd wheel, no build (FastNoise Lite where it is not "
                          "installed; for quick runs and tests: the "
                          "wheel measured slower than its sdist built here, so not the anchor of quoted figures)")
+    ap.add_argument("--build-only", action="store_true",
+                    help="only build FastNoiseSIMD for --levels (reused once built) and print where each is, or why "
+                         "it is not (the main report builds it beside other work, before its timed noise step)")
     ap.add_argument("--child", default="", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
         print(json.dumps(level_rows(args.child, args.reps)))
+        return 0
+    if args.build_only:
+        for level in args.levels.split(","):
+            lib = fastnoisesimd_build(Path(args.build), level, args.installed_anchor)
+            print(f"{level}: {lib if lib is not None else 'not built (FastNoise Lite is the anchor of its rows)'}")
         return 0
     rows = []
     for level in args.levels.split(","):

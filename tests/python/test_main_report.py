@@ -154,13 +154,23 @@ def test_main_report(tmp_path):
     out = tmp_path / "report"
     r = run(out)
     assert r.returncode == 0, r.stderr[-3000:]
-    assert "[1/10 sequences]" in r.stderr and "[10/10 screen]" in r.stderr  # progress on the terminal
-    # with the time elapsed and an estimate of the time left, in the step and in all
-    assert re.search(r"\[10/10 screen\] \d+ s elapsed; (about \d+ s left in this step, .* in all|past its estimate)",
-                     r.stderr), r.stderr[-3000:]
+    assert "[1/11 sampler-times]" in r.stderr and "[11/11 noise]" in r.stderr  # progress on the terminal
+    # with the time elapsed and an estimate of the time left, in the step and in all, for each of two steps running
+    # side by side
+    for step in ("7/11 screen", "8/11 samplers"):
+        assert re.search(rf"^\[report\] \[{step}\] \d+ s elapsed; (about \d+ s left in this step, .* in all|past its "
+                         "estimate)", r.stderr, re.M), r.stderr[-3000:]
     report = check_page(out)
     check_verdict_first(out, report)
     assert {s: v["status"] for s, v in report["steps"].items()} == {s: "ok" for s in report["steps"]}
+    # the steps that measure time ran alone; the others two at a time; each with its own processor time
+    steps = report["steps"]
+    for name, v in steps.items():
+        others = [(w["started"], w["ended"]) for o, w in steps.items() if o != name]
+        overlap = [o for o in others if o[0] < v["ended"] and o[1] > v["started"]]
+        assert v["alone"] == (name in ("sampler-times", "throughput", "noise", "ao", "pt", "tent", "mitsuba")), name
+        assert not overlap if v["alone"] else overlap, name
+        assert v["cpu_seconds"] > 0, name
     tables = report["tables"]
 
     # every sampler a step ran is in every table made from it, with the step's own numbers
@@ -234,7 +244,7 @@ def test_main_report(tmp_path):
     assert r.returncode == 0, r.stderr[-3000:]
     final = check_page(out)
     assert {s: v["status"] for s, v in final["steps"].items()} == {
-        "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "ok", "ao": "reused",
+        "sampler-times": "reused", "sequences": "reused", "samplers": "reused", "throughput": "reused", "noise": "ok", "ao": "reused",
         "pt": "reused", "mitsuba": "reused", "tolerance": "reused", "tent": "ok", "screen": "reused"}
     assert "noise_speed" in final["tables"] and "tent" in final["tables"]
 

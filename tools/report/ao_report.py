@@ -113,7 +113,9 @@ def main(argv=None) -> int:
     ap.add_argument("--size", default="256x256")
     ap.add_argument("--maxdist", default=None, help="occlusion ray length (default: unbounded)")
     ap.add_argument("--spp", type=int, default=64, help="samples per pixel of Figure 6 (default 64)")
-    ap.add_argument("--ref-spp", type=int, default=8192, help="reference spp (default 8192, as the paper)")
+    ap.add_argument("--ref-spp", type=int, default=8192, help="Figure 6's reference spp (default 8192, as the paper)")
+    ap.add_argument("--sweep-ref-spp", type=int, default=8192,
+                    help="the sweep's reference spp (default 8192: the screen step's reference too)")
     ap.add_argument("--seeds", type=int, default=4, help="seeds per PSNR (default 4; the sheets show seed 1)")
     ap.add_argument("--sweep-size", default="128x128", help="image size of the spp sweep (default 128x128)")
     ap.add_argument("--sweep-spps", default="16,32,64,128,256",
@@ -123,14 +125,17 @@ def main(argv=None) -> int:
     if not Path(args.ao).exists():
         print(f"ao_report: no udm1-ao at '{args.ao}' (build it first)", file=sys.stderr)
         return 2
-    if not (1 <= args.spp <= 1 << 20 and 1 <= args.ref_spp <= 1 << 20 and 1 <= args.seeds <= 1000):
-        print("ao_report: --spp and --ref-spp must be in 1..1048576 and --seeds in 1..1000", file=sys.stderr)
+    if not (1 <= args.spp <= 1 << 20 and 4 <= args.ref_spp <= 1 << 20 and 1 <= args.sweep_ref_spp <= 1 << 20
+            and 1 <= args.seeds <= 1000):
+        print("ao_report: --spp and --sweep-ref-spp must be in 1..1048576, --ref-spp in 4..1048576 and --seeds in "
+              "1..1000", file=sys.stderr)
         return 2
     out = writable_folder(args.out, "ao_report")
     if out is None:
         return 1
     if args.quick:
         args.size, args.sweep_size, args.ref_spp, args.seeds, args.spp = "48x48", "32x32", 1024, 2, 16
+        args.sweep_ref_spp = 1024
     try:
         spps = [4, 16, 64] if args.quick else sorted({int(x) for x in args.sweep_spps.split(",")})
     except ValueError:
@@ -147,6 +152,11 @@ def main(argv=None) -> int:
     ref = folder / f"reference-{args.size}-{args.ref_spp}spp.exr"
     log(f"reference: {args.ref_spp} spp, sobol-owen (reused if it was made by the same scene and settings)")
     ref_line = tool.reference(args.ref_spp, ref, folder / "reference.png")
+    # the reference's own error, estimated: half its RMSE against the render of a quarter of its samples (from there
+    # to the reference the error falls at least as N^-1/2 does: by half or more)
+    quarter = folder / f"reference-{args.size}-{args.ref_spp // 4}spp.exr"
+    tool.reference(args.ref_spp // 4, quarter, folder / "reference-quarter.png")
+    ref_error = 0.5 * float(re.search(r"rmse (\S+)", tool.run("compare", str(quarter), str(ref))).group(1))
     log(f"Figure 6: {len(samplers)} samplers at {args.spp} spp, {args.seeds} seeds each")
     fig6 = summarize(tool.sweep(samplers, [args.spp], args.seeds, ref, folder), args.spp, args.seeds)
     for r in fig6:
@@ -154,9 +164,10 @@ def main(argv=None) -> int:
     budget = next(r["seconds"] for r in fig6 if r["sampler"] == "episwr")
     # the sweep on a smaller image with its own reference, so that it fits in the main job
     small = AoTool(args.ao, args.scene, args.sweep_size, args.maxdist, cache)
-    small_ref = folder / f"reference-{args.sweep_size}-{args.ref_spp}spp.exr"
-    log(f"spp sweep {spps[0]}..{spps[-1]} at {args.sweep_size} (reference: {args.ref_spp} spp, reused if made before)")
-    small.reference(args.ref_spp, small_ref, folder / f"reference-{args.sweep_size}.png")
+    small_ref = folder / f"reference-{args.sweep_size}-{args.sweep_ref_spp}spp.exr"
+    log(f"spp sweep {spps[0]}..{spps[-1]} at {args.sweep_size} (reference: {args.sweep_ref_spp} spp, reused if made "
+        "before)")
+    small.reference(args.sweep_ref_spp, small_ref, folder / f"reference-{args.sweep_size}.png")
     sw = [{k: v for k, v in r.items() if k in ("sampler", "spp", "seconds")} | {"rmse": r["rmse_mean"]}
           for spp in spps for r in summarize(small.sweep(samplers, [spp], 1, small_ref, note=f"{spp} spp "), spp, 1)]
     log(f"equal time: every sampler given EPISWR's {args.spp}-spp time, {budget * 1e3:.1f} ms")
@@ -191,8 +202,12 @@ def main(argv=None) -> int:
             w.writerow({"table": "sweep", **r})
         for r in eq:
             w.writerow({"table": "equal_time", **r})
+    smallest = min(r["rmse_mean"] for r in fig6 + eq)
+    below = f"{smallest / ref_error:.0f}" if ref_error > 0 else "infinitely many"
     (out / "ao.json").write_text(json.dumps({"figure6": fig6, "sweep": sw, "equal_time": eq, "reference": ref_line,
-                                             "budget_seconds": budget, "seconds": time.time() - t0}, indent=1))
+                                             "reference_spp": args.ref_spp, "reference_error": ref_error,
+                                             "smallest_rmse": smallest, "budget_seconds": budget,
+                                             "seconds": time.time() - t0}, indent=1))
     best = max(fig6, key=lambda r: r["psnr_mean"])
     best_eq = max(eq, key=lambda r: r["psnr_mean"])
     ranked = sorted(fig6, key=lambda r: -r["psnr_mean"])
@@ -212,7 +227,9 @@ def main(argv=None) -> int:
 The paper's Figure 6 (section 4.2) on `{args.scene}` at {args.size}: AO = (1/pi) * integral of V cos(theta),
 {args.spp} cosine-weighted directions per pixel from each sampler's 2D points, per-pixel randomization as
 the library provides it (each sampler's default), compared with a {args.ref_spp}-spp reference
-(`{ref_line}`). PSNR has peak 1 on linear AO values (10 log10(1/MSE)). Times are udm1-ao's render time
+(`{ref_line}`), whose own error is about {ref_error:.2g} (half its RMSE against its first {args.ref_spp // 4}
+spp), {below} times below the smallest RMSE compared here ({smallest:.2g}): its share of a
+compared MSE is at most {100 * (ref_error / smallest) ** 2:.1f} %. PSNR has peak 1 on linear AO values (10 log10(1/MSE)). Times are udm1-ao's render time
 (median of the seeds, all cores, scene loading excluded). Made in {time.time() - t0:.0f} s by
 `python tools/report/ao_report.py --ao build/bin/udm1-ao --out report`. Raw numbers: [ao.csv](ao.csv), [ao.json](ao.json).
 
@@ -236,7 +253,7 @@ WR (sqrt2, sqrt13) and WE rank {paper_rank['wr-ao']} and {paper_rank['we']}: wit
 ![every sampler](ao_all.png)
 
 ## Error against spp and against time
-RMSE against a {args.ref_spp}-spp reference of the same size, at {args.sweep_size} (a smaller image, so the
+RMSE against a {args.sweep_ref_spp}-spp reference of the same size, at {args.sweep_size} (a smaller image, so the
 sweep fits in the main job), spp {", ".join(map(str, spps))}, one seed each.
 
 ![sweep]({sweep_png})

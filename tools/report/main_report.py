@@ -50,7 +50,6 @@ import math
 import os
 import platform
 import re
-import resource
 import shutil
 import subprocess
 import sys
@@ -80,6 +79,8 @@ class Step:
     outputs: list[str]                   # files (relative to OUT) the step leaves; all must exist to reuse it
     page: str | None = None              # the step's own page, linked from the index
     stdout: dict[int, str] = field(default_factory=dict)  # command index -> file (relative to OUT) for its stdout
+    exclusive: bool = False              # it measures time: it runs alone on the machine (run_steps)
+    needs: tuple[str, ...] = ()          # steps whose results it uses: it starts after them
 
 
 TENT_SAMPLERS = ["wr", "wr+tent", "rd", "rd+tent", "wopt", "wopt+tent", "lattice", "lattice+tent", "sobol-owen", "pmj02"]
@@ -114,21 +115,56 @@ def plan(args, out: Path) -> list[Step]:
         mitsuba_args = ["--size", "64", "--spps", "16,64", "--seeds", "2", "--ref-spp", "2048", "--scalar-size", "24",
                         "--scalar-spps", "16", "--scalar-seeds", "1"]
     ao = [py, str(HERE / "ao_report.py"), "--ao", tools["ao"], *o, *q]
+    if not args.quick and not args.full:  # Figure 6's reference: its error is far below the compared RMSE (ao.md)
+        ao += ["--ref-spp", "2048"]
     if args.full:
         ao += ["--size", "512x512", "--sweep-size", "256x256", "--sweep-spps", "16,32,64,128,256,512,1024"]
     screen = [py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]
     if args.full:  # more seeds, and udm1-pt's reference at 8192 spp rather than the pt step's own 4096
         screen += ["--seeds", "4", "--pt-ref-spp", "8192"]
     pt = [py, str(HERE / "pt_report.py"), "--pt", tools["pt"], *o, *q] + (["--full"] if args.full else [])
-    return [
-        Step("sequences", "Sequences: points, discrepancy, constant-set check, exactness",
-             [[py, str(HERE / "sequence_report.py"), *o, "--seeds", seeds, *q]], ["sequences.json"], "sequences.html"),
-        Step("samplers", "Integration error against N and against time, every sampler",
-             [[py, str(HERE / "sampler_report.py"), "--bench", tools["bench_samplers"], *o, "--reps", reps, *q]],
-             ["samplers.json"], "samplers.html"),
+    times_reps = "2" if args.quick else "4"
+    # In the order they run (run_steps): the steps that measure time first, one at a time and alone on the machine;
+    # then the others, two at a time (the sampler step's RMSE after its times were measured alone); then the noise
+    # step, alone, once its anchor is built.
+    timed = [
+        Step("sampler-times", "Integration time per estimate, every sampler (alone on the machine; few randomizations)",
+             [[tools["bench_samplers"], "error", "--reps", times_reps, *q]], ["sampler_times.csv"],
+             stdout={0: "sampler_times.csv"}, exclusive=True),
         Step("throughput", "Sampler throughput (values per second, one thread)",
              [[tools["bench_samplers"], "throughput", "--seconds", seconds]], ["throughput.txt"],
-             stdout={0: "throughput.txt"}),
+             stdout={0: "throughput.txt"}, exclusive=True),
+        Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html", exclusive=True),
+        Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html",
+             exclusive=True),
+        Step("tent", "Beyond the paper: the tent transform (+tent) on the integrands, against Sobol and PMJ02",
+             [[tools["bench_samplers"], "error", "--samplers", ",".join(TENT_SAMPLERS), "--reps", reps, *q]],
+             ["tent.csv"], stdout={0: "tent.csv"}, exclusive=True),
+        Step("mitsuba", "udm1's samplers inside Mitsuba 3 (its native plugin) against Mitsuba's own",
+             [[py, str(ROOT / "bench" / "bench_mitsuba_sampler.py"), "--out", str(out / "mitsuba"), *mitsuba_args]],
+             ["mitsuba/results.json"], exclusive=True),
+    ] + crown_step(args, py, tools["pt"], out) + renderers_step(args, py, tools["pt"], out)
+    # FastNoiseSIMD, the noise step's anchor, built from its sdist where it is not yet (a minute of one core): beside
+    # other work, before the noise step measures alone
+    fastnoise = [] if args.quick else [
+        Step("fastnoise", "FastNoiseSIMD built from its sdist for the noise step (once per build folder)",
+             [[py, str(ROOT / "bench" / "bench_noise.py"), "--build-only", "--levels", noise_levels]],
+             ["fastnoise_build.txt"], stdout={0: "fastnoise_build.txt"})]
+    untimed = fastnoise + [
+        Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
+             [screen], ["screen.json"], "screen.html"),
+        Step("samplers", "Integration error against N and against time, every sampler",
+             [[py, str(HERE / "sampler_report.py"), "--bench", tools["bench_samplers"], *o, "--reps", reps,
+               "--times", str(out / "sampler_times.csv"), *q]],
+             ["samplers.json"], "samplers.html", needs=("sampler-times",)),
+        Step("tolerance", "Integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's families",
+             [[py, str(ROOT / "bench" / "bench_integrate.py"), "--out", str(out / "tolerance"), *tolerance_args]],
+             ["tolerance/results.json"]),
+        Step("sequences", "Sequences: points, discrepancy, constant-set check, exactness",
+             [[py, str(HERE / "sequence_report.py"), *o, "--seeds", seeds, *q] + (["--full"] if args.full else [])],
+             ["sequences.json"], "sequences.html"),
+    ] + accuracy_step(args, py, tools["pt"], out)
+    return timed + untimed + [
         Step("noise", "Noise: the paper's Figures 2 and 3, evaluations per second, spectra",
              [[tools["noise"], "figures", "-o", str(out / "noise")],
               [tools["bench_noise"], "--reps", noise_reps],
@@ -136,23 +172,9 @@ def plan(args, out: Path) -> list[Step]:
                *noise_anchor, "--json", str(out / "noise_simd.json")],
               [py, str(HERE / "noise_report.py"), *o, *q]],
              ["noise/figures.md", "noise_libnoise.txt", "noise_simd.json", "noise_spectra.json"], "noise/figures.md",
-             stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}),
-        Step("ao", "Ambient occlusion: the paper's Figure 6 (udm1-ao)", [ao], ["ao.json"], "ao.html"),
-        Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html"),
-        Step("tent", "Beyond the paper: the tent transform (+tent) on the integrands, against Sobol and PMJ02",
-             [[tools["bench_samplers"], "error", "--samplers", ",".join(TENT_SAMPLERS), "--reps", reps, *q]],
-             ["tent.csv"], stdout={0: "tent.csv"}),
-        Step("mitsuba", "udm1's samplers inside Mitsuba 3 (its native plugin) against Mitsuba's own",
-             [[py, str(ROOT / "bench" / "bench_mitsuba_sampler.py"), "--out", str(out / "mitsuba"), *mitsuba_args]],
-             ["mitsuba/results.json"]),
-        Step("tolerance", "Integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's families",
-             [[py, str(ROOT / "bench" / "bench_integrate.py"), "--out", str(out / "tolerance"), *tolerance_args]],
-             ["tolerance/results.json"]),
-        Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
-             [screen], ["screen.json"],
-             "screen.html"),
-    ] + crown_step(args, py, tools["pt"], out) + accuracy_step(args, py, tools["pt"], out) + \
-        renderers_step(args, py, tools["pt"], out)
+             stdout={1: "noise_libnoise.txt", 2: "noise_fastnoise.txt"}, exclusive=True,
+             needs=("fastnoise",) if fastnoise else ()),
+    ]
 
 
 def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
@@ -166,7 +188,7 @@ def crown_step(args, py: str, pt: str, out: Path) -> list[Step]:
     return [Step("crown", "Path tracing: the Crown, the paper's Figure 10 scene (udm1-pt, 100 x 140)",
                  [[py, str(HERE / "pt_report.py"), "--pt", pt, "--out", str(out / "crown"), "--scene", str(crown),
                    "--size", "100x140", "--sweep-size", "50x70", "--sweep-spps", "16,64,256,1024"]], ["crown/pt.json"],
-                 "crown/pt.html")]
+                 "crown/pt.html", exclusive=True)]
 
 
 def accuracy_step(args, py: str, pt: str, out: Path) -> list[Step]:
@@ -184,24 +206,29 @@ def renderers_step(args, py: str, pt: str, out: Path) -> list[Step]:
         return []
     return [Step("renderers", "Path tracing: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes",
                  [[py, str(ROOT / "bench" / "bench_pt_scenes.py"), "--tool", pt, "--out", str(out / "renderers")]],
-                 ["renderers/pt_scenes.json"], "renderers/pt_scenes.md")]
+                 ["renderers/pt_scenes.json"], "renderers/pt_scenes.md", exclusive=True)]
 
 
-def step_key(step: Step, shared: str) -> str:
-    """What a step's result depends on: its commands, the content of every program and script they name, and
-    `shared`: the digest of what every step uses (the report's shared module and the library)."""
+def step_key(step: Step, shared: str, out: Path, needed: list[str]) -> str:
+    """What a step's result depends on: its commands, the content of every program and script they name (not the
+    files in OUT: those are other steps' results, `needed` has their keys), and `shared`: the digest of what every
+    step uses (the report's shared module and the library)."""
     h = hashlib.sha256(json.dumps(step.commands).encode())
     h.update(shared.encode())
+    for key in needed:
+        h.update(key.encode())
     for cmd in step.commands:
         for a in cmd:
-            if a != sys.executable and os.path.isfile(a) and not a.endswith((".json", ".txt")):
+            if a != sys.executable and os.path.isfile(a) and not a.endswith((".json", ".txt")) and \
+                    not Path(a).resolve().is_relative_to(out):
                 h.update(file_digest(a).encode())
     return h.hexdigest()
 
 
-# Rough seconds each step takes on an idle 2-core machine in each configuration: the estimate of the time left
-# before a step has finished once in this output folder (then its last time there is used), scaled by this run's
-# pace (a busier or slower machine). BENCHMARKS.md, "The main report", has measured times.
+# Rough seconds each step takes on an idle 2-core machine in each configuration (as run_steps runs it: the steps
+# that measure no time two at a time): the estimate of the time left before a step has finished once in this output
+# folder (then its last time there is used), scaled by this run's pace (a busier or slower machine).
+# BENCHMARKS.md, "The main report", has measured times.
 EXPECTED = {"default": {"sequences": 30, "samplers": 85, "throughput": 8, "noise": 12, "ao": 80, "pt": 80, "tent": 8,
                         "mitsuba": 9, "tolerance": 40, "screen": 150},
             "quick": {"sequences": 6, "samplers": 8, "throughput": 3, "noise": 10, "ao": 6, "pt": 5, "tent": 2,
@@ -216,37 +243,90 @@ def duration(seconds: float) -> str:
     return f"{seconds:.0f} s" if seconds < 90 else f"{seconds / 60:.1f} min"
 
 
+def startable(pending: list[int], running: list[int], steps: list[Step], slots: int) -> int | None:
+    """The step run_steps starts next, or None (wait for a running step to end). In plan order: a step waits for
+    the steps it needs; a step that measures time (exclusive) starts only on an idle machine, and no later step
+    starts before it; the others run up to `slots` at a time, never beside an exclusive step."""
+    waiting = {steps[k].name for k in pending + running}
+    for k in pending:
+        if any(n in waiting for n in steps[k].needs):
+            continue
+        if steps[k].exclusive:
+            return k if not running else None
+        if len(running) < slots and not any(steps[r].exclusive for r in running):
+            return k
+    return None
+
+
+def time_left(steps: list[Step], pending: list[int], running: dict[int, float], estimate: list[float],
+              slots: int) -> float:
+    """Seconds until the last step ends, simulating run_steps' order on the estimates: `running` maps each running
+    step to its estimated seconds left."""
+    now, run, todo = 0.0, dict(running), list(pending)
+    while todo or run:
+        while True:
+            k = startable(todo, list(run), steps, slots)
+            if k is None:
+                break
+            todo.remove(k)
+            run[k] = now + estimate[k]
+            if not run[k] > now:  # no estimate: counted as done at once
+                run[k] = now
+        if not run:  # (a step that needs a step that is not in this run: the order alone is kept)
+            k = todo.pop(0)
+            run[k] = now + estimate[k]
+        k = min(run, key=run.get)
+        now = max(now, run.pop(k))
+    return now
+
+
 class Progress:
-    """A line every TICK seconds while a step runs: its elapsed time and the estimated time left, in the step
-    and in the whole job (the estimates of the steps still to run)."""
+    """A line every TICK seconds per running step: its elapsed time and the estimated time left in it and in the
+    whole job (run_steps' order simulated on the estimates of the steps still to run). Each line names its step, so
+    two steps running side by side stay apart."""
 
     def __init__(self):
         self.lock = threading.Lock()
         self.stop = threading.Event()
         self.thread = None
+        self.rows: dict[int, tuple[str, float, float | None]] = {}  # step -> (label, start, estimate)
+        self.rest = None  # (pending, running estimate) -> seconds in all, set by run_steps
 
     def say(self, line: str):
         with self.lock:
             print(line, file=sys.stderr, flush=True)
 
-    def start(self, label: str, estimate: float | None, after: float):
-        """`after`: the estimated seconds of the steps that follow this one."""
+    def begin(self, rest):
+        self.rest, self.rows = rest, {}
         self.stop.clear()
-        t0 = time.time()
 
         def tick():
             while not self.stop.wait(TICK):
-                el = time.time() - t0
-                if estimate is None:
-                    left = "no estimate for this step yet"
-                elif el <= estimate:
-                    left = f"about {duration(estimate - el)} left in this step, {duration(estimate - el + after)} in all"
-                else:  # past its estimate: say so rather than show a negative time
-                    left = f"past its estimate of {duration(estimate)}; then about {duration(after)} for the rest"
-                self.say(f"[report] [{label}] {duration(el)} elapsed; {left}")
+                with self.lock:
+                    rows = dict(self.rows)
+                now = time.time()
+                left = {k: max(0.0, (est or 0.0) - (now - t0)) for k, (_, t0, est) in rows.items()}
+                total = self.rest(left)
+                for k, (label, t0, est) in sorted(rows.items()):
+                    el = now - t0
+                    if est is None:
+                        what = f"no estimate for this step yet; about {duration(total)} in all"
+                    elif el <= est:
+                        what = f"about {duration(est - el)} left in this step, {duration(total)} in all"
+                    else:  # past its estimate: say so rather than show a negative time
+                        what = f"past its estimate of {duration(est)}; then about {duration(total)} for the rest"
+                    self.say(f"[report] [{label}] {duration(el)} elapsed; {what}")
 
         self.thread = threading.Thread(target=tick, daemon=True)
         self.thread.start()
+
+    def add(self, k: int, label: str, estimate: float | None):
+        with self.lock:
+            self.rows[k] = (label, time.time(), estimate)
+
+    def remove(self, k: int):
+        with self.lock:
+            self.rows.pop(k, None)
 
     def end(self):
         self.stop.set()
@@ -257,9 +337,15 @@ class Progress:
 PROGRESS = Progress()
 
 
-def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) -> None:
+def say(msg: str) -> None:
+    """A progress line of the job, whole among the lines of the steps running side by side."""
+    PROGRESS.say(f"[report] {msg}")
+
+
+def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) -> float:
     """Run one command with its stderr shown as progress; its stdout goes to a file written under a temporary
-    name and renamed on success. Raises RuntimeError with the command's last error line on failure."""
+    name and renamed on success. Returns its processor seconds (user and system, its own and its children's, every
+    core). Raises RuntimeError with the command's last error line on failure."""
     env = {**os.environ, "PYTHONPATH": os.pathsep.join(filter(None, [str(ROOT / "python"),
                                                                     os.environ.get("PYTHONPATH")])),
            "UDM1_REPORT_CACHE": str(out / "cache")}  # references by content, shared by the steps (report_common.py)
@@ -276,7 +362,11 @@ def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) 
         if line:
             PROGRESS.say(f"  [{label}] {line.removeprefix('[report] ')}")
             last = (last + [line])[-3:]
-    if proc.wait() != 0:
+    proc.stderr.close()
+    # this command's own rusage (steps run side by side: the job's RUSAGE_CHILDREN would mix them)
+    _, status, usage = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    if proc.returncode != 0:
         if tmp and tmp.exists():
             tmp.unlink()
         why = next((x for x in reversed(last) if not x.startswith("[report]")), last[-1] if last else "")
@@ -284,6 +374,7 @@ def run_command(cmd: list[str], out: Path, stdout_name: str | None, label: str) 
                            f"{proc.returncode}" + (f": {why.removeprefix('[report] ')}" if why else ""))
     if tmp:
         tmp.replace(target)
+    return usage.ru_utime + usage.ru_stime
 
 
 def run_steps(steps: list[Step], out: Path, args) -> dict:
@@ -297,64 +388,103 @@ def run_steps(steps: list[Step], out: Path, args) -> dict:
     state = {}
     only = set(args.only.split(",")) if args.only else None
     mode = "quick" if args.quick else ("full" if args.full else "default")
-    keys = [step_key(step, shared) for step in steps]
+    slots = max(1, args.jobs)
+    keys: list[str] = []
+    for step in steps:  # (a step comes after the steps it needs)
+        keys.append(step_key(step, shared, out, [keys[i] for i, st in enumerate(steps[:len(keys)]) if st.name in step.needs]))
     reusable = [previous.get(st.name, {}).get("status") in ("ok", "reused") and previous[st.name].get("key") == key
                 and all((out / o).exists() for o in st.outputs) for st, key in zip(steps, keys)]
     to_run = [not r and (only is None or st.name in only) for st, r in zip(steps, reusable)]
     # the estimate: this step's last time in this folder in this configuration, else the table's
     estimate = [previous.get(st.name, {}).get("seconds") if previous.get(st.name, {}).get("status") in ("ok", "reused") and
                 previous[st.name].get("mode") == mode else EXPECTED.get(mode, {}).get(st.name) for st in steps]
-    total = sum(e or 0 for e, r in zip(estimate, to_run) if r)
-    if any(to_run):
-        log(f"{sum(to_run)} step(s) to run, about {duration(total)} in all on 2 cores (a line every {TICK:.0f} s "
-            "on long steps)")
-    pace = [0.0, 0.0]  # the estimates and the times of the steps finished in this run: the estimates that follow
-    for k, step in enumerate(steps):  # are scaled by their ratio (a slower or busier machine than the table's)
-        label = f"{k + 1}/{len(steps)} {step.name}"
-        key = keys[k]
+    labels = [f"{k + 1}/{len(steps)} {st.name}" for k, st in enumerate(steps)]
+    records = [{"title": st.title, "commands": [" ".join(c) for c in st.commands], "key": key, "mode": mode,
+                "alone": st.exclusive} for st, key in zip(steps, keys)]
+    pending = [k for k in range(len(steps)) if to_run[k]]
+    if pending:
+        total = time_left(steps, pending, {}, [e or 0.0 for e in estimate], slots)
+        say(f"{len(pending)} step(s) to run, about {duration(total)} in all on this machine ("
+            + (f"the steps that measure no time {slots} at a time, " if slots > 1 else "")
+            + f"those that measure time alone; a line every {TICK:.0f} s on long steps)")
+    for k, step in enumerate(steps):
         old = previous.get(step.name, {})
-        record = {"title": step.title, "commands": [" ".join(c) for c in step.commands], "key": key, "mode": mode}
         if reusable[k]:
-            log(f"[{label}] reused: unchanged since it finished at {old.get('finished')} ({old.get('seconds', 0):.0f} s)")
-            state[step.name] = {**record, "status": "reused", "seconds": old.get("seconds", 0.0), "error": "",
+            say(f"[{labels[k]}] reused: unchanged since it finished at {old.get('finished')} ({old.get('seconds', 0):.0f} s)")
+            state[step.name] = {**records[k], "status": "reused", "seconds": old.get("seconds", 0.0), "error": "",
                                 "cpu_seconds": old.get("cpu_seconds"), "finished": old.get("finished")}
-            continue
-        if only is not None and step.name not in only:
-            log(f"[{label}] not run (not in --only, and no finished result to reuse)")
-            state[step.name] = {**record, "status": "not run", "seconds": 0.0, "error": ""}
-            continue
-        scale = pace[1] / pace[0] if pace[0] > 0 else 1.0
-        after = scale * sum(e or 0 for e, r in zip(estimate[k + 1:], to_run[k + 1:]) if r)
-        expected = estimate[k] * scale if estimate[k] else None
-        log(f"[{label}] {step.title}" + (f" (about {duration(expected)}" + (
-            f"; the estimates x{scale:.2f}, this run's pace so far" if abs(scale - 1) > 0.1 else "") + ")"
-            if expected else ""))
-        t0 = time.time()
-        state[step.name] = {**record, "status": "running", "seconds": 0.0, "error": ""}
-        # written before it runs, so that an interrupted step is not "ok" on the next run (later steps keep theirs)
+        elif not to_run[k]:
+            say(f"[{labels[k]}] not run (not in --only, and no finished result to reuse)")
+            state[step.name] = {**records[k], "status": "not run", "seconds": 0.0, "error": ""}
+
+    lock = threading.Condition()
+    pace = [0.0, 0.0]  # the estimates and the times of the steps finished in this run: the estimates of the steps
+    running: dict[int, float] = {}  # still to run are scaled by their ratio (a slower or busier machine than the table's)
+
+    def scale() -> float:
+        return pace[1] / pace[0] if pace[0] > 0 else 1.0
+
+    def scaled(k: int) -> float | None:
+        return estimate[k] * scale() if estimate[k] else None
+
+    def rest(left: dict[int, float]) -> float:
+        with lock:
+            todo = list(pending)
+        return time_left(steps, todo, left, [scaled(k) or 0.0 for k in range(len(steps))], slots)
+
+    def save():  # (with the lock held) an interrupted step stays "running": it is not "ok" on the next run
         state_path.write_text(json.dumps({**previous, **state}, indent=1))
-        PROGRESS.start(label, expected, after)
-        cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+
+    def run_one(k: int):
+        step, t0, cpu = steps[k], time.time(), 0.0
         try:
             for i, cmd in enumerate(step.commands):
-                run_command(cmd, out, step.stdout.get(i), step.name)
+                cpu += run_command(cmd, out, step.stdout.get(i), step.name)
             missing = [o for o in step.outputs if not (out / o).exists()]
             if missing:
                 raise RuntimeError(f"finished without writing {', '.join(missing)}")
             status, error = "ok", ""
         except RuntimeError as exc:
             status, error = "failed", str(exc)
-        finally:
-            PROGRESS.end()
-        cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)  # the processor time of its programs, every core
-        state[step.name].update(status=status, error=error, seconds=time.time() - t0,
-                                cpu_seconds=cpu1.ru_utime + cpu1.ru_stime - cpu0.ru_utime - cpu0.ru_stime,
-                                finished=time.strftime("%Y-%m-%d %H:%M:%S"))
-        log(f"[{label}] {status} in {time.time() - t0:.0f} s" + (f": {error}" if error else ""))
-        if status == "ok" and estimate[k]:
-            pace[0] += estimate[k]
-            pace[1] += time.time() - t0
-        state_path.write_text(json.dumps({**previous, **state}, indent=1))
+        except Exception as exc:  # noqa: BLE001 - a bug here must not leave the job waiting
+            status, error = "failed", f"{type(exc).__name__}: {exc}"
+        seconds = time.time() - t0
+        PROGRESS.remove(k)
+        with lock:
+            state[step.name].update(status=status, error=error, seconds=seconds, cpu_seconds=cpu, started=t0,
+                                    ended=t0 + seconds, finished=time.strftime("%Y-%m-%d %H:%M:%S"))
+            if status == "ok" and estimate[k]:
+                pace[0] += estimate[k]
+                pace[1] += seconds
+            running.pop(k)
+            save()
+            lock.notify_all()
+        say(f"[{labels[k]}] {status} in {seconds:.0f} s ({cpu:.0f} processor s)" + (f": {error}" if error else ""))
+
+    PROGRESS.begin(rest)
+    try:
+        with lock:
+            while pending or running:
+                k = startable(pending, list(running), steps, slots)
+                if k is None and not running:  # (a step that needs one that comes after it: in plan order)
+                    k = pending[0]
+                if k is None:
+                    lock.wait()
+                    continue
+                pending.remove(k)
+                running[k] = time.time()
+                s = scale()
+                side = [labels[r] for r in running if r != k]
+                say(f"[{labels[k]}] {steps[k].title}" + (f" (about {duration(scaled(k))}" + (
+                    f"; the estimates x{s:.2f}, this run's pace so far" if abs(s - 1) > 0.1 else "") + ")"
+                    if scaled(k) else "") + (" alone: it measures time" if steps[k].exclusive else
+                                             f" beside {', '.join(side)}" if side else ""))
+                state[steps[k].name] = {**records[k], "status": "running", "seconds": 0.0, "error": ""}
+                save()
+                PROGRESS.add(k, labels[k], scaled(k))
+                threading.Thread(target=run_one, args=(k,), daemon=True).start()
+    finally:
+        PROGRESS.end()
     state_path.write_text(json.dumps(state, indent=1))
     return state
 
@@ -498,6 +628,9 @@ def main(argv=None) -> int:
     size.add_argument("--full", action="store_true", help="the shared pbrt-v4 scenes, larger sizes, more seeds")
     ap.add_argument("--fresh", action="store_true", help="redo every step (default: reuse unchanged finished steps)")
     ap.add_argument("--only", help="run only these steps (comma list); the others are reused if finished")
+    ap.add_argument("--jobs", type=int, default=min(2, os.cpu_count() or 1),
+                    help="steps that measure no time run this many at a time (default 2, or 1 on one core); the "
+                         "steps that measure time always run alone")
     for tool in ("bench-samplers", "bench-noise", "noise", "ao", "pt"):
         ap.add_argument(f"--{tool}", help=f"path of the {tool} program (default: found in --build)")
     args = ap.parse_args(argv)

@@ -67,6 +67,19 @@ def run_bench(bench: str, reps: int, quick: bool) -> list[dict]:
     return rows
 
 
+def timed_rows(rows: list[dict], path: str) -> None:
+    """Each row's seconds_per_estimate and create_seconds from `path`, a CSV of the same benchmark run alone on
+    the machine (the RMSE run may share it with other work); every row must be there."""
+    with open(path) as f:
+        times = {(r["sampler"], r["integrand"], int(r["n"])): r for r in csv.DictReader(f)}
+    for r in rows:
+        t = times.get((r["sampler"], r["integrand"], r["n"]))
+        if t is None:
+            raise KeyError(f"no time for {r['sampler']} on {r['integrand']} at N = {r['n']}")
+        r["seconds_per_estimate"], r["create_seconds"] = float(t["seconds_per_estimate"]), float(t["create_seconds"])
+        r["time_reps"] = int(t["reps"])
+
+
 def slope(ns, errs) -> float:
     ns, errs = np.asarray(ns, float), np.asarray(errs, float)
     keep = (ns >= 256) & (errs > 0)
@@ -211,6 +224,9 @@ def main(argv=None) -> int:
     ap.add_argument("--bench", required=True, help="path of udm1_bench_samplers")
     ap.add_argument("--out", default="report")
     ap.add_argument("--reps", type=int, default=32, help="randomizations per RMSE (default 32)")
+    ap.add_argument("--times", help="seconds per estimate (and creation) from this CSV of `udm1_bench_samplers error`, "
+                                    "run alone on the machine (the main report's sampler-times step: fewer "
+                                    "randomizations, the same N); default: the RMSE run's own times")
     ap.add_argument("--quick", action="store_true", help="small sizes, for tests")
     args = ap.parse_args(argv)
     if not 2 <= args.reps <= 10000:
@@ -224,6 +240,12 @@ def main(argv=None) -> int:
         return 1
     t0 = time.time()
     rows = run_bench(args.bench, args.reps, args.quick)
+    if args.times:
+        try:
+            timed_rows(rows, args.times)
+        except (OSError, KeyError, ValueError) as exc:
+            print(f"sampler_report: --times '{args.times}': {exc}", file=sys.stderr)
+            return 1
     with open(out / "samplers_error.csv", "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -273,7 +295,10 @@ def main(argv=None) -> int:
                        if (s, i, n_lo) in at and (s, i, n_hi) in at else "-" for i in two_d + genz] for s in samplers]
     table, lines = verdicts(rows)
     table_t, lines_t = verdicts(rows, per_time=True)
-    data = {"error": rows, "discrepancy": disc, "slopes": {f"{k[0]}|{k[1]}": v for k, v in slopes.items()},
+    timing = (f"measured alone on the machine by a separate run of the benchmark with {rows[0]['time_reps']} "
+              f"randomizations per N (`--times`; the RMSE run, with {args.reps}, may have shared the machine)"
+              if args.times else f"the RMSE run's own, over its {args.reps} randomizations")
+    data = {"error": rows, "discrepancy": disc, "timing": timing, "slopes": {f"{k[0]}|{k[1]}": v for k, v in slopes.items()},
             "verdicts": table, "verdicts_equal_time": table_t, "reps": args.reps, "seconds": time.time() - t0}
     (out / "samplers.json").write_text(json.dumps(data, indent=1))
 
@@ -318,7 +343,7 @@ Relative RMSE at N = {n_lo} / N = {n_hi}:
 
 ## Integration error against time
 Time of one estimate: filling N points and evaluating the integrand, in C on one thread (the
-sampler's creation apart: PMJ02 builds its tables then, see the CSV's create_seconds).
+sampler's creation apart: PMJ02 builds its tables then, see the CSV's create_seconds); {timing}.
 
 ![time 2d]({figs['time_2d']})
 
