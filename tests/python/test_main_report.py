@@ -233,7 +233,7 @@ def test_main_report(tmp_path):
     assert all(v["status"] == "reused" for s, v in failed["steps"].items() if s != "noise")
     assert "noise_speed" not in failed["tables"] and "ao" in failed["tables"]
     steps_row = next(row for row in parse(out / "index.html").tables["steps"] if row[0] == "noise")
-    assert steps_row[2] == "failed" and "missing/udm1-noise" in steps_row[5]
+    assert steps_row[2] == "failed" and steps_row[5] == "alone" and "missing/udm1-noise" in steps_row[6]
     assert "This step failed" in (out / "index.html").read_text()
 
     # an interrupted step (left "running") runs again; the failed one too; the others are reused

@@ -53,6 +53,36 @@ def test_sampler_report(tmp_path):
         assert row[-1] in html
 
 
+@pytest.mark.skipif(not BENCH, reason="UDM1_BENCH_SAMPLERS (the udm1_bench_samplers binary) is not set")
+def test_sampler_report_times_from_a_separate_run(tmp_path):
+    """--times: the times of every row from a separate run of the benchmark (the main report's sampler-times step,
+    alone on the machine), the RMSE from its own run; a row the file lacks is an error naming it, no page."""
+    times = tmp_path / "times.csv"
+    r = subprocess.run([BENCH, "error", "--quick", "--reps", "2"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    header = lines[0].split(",")
+    # every time scaled by a factor no real run gives, so that the page's times can only have come from this file
+    scaled = [lines[0]] + [",".join(f"{float(v) * 1000:.6g}" if h == "seconds_per_estimate" else v
+                                    for h, v in zip(header, line.split(","))) for line in lines[1:]]
+    times.write_text("\n".join(scaled) + "\n")
+    r = run_report("sampler_report.py", tmp_path / "a", "--bench", BENCH, "--reps", "4", "--times", str(times))
+    assert r.returncode == 0, r.stderr
+    data = json.loads((tmp_path / "a" / "samplers.json").read_text())
+    want = {(x[0], x[1], int(x[3])): float(x[7]) for x in (line.split(",") for line in scaled[1:])}
+    assert len(data["error"]) == len(want)
+    for row in data["error"]:
+        assert row["seconds_per_estimate"] == pytest.approx(want[(row["sampler"], row["integrand"], row["n"])])
+        assert row["reps"] == 4 and row["time_reps"] == 2
+    assert "measured alone on the machine" in (tmp_path / "a" / "samplers.html").read_text()
+    times.write_text("\n".join(scaled[:-1]) + "\n")  # the last row missing
+    r = run_report("sampler_report.py", tmp_path / "b", "--bench", BENCH, "--reps", "4", "--times", str(times))
+    last = lines[-1].split(",")
+    assert r.returncode == 1 and r.stderr.strip().splitlines()[-1] == (
+        f"sampler_report: --times '{times}': no time for {last[0]} on {last[1]} at N = {last[3]}"), r.stderr
+    assert not (tmp_path / "b" / "samplers.json").exists()
+
+
 @pytest.mark.skipif(not AO, reason="UDM1_AO_TOOL (the udm1-ao binary) is not set")
 def test_ao_report(tmp_path):
     r = run_report("ao_report.py", tmp_path, "--ao", AO)
@@ -68,6 +98,10 @@ def test_ao_report(tmp_path):
     # at 16 spp the low-discrepancy sets beat independent random points (PSNR over 2 seeds)
     assert fig6["episwr"]["psnr_mean"] > fig6["pcg32"]["psnr_mean"] + 3
     assert f"{fig6['episwr']['psnr_seed1']:.2f}" in html
+    # the reference's own error, estimated against a quarter of its samples, is shown beside the smallest RMSE
+    assert 0 < data["reference_error"] and data["smallest_rmse"] == min(
+        r["rmse_mean"] for r in data["figure6"] + data["equal_time"])
+    assert f"own error is about {data['reference_error']:.2g}" in html
     spps = sorted({row["spp"] for row in data["sweep"]})
     assert len(spps) >= 3 and all(row["rmse"] > 0 for row in data["sweep"])
     for s in ["episwr", "sobol", "pcg32"]:  # error falls with spp in the sweep

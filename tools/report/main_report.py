@@ -1,42 +1,54 @@
 """The main report: speed against error for every sampler in every application, in one folder.
 
-Runs the report steps one after another, each a program of its own whose progress is shown on the
-terminal, and records what each did in OUT/steps.json:
+Runs the report steps, each a program of its own whose progress is shown on the terminal, and records
+what each did in OUT/steps.json. In the order they run:
 
-    sequences   point plots, discrepancy against N, the constant-set check, exactness (sequence_report.py)
-    samplers    integration RMSE against N and time, slopes, spectra, zone plates (sampler_report.py)
+    sampler-times  integration time per estimate of every sampler, few randomizations (udm1_bench_samplers
+                error), for the samplers step's error against time
     throughput  every sampler's values per second, bulk and per sample (udm1_bench_samplers throughput)
-    noise       the paper's Figures 2 and 3 (udm1-noise figures), noise evaluations per second against
-                libnoise (udm1_bench_noise) and FastNoiseSIMD (bench_noise.py;
-                FastNoise Lite where FastNoiseSIMD is not installed), spectra (noise_report.py)
     ao          the paper's Figure 6 with udm1-ao (ao_report.py)
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
     tent        beyond the paper: the tent transform's effect per integrand (udm1_bench_samplers error)
-    screen      beyond the paper: blue-noise error from screen-space decorrelation (screen_report.py)
+    mitsuba     udm1's samplers inside Mitsuba 3 against Mitsuba's own (bench/bench_mitsuba_sampler.py)
     crown       with --full, where ../shared has it: the same protocol on the paper's Crown as distributed
                 (crown-volpath.pbrt: its gems' media) at 100 x 140
-    accuracy    with --full: udm1-pt against pbrt-v4 on every shared and test scene (bench/bench_accuracy.py;
-                pbrt-v4 built once from ../shared/anchors, skipped with a message where it is absent)
     renderers   with --full: udm1-pt against pbrt-v4 and Mitsuba 3 at equal error on the shared scenes
                 (bench/bench_pt_scenes.py; skipped with a message where ../shared is absent)
+    fastnoise   not with --quick: FastNoiseSIMD built from its sdist for the noise step, once per build folder
+    screen      beyond the paper: blue-noise error from screen-space decorrelation (screen_report.py)
+    samplers    integration RMSE against N and time, slopes, spectra, zone plates (sampler_report.py; the
+                times are sampler-times')
+    tolerance   integration to a tolerance against QMCPy and scipy (bench/bench_integrate.py)
+    sequences   point plots, discrepancy against N, the constant-set check, exactness (sequence_report.py)
+    accuracy    with --full: udm1-pt against pbrt-v4 on every shared and test scene (bench/bench_accuracy.py;
+                pbrt-v4 built once from ../shared/anchors, skipped with a message where it is absent)
+    noise       the paper's Figures 2 and 3 (udm1-noise figures), noise evaluations per second against
+                libnoise (udm1_bench_noise) and FastNoiseSIMD (bench_noise.py;
+                FastNoise Lite where FastNoiseSIMD is not installed), spectra (noise_report.py)
 
-then writes OUT/index.html (static, opens from disk) and OUT/report.md from the steps' JSON: first the
-verdict (per application, the best sampler at equal time and at equal spp, its gain over PRNG and over
-the best other sampler, and the machine), then the paper's claims from Figures 6, 8 and 10 next to ours
-with a verdict per claim, then the details: a table of the steps (a failed step is shown failed, with
-its error, and its numbers are not shown), speed against error per application (tables and plots), and
-the machine, versions and commands. Every table of the index is also
-in OUT/report.json (raw numbers, with the format each cell is shown with) and OUT/csv/<table>.csv.
+The steps whose figures are times (sampler-times to renderers, and noise) run one at a time, alone on
+the machine, so that their times are not another step's; the others (fastnoise to accuracy) run two at a
+time (--jobs) once those are done (tolerance's times, each method in turn within a trial, are compared
+with each other only). Then it writes OUT/index.html (static, opens from disk) and OUT/report.md from the
+steps' JSON: first the verdict (per application, the best sampler at equal time and at equal spp, its gain
+over PRNG and over the best other sampler, and the machine), then the paper's claims from Figures 6, 8 and
+10 next to ours with a verdict per claim, then the details: a table of the steps (a failed step is shown
+failed, with its error, and its numbers are not shown; each step's time, processor time and whether it ran
+alone), speed against error per application (tables and plots), and the machine, versions and commands.
+Every table of the index is also in OUT/report.json (raw numbers, with the format each cell is shown with)
+and OUT/csv/<table>.csv.
 
-Resumable: a step whose command, programs and scripts are unchanged since it last finished is reused
-(--fresh redoes everything); a failed or interrupted step runs again. Exit status 1 if a step failed.
-References are kept by content in OUT/cache (report_common.cached_reference): a step, or a later run,
-asking for the same tool, scene and settings reuses the image. While a step runs, a line every 15 s gives
-its elapsed time and the estimated time left (EXPECTED, or the step's last time in OUT, scaled by this
-run's pace). The default configuration keeps the verdicts' seeds and leaves the long sweeps (AO and PT to
-1024 spp, the screen step's 4 seeds, tolerance at d = 32) and the shared scenes to --full.
+Resumable: a step whose command, programs and scripts (and the steps it needs) are unchanged since it last
+finished is reused (--fresh redoes everything); a failed or interrupted step runs again. Exit status 1 if a
+step failed. References are kept by content in OUT/cache (report_common.cached_reference): a step, or a
+later run, asking for the same tool, scene and settings reuses the image. While a step runs, a line every
+15 s names it and gives its elapsed time and the estimated time left in it and in all (EXPECTED, or the
+step's last time in OUT, scaled by this run's pace; the order above simulated on those estimates). The
+default configuration keeps the verdicts' seeds and leaves the long sweeps (AO and PT to 1024 spp, the
+screen step's 4 seeds, tolerance at d = 32, the constant-set check at d = 64 to n = 1024) and the shared
+scenes to --full.
 
-    python tools/report/main_report.py --build build --out report [--quick | --full]
+    python tools/report/main_report.py --build build --out report [--quick | --full] [--jobs N]
 """
 
 from __future__ import annotations
@@ -115,8 +127,8 @@ def plan(args, out: Path) -> list[Step]:
         mitsuba_args = ["--size", "64", "--spps", "16,64", "--seeds", "2", "--ref-spp", "2048", "--scalar-size", "24",
                         "--scalar-spps", "16", "--scalar-seeds", "1"]
     ao = [py, str(HERE / "ao_report.py"), "--ao", tools["ao"], *o, *q]
-    if not args.quick and not args.full:  # Figure 6's reference: its error is far below the compared RMSE (ao.md)
-        ao += ["--ref-spp", "2048"]
+    if not args.quick and not args.full:  # Figure 6's reference: its error is far below the compared RMSE (ao.md);
+        ao += ["--ref-spp", "2048", "--sweep-spps", "16,32,64,128"]  # the sweep's 256 spp: with --full
     if args.full:
         ao += ["--size", "512x512", "--sweep-size", "256x256", "--sweep-spps", "16,32,64,128,256,512,1024"]
     screen = [py, str(HERE / "screen_report.py"), "--ao", tools["ao"], "--pt", tools["pt"], *o, *q]
@@ -124,12 +136,17 @@ def plan(args, out: Path) -> list[Step]:
         screen += ["--seeds", "4", "--pt-ref-spp", "8192"]
     pt = [py, str(HERE / "pt_report.py"), "--pt", tools["pt"], *o, *q] + (["--full"] if args.full else [])
     times_reps = "2" if args.quick else "4"
+    # the integration sweep's N (the benchmark's own with --full and --quick; the default leaves out N = 10000, a
+    # non-power of two between 4096 and 16384 that costs a third of the sweep), and the tent step's: its table reads
+    # the largest N only
+    ns = [] if args.quick or args.full else ["--ns", "64,256,1000,1024,4096,16384"]
+    tent_ns = [] if args.quick else ["--ns", "16384"]
     # In the order they run (run_steps): the steps that measure time first, one at a time and alone on the machine;
     # then the others, two at a time (the sampler step's RMSE after its times were measured alone); then the noise
     # step, alone, once its anchor is built.
     timed = [
         Step("sampler-times", "Integration time per estimate, every sampler (alone on the machine; few randomizations)",
-             [[tools["bench_samplers"], "error", "--reps", times_reps, *q]], ["sampler_times.csv"],
+             [[tools["bench_samplers"], "error", "--reps", times_reps, *ns, *q]], ["sampler_times.csv"],
              stdout={0: "sampler_times.csv"}, exclusive=True),
         Step("throughput", "Sampler throughput (values per second, one thread)",
              [[tools["bench_samplers"], "throughput", "--seconds", seconds]], ["throughput.txt"],
@@ -138,7 +155,7 @@ def plan(args, out: Path) -> list[Step]:
         Step("pt", "Path tracing: the paper's Figures 8 and 10 protocol (udm1-pt)", [pt], ["pt.json"], "pt.html",
              exclusive=True),
         Step("tent", "Beyond the paper: the tent transform (+tent) on the integrands, against Sobol and PMJ02",
-             [[tools["bench_samplers"], "error", "--samplers", ",".join(TENT_SAMPLERS), "--reps", reps, *q]],
+             [[tools["bench_samplers"], "error", "--samplers", ",".join(TENT_SAMPLERS), "--reps", reps, *tent_ns, *q]],
              ["tent.csv"], stdout={0: "tent.csv"}, exclusive=True),
         Step("mitsuba", "udm1's samplers inside Mitsuba 3 (its native plugin) against Mitsuba's own",
              [[py, str(ROOT / "bench" / "bench_mitsuba_sampler.py"), "--out", str(out / "mitsuba"), *mitsuba_args]],
@@ -154,7 +171,7 @@ def plan(args, out: Path) -> list[Step]:
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
              [screen], ["screen.json"], "screen.html"),
         Step("samplers", "Integration error against N and against time, every sampler",
-             [[py, str(HERE / "sampler_report.py"), "--bench", tools["bench_samplers"], *o, "--reps", reps,
+             [[py, str(HERE / "sampler_report.py"), "--bench", tools["bench_samplers"], *o, "--reps", reps, *ns,
                "--times", str(out / "sampler_times.csv"), *q]],
              ["samplers.json"], "samplers.html", needs=("sampler-times",)),
         Step("tolerance", "Integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's families",

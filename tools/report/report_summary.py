@@ -231,13 +231,17 @@ def steps_section(doc, steps, state, mode: str):
              "whose inputs have not changed since it last finished is reused on the next run.")
     doc.heading(2, "Steps", "steps")
     rows = [{"step": s.name, "what": s.title, "status": state[s.name]["status"], "seconds": state[s.name]["seconds"],
-             "cpu_seconds": state[s.name].get("cpu_seconds"), "error": state[s.name].get("error") or ""} for s in steps]
+             "cpu_seconds": state[s.name].get("cpu_seconds"), "ran": "alone" if s.exclusive else "beside another",
+             "error": state[s.name].get("error") or ""} for s in steps]
     doc.table("steps", "steps", [("step", "step", ""), ("what", "what", ""), ("status", "status", ""),
                                  ("seconds", "time (s)", ".1f"), ("cpu_seconds", "processor time (s)", ".1f"),
-                                 ("error", "error", "")], rows)
-    doc.para("Processor time: the user and system time of the step's programs, summed over the cores. Above the "
-             "step's time, it used more than one core; far below it on a single-threaded step, it waited for a "
-             "processor (a machine shared with other work).")
+                                 ("ran", "ran", ""), ("error", "error", "")], rows)
+    doc.para("In the order they ran. The steps whose figures are times ran alone, one at a time, so that no other "
+             "step's work is in their times; the others ran two at a time (\"beside another\"; tolerance's times "
+             "are compared with each other only, each method in turn within a trial). Processor time: the user and "
+             "system time of the step's programs, summed over the cores. Above the step's time, it used more than "
+             "one core; far below it on a single-threaded step, it waited for a processor (a machine shared with "
+             "other work).")
 
 
 def claims_section(doc, out: Path, state):

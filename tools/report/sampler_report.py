@@ -48,8 +48,8 @@ def style(name: str) -> dict:
             "linestyle": "-" if name in PAPER + BEYOND else "--", "marker": "o" if name in PAPER + BEYOND else "s", "ms": 3}
 
 
-def run_bench(bench: str, reps: int, quick: bool) -> list[dict]:
-    cmd = [bench, "error", "--reps", str(reps)] + (["--quick"] if quick else [])
+def run_bench(bench: str, reps: int, quick: bool, ns: str | None = None) -> list[dict]:
+    cmd = [bench, "error", "--reps", str(reps)] + (["--ns", ns] if ns else []) + (["--quick"] if quick else [])
     log("integration error of every sampler: " + " ".join(cmd))
     with tempfile.TemporaryFile(mode="w+") as table:  # a file, not a pipe: no deadlock on large output
         proc = subprocess.Popen(cmd, stdout=table, stderr=subprocess.PIPE, text=True)
@@ -75,7 +75,7 @@ def timed_rows(rows: list[dict], path: str) -> None:
     for r in rows:
         t = times.get((r["sampler"], r["integrand"], r["n"]))
         if t is None:
-            raise KeyError(f"no time for {r['sampler']} on {r['integrand']} at N = {r['n']}")
+            raise ValueError(f"no time for {r['sampler']} on {r['integrand']} at N = {r['n']}")
         r["seconds_per_estimate"], r["create_seconds"] = float(t["seconds_per_estimate"]), float(t["create_seconds"])
         r["time_reps"] = int(t["reps"])
 
@@ -224,6 +224,7 @@ def main(argv=None) -> int:
     ap.add_argument("--bench", required=True, help="path of udm1_bench_samplers")
     ap.add_argument("--out", default="report")
     ap.add_argument("--reps", type=int, default=32, help="randomizations per RMSE (default 32)")
+    ap.add_argument("--ns", help="the point counts N (comma list; default the benchmark's: 64 .. 16384)")
     ap.add_argument("--times", help="seconds per estimate (and creation) from this CSV of `udm1_bench_samplers error`, "
                                     "run alone on the machine (the main report's sampler-times step: fewer "
                                     "randomizations, the same N); default: the RMSE run's own times")
@@ -239,11 +240,11 @@ def main(argv=None) -> int:
     if out is None:
         return 1
     t0 = time.time()
-    rows = run_bench(args.bench, args.reps, args.quick)
+    rows = run_bench(args.bench, args.reps, args.quick, args.ns)
     if args.times:
         try:
             timed_rows(rows, args.times)
-        except (OSError, KeyError, ValueError) as exc:
+        except (OSError, KeyError, ValueError) as exc:  # (KeyError: a column the file lacks)
             print(f"sampler_report: --times '{args.times}': {exc}", file=sys.stderr)
             return 1
     with open(out / "samplers_error.csv", "w", newline="") as f:
