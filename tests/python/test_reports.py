@@ -108,16 +108,16 @@ def test_ao_report(tmp_path):
         rm = [row["rmse"] for row in sorted(data["sweep"], key=lambda x: x["spp"]) if row["sampler"] == s]
         assert rm[-1] < rm[0], (s, rm)
     assert {row["sampler"] for row in data["equal_time"]} == set(fig6)
-    # a second run reuses both references from the cache (kept by content: the tool's bytes and the settings)
+    # a second run reuses the three references from the cache (kept by content: the tool's bytes and the settings)
     cached = sorted(p.name for p in (tmp_path / "cache").iterdir())
-    assert len(cached) == 6  # two references, each .exr, .png and the tool's line
+    assert len(cached) == 9  # Figure 6's, its quarter (its error) and the sweep's, each .exr, .png and the tool's line
     r = run_report("ao_report.py", tmp_path, "--ao", AO)
-    assert r.returncode == 0 and r.stderr.count("reference reused from") == 2, r.stderr
+    assert r.returncode == 0 and r.stderr.count("reference reused from") == 3, r.stderr
     assert json.loads((tmp_path / "ao.json").read_text())["reference"] == data["reference"]
-    # other settings are another reference: a shorter occlusion ray renders (and keeps) two new ones
+    # other settings are another reference: a shorter occlusion ray renders (and keeps) three new ones
     r = run_report("ao_report.py", tmp_path, "--ao", AO, "--maxdist", "0.5")
     assert r.returncode == 0 and "reference reused from" not in r.stderr, r.stderr
-    assert len(list((tmp_path / "cache").iterdir())) == 12
+    assert len(list((tmp_path / "cache").iterdir())) == 18
 
 
 @pytest.mark.skipif(not PT, reason="UDM1_PT_TOOL (the udm1-pt binary) is not set")

@@ -3,8 +3,9 @@
 Runs the report steps, each a program of its own whose progress is shown on the terminal, and records
 what each did in OUT/steps.json. In the order they run:
 
-    sampler-times  integration time per estimate of every sampler, few randomizations (udm1_bench_samplers
-                error), for the samplers step's error against time
+    sampler-times  integration time per estimate of every sampler (udm1_bench_samplers error: 2
+                randomizations per N, timed 4 times, the fastest kept), for the samplers step's error
+                against time
     throughput  every sampler's values per second, bulk and per sample (udm1_bench_samplers throughput)
     ao          the paper's Figure 6 with udm1-ao (ao_report.py)
     pt          the paper's Figure 8/10 protocol with udm1-pt (pt_report.py)
@@ -135,7 +136,9 @@ def plan(args, out: Path) -> list[Step]:
     if args.full:  # more seeds, and udm1-pt's reference at 8192 spp rather than the pt step's own 4096
         screen += ["--seeds", "4", "--pt-ref-spp", "8192"]
     pt = [py, str(HERE / "pt_report.py"), "--pt", tools["pt"], *o, *q] + (["--full"] if args.full else [])
-    times_reps = "2" if args.quick else "4"
+    # sampler-times: 2 randomizations per N, timed 4 times (2 with --quick), the fastest kept: a window of a
+    # millisecond that another process interrupted is not the one reported
+    times = ["--reps", "2", "--time-repeats", "2" if args.quick else "4"]
     # the integration sweep's N (the benchmark's own with --full and --quick; the default leaves out N = 10000, a
     # non-power of two between 4096 and 16384 that costs a third of the sweep), and the tent step's: its table reads
     # the largest N only
@@ -146,7 +149,7 @@ def plan(args, out: Path) -> list[Step]:
     # step, alone, once its anchor is built.
     timed = [
         Step("sampler-times", "Integration time per estimate, every sampler (alone on the machine; few randomizations)",
-             [[tools["bench_samplers"], "error", "--reps", times_reps, *ns, *q]], ["sampler_times.csv"],
+             [[tools["bench_samplers"], "error", *times, *ns, *q]], ["sampler_times.csv"],
              stdout={0: "sampler_times.csv"}, exclusive=True),
         Step("throughput", "Sampler throughput (values per second, one thread)",
              [[tools["bench_samplers"], "throughput", "--seconds", seconds]], ["throughput.txt"],
@@ -246,13 +249,13 @@ def step_key(step: Step, shared: str, out: Path, needed: list[str]) -> str:
 # that measure no time two at a time): the estimate of the time left before a step has finished once in this output
 # folder (then its last time there is used), scaled by this run's pace (a busier or slower machine).
 # BENCHMARKS.md, "The main report", has measured times.
-EXPECTED = {"default": {"sequences": 30, "samplers": 85, "throughput": 8, "noise": 12, "ao": 80, "pt": 80, "tent": 8,
-                        "mitsuba": 9, "tolerance": 40, "screen": 150},
-            "quick": {"sequences": 6, "samplers": 8, "throughput": 3, "noise": 10, "ao": 6, "pt": 5, "tent": 2,
-                      "mitsuba": 8, "tolerance": 4, "screen": 15},
-            "full": {"sequences": 60, "samplers": 170, "throughput": 25, "noise": 120, "ao": 900, "pt": 900,
-                     "tent": 15, "mitsuba": 600, "tolerance": 400, "screen": 450, "crown": 900, "accuracy": 900,
-                     "renderers": 2700}}
+EXPECTED = {"default": {"sampler-times": 20, "throughput": 7, "ao": 90, "pt": 110, "tent": 6, "mitsuba": 20,
+                        "fastnoise": 80, "screen": 300, "samplers": 110, "tolerance": 100, "sequences": 32, "noise": 10},
+            "quick": {"sampler-times": 3, "throughput": 3, "ao": 6, "pt": 5, "tent": 2, "mitsuba": 8, "screen": 30,
+                      "samplers": 12, "tolerance": 4, "sequences": 8, "noise": 10},
+            "full": {"sampler-times": 30, "throughput": 25, "ao": 900, "pt": 900, "tent": 15, "mitsuba": 600,
+                     "crown": 900, "renderers": 2700, "fastnoise": 160, "screen": 450, "samplers": 200, "tolerance": 400,
+                     "sequences": 90, "accuracy": 900, "noise": 120}}
 TICK = float(os.environ.get("UDM1_REPORT_TICK") or 15.0)  # seconds between two progress lines of a running step
 
 
