@@ -524,7 +524,7 @@ def test_textures_and_mix(tmp_path):
         ("", 'Material "diffuse" "texture reflectance" "t"', 'texture "t" was not made'),
         ('Texture "t" "float" "imagemap" "string filename" "half.png"', 'Material "diffuse" "texture reflectance" "t"',
          "needs a spectrum texture"),
-        ('Texture "t" "spectrum" "wrinkled"', 'Material "diffuse"', '"wrinkled" is not supported'),
+        ('Texture "t" "spectrum" "marble"', 'Material "diffuse"', '"marble" is not supported'),
     ):
         scene = tmp_path / "bad.pbrt"
         scene.write_text(TEX_SCENE.format(textures=textures, material=material))
