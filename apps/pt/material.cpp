@@ -408,11 +408,23 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             mm.amount_tex = texture_param(scene, ps, "amount", "float");
             if (mm.amount_tex < 0) mm.amount = ps.get_float("amount", 0.5);
         } else if (m.type == "measured") {
-            throw SceneError(ps.where + ": Material \"measured\" is not supported (pbrt-v4's tabulated BSDF files)");
+            only(ps, {"filename", "displacement", "normalmap"}, "measured");
+            const udm1scene::Param *file = ps.find("filename");
+            if (!m.tabulated || !file)  // (the parser reads the file)
+                throw SceneError(ps.where + ": Material \"measured\": no tabulated BSDF file read");
+            if (!m.tabulated->isotropic)
+                throw SceneError(file->where + ": Material \"measured\": " + m.tabulated->path + " is anisotropic (phi_i has " +
+                                 std::to_string(m.tabulated->phi_i.size()) + " values): pbrt-v4 orients it by the surface's "
+                                 "dp/du, udm1-pt's shading frame is not so oriented, so anisotropic tables are not modelled");
+            b.kind = Bsdf::MeasuredKind;
+            auto it = measured_.find(m.tabulated.get());
+            if (it == measured_.end())
+                it = measured_.emplace(m.tabulated.get(), std::make_shared<const MeasuredTables>(*m.tabulated)).first;
+            b.measured.t = it->second.get();
         } else {
             throw SceneError(ps.where + ": Material \"" + m.type +
                              "\" is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, "
-                             "diffusetransmission, mix, interface)");
+                             "diffusetransmission, measured, mix, interface)");
         }
         if (!mm.mix) {
             mm.displacement_tex = texture_param(scene, ps, "displacement", "float");

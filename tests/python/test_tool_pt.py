@@ -329,7 +329,7 @@ PLY_HEAD = (b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty f
         (HEAD + 'Shape "plymesh" "string filename" "trunc.ply"\n', 0, "trunc.ply"),
         (HEAD + 'Shape "plymesh" "string filename" "badindex.ply"\n', 0, "badindex.ply"),
         (HEAD + LIGHT + TRI, 6, "an area light of zero area"),
-        (HEAD + 'Material "measured"\n' + TRI, 4, 'Material "measured" is not supported'),
+        (HEAD + 'Material "measured"\n' + TRI, 4, 'Material "measured": no "string filename"'),
         (HEAD + 'Material "conductor" "spectrum eta" "metal-Xx-eta"\n' + TRI, 4, '"metal-Xx-eta" is not a named spectrum that udm1 knows'),
         (HEAD + 'Material "conductor" "spectrum k" [ 300 1 200 2 ]\n' + TRI, 4, "wavelengths must be positive and increasing"),
         (HEAD + 'Material "dielectric" "float eta" [ -1.5 ]\n' + TRI, 4, "eta must be positive"),
