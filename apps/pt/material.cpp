@@ -413,7 +413,7 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             if (!m.tabulated || !file)  // (the parser reads the file)
                 throw SceneError(ps.where + ": Material \"measured\": no tabulated BSDF file read");
             if (!m.tabulated->isotropic)
-                throw SceneError(file->where + ": Material \"measured\": " + m.tabulated->path + " is anisotropic (phi_i has " +
+                throw SceneError(file->where + ": Material \"measured\": " + m.tabulated->path + ": an anisotropic table (phi_i has " +
                                  std::to_string(m.tabulated->phi_i.size()) + " values): pbrt-v4 orients it by the surface's "
                                  "dp/du, udm1-pt's shading frame is not so oriented, so anisotropic tables are not modelled");
             b.kind = Bsdf::MeasuredKind;

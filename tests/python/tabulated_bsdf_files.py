@@ -31,12 +31,14 @@ TYPES = {np.dtype(np.uint8): 1, np.dtype(np.int8): 2, np.dtype(np.uint16): 3, np
 
 
 def tensor_bytes(fields, magic=b"tensor_file\0", version=(1, 0)):
-    """The tensor file of `fields` (name -> numpy array, in order): header, field records, then the data."""
+    """The tensor file of `fields` (name -> numpy array, or (name, array) pairs, in order): header, field records,
+    then the data."""
+    fields = list(fields.items()) if isinstance(fields, dict) else list(fields)
     head = magic + bytes(version) + struct.pack("<I", len(fields))
-    records_size = sum(2 + len(name.encode()) + 2 + 1 + 8 + 8 * np.asarray(a).ndim for name, a in fields.items())
+    records_size = sum(2 + len(name.encode()) + 2 + 1 + 8 + 8 * np.asarray(a).ndim for name, a in fields)
     offset = len(head) + records_size
     records, data = b"", b""
-    for name, a in fields.items():
+    for name, a in fields:
         a = np.ascontiguousarray(a)
         raw = a.astype(a.dtype.newbyteorder("<")).tobytes()
         records += struct.pack("<H", len(name.encode())) + name.encode() + struct.pack("<HBQ", a.ndim, TYPES[a.dtype],
