@@ -32,6 +32,9 @@ double invert_linear(double a, double b, double u)
 
 const double ONE_MINUS_EPS = 0x1.fffffffffffffp-1;
 
+// x clamped to [0, 1] (not a number: 0), so that the cell index is defined.
+inline double unit(double x) { return x >= 0 ? std::min(x, 1.0) : 0.0; }
+
 }  // namespace
 
 BilinearWarp::BilinearWarp(const float *values, int w, int h, std::vector<std::vector<float>> params, bool density)
@@ -80,7 +83,7 @@ double BilinearWarp::eval(double x, double y, const double *param) const
 {
     const Corners c = corners(param);
     const size_t n = (size_t)w_ * h_;
-    x = std::clamp(x, 0.0, 1.0) * (w_ - 1), y = std::clamp(y, 0.0, 1.0) * (h_ - 1);
+    x = unit(x) * (w_ - 1), y = unit(y) * (h_ - 1);
     int col = std::min((int)x, w_ - 2), row = std::min((int)y, h_ - 2);
     double fx = x - col, fy = y - row;
     size_t i = (size_t)row * w_ + col;
@@ -93,7 +96,7 @@ void BilinearWarp::sample(double u1, double u2, const double *param, double *x, 
 {
     const Corners c = corners(param);
     const size_t n = (size_t)w_ * h_;
-    u1 = std::clamp(u1, 1 - ONE_MINUS_EPS, ONE_MINUS_EPS), u2 = std::clamp(u2, 1 - ONE_MINUS_EPS, ONE_MINUS_EPS);
+    u1 = std::clamp(unit(u1), 1 - ONE_MINUS_EPS, ONE_MINUS_EPS), u2 = std::clamp(unit(u2), 1 - ONE_MINUS_EPS, ONE_MINUS_EPS);
     // the row by the marginal distribution, then the place in it
     size_t row = last_below((size_t)h_, [&](size_t k) { return at(marginal_, c, h_, k) < u2; });
     u2 -= at(marginal_, c, h_, row);
@@ -117,7 +120,7 @@ void BilinearWarp::invert(double x, double y, const double *param, double *u1, d
 {
     const Corners c = corners(param);
     const size_t n = (size_t)w_ * h_;
-    x = std::clamp(x, 0.0, 1.0) * (w_ - 1), y = std::clamp(y, 0.0, 1.0) * (h_ - 1);
+    x = unit(x) * (w_ - 1), y = unit(y) * (h_ - 1);
     int col = std::min((int)x, w_ - 2), row = std::min((int)y, h_ - 2);
     double fx = x - col, fy = y - row;
     const size_t r = (size_t)row * w_, i = r + col;
