@@ -11,6 +11,7 @@
 #include "lights.h"
 #include "spectrum.h"
 #include "tabulated_bsdf.h"
+#include "file_read.h"
 
 #include <tbb/global_control.h>
 
@@ -19,6 +20,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace udm1scene;
@@ -1206,7 +1208,8 @@ static void test_film_round_trip()
 // the half vector on one of ndf's) f equals it; between nodes it is within the interpolation's error; f, pdf and
 // sampling agree (sample() against f() and pdf(), the sampled directions against pdf() by chi-square, the
 // albedo by sampling against quadrature), both sides alike, rotations about the normal change nothing
-// (isotropic), and the spectral factor becomes the RGB of the spectrum under D65.
+// (isotropic), the spectral factor becomes the RGB of the spectrum under D65, and a scene's digest changes with
+// the tabulated file's contents.
 static void test_measured()
 {
     const std::string dir = UDM1_TEST_BSDF_DIR;
@@ -1312,6 +1315,26 @@ static void test_measured()
         CHECKF(std::fabs(fr[ch] / fg[ch] - expect[ch]) < 1e-4 * expect[ch] + 1e-6,
                "ramp / grey channel %d: %.6f, the spectrum's RGB under D65 %.6f", ch, fr[ch] / fg[ch], expect[ch]);
     CHECKF(expect.x > expect.y && expect.y > expect.z, "the ramp is reddish (%g %g %g)", expect.x, expect.y, expect.z);
+    // a scene's digest (the key of cached references) holds the tabulated file's contents, not only its name: the
+    // same scene file, its tabulated file rewritten with other tables
+    char tmpl[] = "/tmp/udm1-test-measured-XXXXXX";
+    const std::string tmp = mkdtemp(tmpl) ? tmpl : "";
+    CHECKF(!tmp.empty(), "a temporary folder");
+    FILE *f = std::fopen((tmp + "/s.pbrt").c_str(), "w");
+    std::fputs("Camera \"perspective\"\nWorldBegin\nMaterial \"measured\" \"string filename\" \"t.bsdf\"\n"
+               "Shape \"sphere\"\n", f);
+    std::fclose(f);
+    uint64_t digest[2];
+    for (int k = 0; k < 2; ++k) {
+        std::string bytes = udm1scene::read_regular_file(dir + (k ? "/ggx_ramp.bsdf" : "/ggx_grey.bsdf"), "file");
+        f = std::fopen((tmp + "/t.bsdf").c_str(), "wb");
+        std::fwrite(bytes.data(), 1, bytes.size(), f);
+        std::fclose(f);
+        digest[k] = load_scene(tmp + "/s.pbrt").digest();
+        CHECKF(load_scene(tmp + "/s.pbrt").digest() == digest[k], "the digest of a scene with a tabulated file is stable");
+    }
+    std::remove((tmp + "/t.bsdf").c_str()), std::remove((tmp + "/s.pbrt").c_str()), rmdir(tmp.c_str());
+    CHECKF(digest[0] != digest[1], "a scene whose tabulated file changed keeps its digest");
 }
 
 int main(int argc, char **argv)
