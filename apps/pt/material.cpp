@@ -281,6 +281,19 @@ void conductor_index(const udm1scene::Scene &scene, const udm1scene::ParamSet &p
 
 }  // namespace
 
+udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns)
+{
+    udm1scene::Frame f(ns);
+    if (b.kind != Bsdf::MeasuredKind) return f;
+    Vec3 dpdu, dpdv;
+    udm1scene::surface_derivatives(shape, h, ns, &dpdu, &dpdv);
+    Vec3 x = dpdu - ns * udm1scene::dot(dpdu, ns);
+    double len = udm1scene::length(x);
+    if (!(len > 0) || !std::isfinite(len)) return f;  // (pbrt-v4 then takes CoordinateSystem(ns), which f is)
+    f.t = x * (1 / len), f.b = udm1scene::cross(ns, f.t);
+    return f;
+}
+
 Bsdf default_material()
 {
     Bsdf b;
@@ -412,10 +425,6 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             const udm1scene::Param *file = ps.find("filename");
             if (!m.tabulated || !file)  // (the parser reads the file)
                 throw SceneError(ps.where + ": Material \"measured\": no tabulated BSDF file read");
-            if (!m.tabulated->isotropic)
-                throw SceneError(file->where + ": Material \"measured\": " + m.tabulated->path + ": an anisotropic table (phi_i has " +
-                                 std::to_string(m.tabulated->phi_i.size()) + " values): pbrt-v4 orients it by the surface's "
-                                 "dp/du, udm1-pt's shading frame is not so oriented, so anisotropic tables are not modelled");
             b.kind = Bsdf::MeasuredKind;
             auto it = measured_.find(m.tabulated.get());
             if (it == measured_.end())

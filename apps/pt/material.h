@@ -75,6 +75,11 @@ private:
     std::map<const udm1scene::TabulatedBsdf *, std::shared_ptr<const MeasuredTables>> measured_;  // by file (likewise)
 };
 
+// The local frame of the BSDF at hit h (pt/bsdf.h's conventions: z the shading normal ns): a frame around ns; for a
+// tabulated BSDF, whose azimuths are the surface's, the frame pbrt-v4 gives every BSDF: x along dp/du
+// (udm1scene::surface_derivatives) made perpendicular to ns, y = ns x x (around ns alone where dp/du is along ns).
+udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns);
+
 // pbrt-v4's default material, that of a shape with no Material or NamedMaterial before it (area
 // lights' shapes often have none: their back reflects): diffuse, reflectance 0.5.
 Bsdf default_material();

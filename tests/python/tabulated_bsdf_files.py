@@ -16,7 +16,8 @@ density integrates to 1).
 
 python tests/python/tabulated_bsdf_files.py OUT_DIR writes ggx_grey.bsdf (F 0.8 at every wavelength),
 ggx_ramp.bsdf (F rising from 0.2 at 360 nm to 0.9 at 830 nm), ggx_sharp.bsdf (alpha 0.15) and
-ggx_warped.bsdf (the ramp, and luminance and spectra varying over their square) there.
+ggx_warped.bsdf (the ramp, and luminance and spectra varying over their square) and ggx_aniso.bsdf (anisotropic:
+alpha 0.2 along the surface's dp/du, 0.6 across, ggx_aniso_fields) there.
 """
 
 import struct
@@ -99,6 +100,42 @@ def ggx_fields(alpha=0.5, spectrum=None, n_theta_i=9, grid=33, square=8, warped=
     }
 
 
+def ggx_aniso_D(m, ax, ay):
+    return 1 / (np.pi * ax * ay * (m[..., 0] ** 2 / ax ** 2 + m[..., 1] ** 2 / ay ** 2 + m[..., 2] ** 2) ** 2)
+
+
+def ggx_aniso_sigma(w, ax, ay):
+    return (w[..., 2] + np.sqrt(w[..., 2] ** 2 + ax ** 2 * w[..., 0] ** 2 + ay ** 2 * w[..., 1] ** 2)) / 2
+
+
+def ggx_aniso_fields(ax=0.2, ay=0.6, n_phi_i=9, n_theta_i=9, grid=33, square=8, F=0.8):
+    """The anisotropic rough conductor: Trowbridge-Reitz of roughness ax along the surface's x (pbrt-v4's dp/du)
+    and ay along y, D(m) = 1 / (pi ax ay (m_x^2 / ax^2 + m_y^2 / ay^2 + m_z^2)^2), sigma(w) = (w_z + sqrt(w_z^2 +
+    ax^2 w_x^2 + ay^2 w_y^2)) / 2, tabulated over absolute azimuths (phi_i over the whole circle, so pbrt-v4 reads
+    it as anisotropic), F at every wavelength: f = F D(m) / (4 sigma(wo) cos theta_i), exact where wo's (phi,
+    theta) is on a node of phi_i and theta_i and m on one of ndf's."""
+    assert (grid - 1) % (n_theta_i - 1) == 0 and (grid - 1) % (n_phi_i - 1) == 0
+    theta_i = u_to_theta(np.linspace(0, 1, n_theta_i))
+    phi_i = (2 * np.linspace(0, 1, n_phi_i) - 1) * np.pi
+    x = np.linspace(0, 1, grid)
+    tm, pm = np.meshgrid(u_to_theta(x), (2 * np.linspace(0, 1, grid) - 1) * np.pi)  # [y][x]
+    m = np.stack([np.sin(tm) * np.cos(pm), np.sin(tm) * np.sin(pm), np.cos(tm)], -1)
+    vndf = np.empty((n_phi_i, n_theta_i, grid, grid))
+    for j, p in enumerate(phi_i):
+        for k, t in enumerate(theta_i):
+            wo = np.array([np.sin(t) * np.cos(p), np.sin(t) * np.sin(p), np.cos(t)])
+            vndf[j, k] = ggx_aniso_D(m, ax, ay) * np.maximum(0, m @ wo) * 2 * np.pi ** 2 * np.meshgrid(x, x)[0] * np.sin(tm)
+    f32 = np.float32
+    return {
+        "description": np.frombuffer(b"udm1 test: tabulated anisotropic Trowbridge-Reitz conductor", np.uint8),
+        "jacobian": np.array([1], np.uint8),
+        "theta_i": theta_i.astype(f32), "phi_i": phi_i.astype(f32), "wavelengths": np.array([360, 830], f32),
+        "ndf": ggx_aniso_D(m, ax, ay).astype(f32), "sigma": ggx_aniso_sigma(m, ax, ay).astype(f32),
+        "vndf": vndf.astype(f32), "luminance": np.ones((n_phi_i, n_theta_i, square, square), f32),
+        "spectra": np.full((n_phi_i, n_theta_i, 2, square, square), F, f32),
+    }
+
+
 RAMP = (list(np.linspace(360, 830, 11)), list(np.linspace(0.2, 0.9, 11)))
 
 
@@ -109,6 +146,7 @@ def write_test_files(out):
     (out / "ggx_ramp.bsdf").write_bytes(tensor_bytes(ggx_fields(spectrum=RAMP)))
     (out / "ggx_sharp.bsdf").write_bytes(tensor_bytes(ggx_fields(alpha=0.15, grid=65)))
     (out / "ggx_warped.bsdf").write_bytes(tensor_bytes(ggx_fields(spectrum=RAMP, warped=True)))
+    (out / "ggx_aniso.bsdf").write_bytes(tensor_bytes(ggx_aniso_fields()))
 
 
 if __name__ == "__main__":
