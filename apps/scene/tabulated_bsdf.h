@@ -17,8 +17,8 @@
 //   spectra             float32 [P][T][L][H][W]: the BSDF's spectral factor at L wavelengths, over that square
 //   wavelengths         float32 [L] (nm, increasing); description uint8 [n]; jacobian uint8 [1]
 // Anything else is refused: a file that is not a tensor file, another version, a field missing or of another
-// type or shape, data outside the file, a value that is not finite, a density (ndf, vndf, luminance) below 0 or
-// a slice of one that is 0 everywhere, a projected area (sigma) not above 0, axes not increasing, an
+// type or shape, data outside the file, a value that is not finite, a density (ndf, vndf, luminance) below 0, a
+// slice of vndf or luminance that is 0 everywhere, a projected area (sigma) not above 0, axes not increasing, an
 // anisotropic table that does not span the whole circle (pbrt-v4's "reduction"). Spectra may be negative
 // (pbrt-v4 clamps the interpolated value at 0; RGB below).
 //
