@@ -65,6 +65,8 @@ class Case:
     spp: int
     cause: str = ""  # the stated cause of a difference above 1 %
     variants: list = field(default_factory=list)  # cumulative steps that remove the cause
+    setup: object = None  # writes files the scene needs into its folder; returns a digest of them (pbrt-v4's cache)
+    setup_digest: str = ""
 
 
 SENSOR = (r'"string sensor" "[^"]*"', '"string sensor" "cie1931"')
@@ -135,6 +137,7 @@ def cases() -> list[Case]:
         Case("noise", TEST_SCENES / "noise.pbrt", (96, 72), 256),
         Case("format", TEST_SCENES / "format.pbrt", (160, 120), 1024),
         Case("displacement", TEST_SCENES / "displacement.pbrt", (96, 64), 1024),
+        Case("measured", TEST_SCENES / "measured.pbrt", (160, 120), 1024, setup=tabulated_bsdfs),
         Case("clamp", TEST_SCENES / "clamp.pbrt", (160, 120), 1024,
              cause="the film's maxcomponentvalue acts on each sample's sensor values: pbrt-v4's are a spectral "
                    "sample's (four wavelengths, whose XYZ vary from sample to sample), udm1-pt's an RGB sample's, so the "
@@ -142,6 +145,18 @@ def cases() -> list[Case]:
              variants=[Variant("without maxcomponentvalue", [(r' "float maxcomponentvalue" \[ 1 \]', "")])]),
     ]
     return out
+
+
+def tabulated_bsdfs(folder: Path) -> str:
+    """measured.pbrt's tabulated BSDF files (tests/python/tabulated_bsdf_files.py) in folder/bsdfs; their digest."""
+    sys.path.insert(0, str(ROOT / "tests" / "python"))
+    from tabulated_bsdf_files import write_test_files
+
+    write_test_files(folder / "bsdfs")
+    h = hashlib.sha256()
+    for f in sorted((folder / "bsdfs").iterdir()):
+        h.update(f.name.encode() + f.read_bytes())
+    return h.hexdigest()
 
 
 def grey_materials(text: str) -> str:
@@ -181,6 +196,8 @@ def prepare(case: Case, variant: Variant | None, work: Path) -> Path:
     changes; in a folder of its own whose other entries link to the scene's folder (meshes, textures)."""
     folder = work / case.name
     folder.mkdir(parents=True, exist_ok=True)
+    if case.setup:
+        case.setup_digest = case.setup(folder)
     for entry in case.file.parent.iterdir():
         link = folder / entry.name
         if entry.suffix != ".pbrt" and not link.exists():
@@ -228,7 +245,7 @@ def render_both(scene: Path, case: Case, variant: Variant | None, args, seeds: i
             if who == "pbrt":
                 cmd = [args.pbrt, "--spp", str(spp), "--seed", str(seed), "--nthreads", str(pbrt_threads), "--quiet",
                        "--outfile", str(out), *extra, str(scene)]
-                cached = pbrt_cache(args, scene, [str(spp), str(seed), *extra])
+                cached = pbrt_cache(args, scene, [str(spp), str(seed), *extra] + ([case.setup_digest] if case.setup_digest else []))
             else:
                 cmd = [args.tool, "--scene", str(scene), "--spp", str(spp), "--seed", str(seed), "--threads",
                        str(args.threads), "-o", str(out)]

@@ -21,7 +21,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGETS = ["api", "noise", "scene", "mesh", "stream"]
+TARGETS = ["api", "noise", "scene", "mesh", "bsdf", "stream"]
 
 
 def run_target(fuzzer: Path, corpus: Path, work: Path, seconds: int) -> dict:

@@ -3,11 +3,11 @@
 The public pbrt-v4 scene collection's text is readable, its meshes, images and volume data are not. A stand-in
 lets a renderer read a scene through to its end: a PLY tetrahedron (normals and uv on every vertex), a 4x4
 image of one value (square, so that it can also be an equal-area environment map; a flat normal map where
-the scene names it as one), a flat spectrum, an empty gzipped include. Every writer here is a minimal
+the scene names it as one), a flat spectrum, an empty gzipped include, a grey tabulated BSDF (Material "measured"). Every writer here is a minimal
 uncompressed writer of its format, written for this purpose (no image library is needed).
 
 A stand-in is made only where a valid one can be written without the original data; `stand_in` returns
-(None, reason) for the rest (NanoVDB grids, measured BSDF tables, JPEG, lens data), which the caller reports.
+(None, reason) for the rest (NanoVDB grids, JPEG, lens data), which the caller reports.
 """
 
 from __future__ import annotations
@@ -23,7 +23,6 @@ IMAGE_EXTENSIONS = (".png", ".exr", ".pfm", ".tga", ".hdr")
 SPECTRUM_EXTENSIONS = (".spd", ".txt", ".csv")
 NO_STAND_IN = {
     ".nvdb": "a NanoVDB grid (written only by NanoVDB's builder: bench_scene_census.py --nvdb-writer)",
-    ".bsdf": "a measured BSDF table (its tensor format is not reproduced here)",
     ".jpg": "a JPEG image (no JPEG encoder here)",
     ".jpeg": "a JPEG image (no JPEG encoder here)",
     ".dat": "lens data of a realistic camera (not generated)",
@@ -125,6 +124,28 @@ def spectrum() -> bytes:
     return b"# placeholder: a flat stand-in for a spectrum of the pbrt-v4 scene collection\n300 1\n900 1\n"
 
 
+def tabulated_bsdf() -> bytes:
+    """A tensor file of pbrt-v4's measured BSDF (apps/scene/tabulated_bsdf.h), isotropic, each table 2 x 2: normals
+    of uniform density (ndf 1 / pi), their projected area (1 + cos theta) / 2, uniform visible normals and
+    luminance, and a spectral factor of 0.5 at 360 and 830 nm."""
+    half_pi = 1.5707963267948966
+    fields = [("description", "B", [1], b"placeholder"), ("jacobian", "B", [1], [1]),
+              ("theta_i", "f", [2], [0.0, half_pi]), ("phi_i", "f", [1], [0.0]), ("wavelengths", "f", [2], [360.0, 830.0]),
+              ("ndf", "f", [2, 2], [0.3183099] * 4), ("sigma", "f", [2, 2], [1.0, 0.5, 1.0, 0.5]),
+              ("vndf", "f", [1, 2, 2, 2], [1.0] * 8), ("luminance", "f", [1, 2, 2, 2], [1.0] * 8),
+              ("spectra", "f", [1, 2, 2, 2, 2], [0.5] * 16)]
+    fields[0] = ("description", "B", [len(fields[0][3])], fields[0][3])
+    head = b"tensor_file\0" + bytes((1, 0)) + struct.pack("<I", len(fields))
+    offset = len(head) + sum(2 + len(name) + 2 + 1 + 8 + 8 * len(shape) for name, _, shape, _ in fields)
+    records, data = b"", b""
+    for name, kind, shape, values in fields:
+        records += struct.pack("<H", len(name)) + name.encode() + struct.pack("<HBQ", len(shape), 1 if kind == "B" else 10,
+                                                                            offset + len(data))
+        records += b"".join(struct.pack("<Q", n) for n in shape)
+        data += bytes(values) if kind == "B" else struct.pack(f"<{len(values)}f", *values)
+    return head + records + data
+
+
 def empty_include() -> bytes:
     """An include that holds nothing but a comment (for gzipped includes whose text is not readable)."""
     return b"# placeholder: this include's text is not available; it holds nothing here\n"
@@ -140,7 +161,7 @@ def stand_in(name: str, normal_map: bool = False) -> tuple[bytes | None, str]:
     ext = inner[dot:] if dot >= 0 else ""
     writers = {".ply": (ply_tetrahedron, "a PLY tetrahedron"), ".png": (png, "a 4x4 PNG"), ".exr": (exr, "a 4x4 EXR"),
                ".pfm": (pfm, "a 4x4 PFM"), ".tga": (tga, "a 4x4 TGA"), ".hdr": (hdr, "a 4x4 RGBE image"),
-               ".pbrt": (empty_include, "an empty include")}
+               ".pbrt": (empty_include, "an empty include"), ".bsdf": (tabulated_bsdf, "a grey tabulated BSDF")}
     for e in SPECTRUM_EXTENSIONS:
         writers[e] = (spectrum, "a flat spectrum")
     if ext in writers:

@@ -624,6 +624,94 @@ bool Coated::sample(Vec3 wo, double uc, double u1, double u2, Mode mode, Sample 
     return false;
 }
 
+// ---- measured: a tabulated BSDF file ----
+
+MeasuredTables::MeasuredTables(const udm1scene::TabulatedBsdf &b) : isotropic(b.isotropic)
+{
+    ndf = BilinearWarp(b.ndf.data(), b.ndf_w, b.ndf_h, {}, false);
+    sigma = BilinearWarp(b.sigma.data(), b.sigma_w, b.sigma_h, {}, false);
+    vndf = BilinearWarp(b.vndf.data(), b.vndf_w, b.vndf_h, {b.phi_i, b.theta_i}, true);
+    luminance = BilinearWarp(b.luminance.data(), b.w, b.h, {b.phi_i, b.theta_i}, true);
+    for (int c = 0; c < 3; ++c) rgb[c] = BilinearWarp(b.rgb[c].data(), b.w, b.h, {b.phi_i, b.theta_i}, false);
+}
+
+namespace {
+
+// The tables' coordinates of an elevation and an azimuth, and back.
+inline double theta_to_u(double theta) { return std::sqrt(theta * (2 / PI)); }
+inline double phi_to_u(double phi) { return phi * (1 / (2 * PI)) + 0.5; }
+inline double u_to_theta(double u) { return u * u * (PI / 2); }
+inline double u_to_phi(double u) { return (2 * u - 1) * PI; }
+inline double theta_of(Vec3 w) { return std::acos(std::clamp(w.z, -1.0, 1.0)); }
+
+// The solid angle of the normal per unit area of its (theta, phi) coordinates, times 4 (wo . wm), the
+// half vector's: the density of wi per unit density of the normal's coordinates (pbrt-v4 bounds the first
+// factor below by 1e-6).
+inline double measured_jacobian(double ux, double sin_theta_m, double cos_om)
+{
+    return 4 * cos_om * std::max(2 * PI * PI * ux * sin_theta_m, 1e-6);
+}
+
+}  // namespace
+
+Vec3 Measured::f(Vec3 wo, Vec3 wi) const
+{
+    if (!same_hemisphere(wo, wi)) return Vec3();
+    if (wo.z < 0) wo = -wo, wi = -wi;
+    Vec3 wm = wi + wo;
+    if (udm1scene::dot(wm, wm) == 0) return Vec3();
+    wm = udm1scene::normalize(wm);
+    const double theta_o = theta_of(wo), phi_o = std::atan2(wo.y, wo.x);
+    const double param[2] = {phi_o, theta_o};
+    double ux = theta_to_u(theta_of(wm)), uy = phi_to_u(t->isotropic ? std::atan2(wm.y, wm.x) - phi_o : std::atan2(wm.y, wm.x));
+    uy -= std::floor(uy);
+    double a, b, vndf_pdf;
+    t->vndf.invert(ux, uy, param, &a, &b, &vndf_pdf);
+    Vec3 fr(std::max(0.0, t->rgb[0].eval(a, b, param)), std::max(0.0, t->rgb[1].eval(a, b, param)),
+            std::max(0.0, t->rgb[2].eval(a, b, param)));
+    return fr * (t->ndf.eval(ux, uy) / (4 * t->sigma.eval(theta_to_u(theta_o), phi_to_u(phi_o)) * wi.z));
+}
+
+double Measured::pdf(Vec3 wo, Vec3 wi) const
+{
+    if (!same_hemisphere(wo, wi)) return 0;
+    if (wo.z < 0) wo = -wo, wi = -wi;
+    Vec3 wm = wi + wo;
+    if (udm1scene::dot(wm, wm) == 0) return 0;
+    wm = udm1scene::normalize(wm);
+    const double theta_o = theta_of(wo), phi_o = std::atan2(wo.y, wo.x);
+    const double param[2] = {phi_o, theta_o};
+    double ux = theta_to_u(theta_of(wm)), uy = phi_to_u(t->isotropic ? std::atan2(wm.y, wm.x) - phi_o : std::atan2(wm.y, wm.x));
+    uy -= std::floor(uy);
+    double a, b, vndf_pdf;
+    t->vndf.invert(ux, uy, param, &a, &b, &vndf_pdf);
+    const double lum_pdf = t->luminance.eval(a, b, param);
+    return vndf_pdf * lum_pdf / measured_jacobian(ux, std::sqrt(wm.x * wm.x + wm.y * wm.y), udm1scene::dot(wo, wm));
+}
+
+bool Measured::sample(Vec3 wo, double u1, double u2, Sample *s) const
+{
+    const bool flip_wi = wo.z <= 0;
+    if (flip_wi) wo = -wo;
+    const double theta_o = theta_of(wo), phi_o = std::atan2(wo.y, wo.x);
+    const double param[2] = {phi_o, theta_o};
+    double a, b, lum_pdf, ux, uy, vndf_pdf;
+    t->luminance.sample(u1, u2, param, &a, &b, &lum_pdf);
+    t->vndf.sample(a, b, param, &ux, &uy, &vndf_pdf);
+    double phi_m = u_to_phi(uy) + (t->isotropic ? phi_o : 0), theta_m = u_to_theta(ux);
+    double sin_m = std::sin(theta_m), cos_m = std::cos(theta_m);
+    Vec3 wm(sin_m * std::cos(phi_m), sin_m * std::sin(phi_m), cos_m);
+    Vec3 wi = reflect(wo, wm);
+    if (wi.z <= 0) return false;
+    Vec3 fr(std::max(0.0, t->rgb[0].eval(a, b, param)), std::max(0.0, t->rgb[1].eval(a, b, param)),
+            std::max(0.0, t->rgb[2].eval(a, b, param)));
+    s->f = fr * (t->ndf.eval(ux, uy) / (4 * t->sigma.eval(theta_to_u(theta_o), phi_to_u(phi_o)) * wi.z));
+    s->pdf = vndf_pdf * lum_pdf / measured_jacobian(ux, sin_m, udm1scene::dot(wo, wm));
+    s->wi = flip_wi ? -wi : wi;
+    s->specular = false, s->reflection = true, s->eta = 1;
+    return s->pdf > 0 && std::isfinite(s->pdf);
+}
+
 // ---- the material ----
 
 Vec3 Bsdf::f(Vec3 wo, Vec3 wi, Mode mode) const
@@ -633,6 +721,7 @@ Vec3 Bsdf::f(Vec3 wo, Vec3 wi, Mode mode) const
     case CoatedDiffuse: case CoatedConductor: return coated.f(wo, wi, mode);
     case DielectricKind: return dielectric.f(wo, wi, mode);
     case DiffuseTransmissionKind: return transmission.f(wo, wi);
+    case MeasuredKind: return measured.f(wo, wi);
     default: return conductor.f(wo, wi);
     }
 }
@@ -644,6 +733,7 @@ double Bsdf::pdf(Vec3 wo, Vec3 wi, Mode mode) const
     case CoatedDiffuse: case CoatedConductor: return coated.pdf(wo, wi, mode);
     case DielectricKind: return dielectric.pdf(wo, wi, mode, Both);
     case DiffuseTransmissionKind: return transmission.pdf(wo, wi);
+    case MeasuredKind: return measured.pdf(wo, wi);
     default: return conductor.pdf(wo, wi);
     }
 }
@@ -656,6 +746,7 @@ bool Bsdf::sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode
     case CoatedDiffuse: case CoatedConductor: return coated.sample(wo, uc, u1, u2, mode, s);
     case DielectricKind: return dielectric.sample(wo, uc, u1, u2, mode, Both, s);
     case DiffuseTransmissionKind: return transmission.sample(wo, uc, u1, u2, s);
+    case MeasuredKind: return measured.sample(wo, u1, u2, s);
     default: return conductor.sample(wo, u1, u2, s);
     }
 }

@@ -8,11 +8,15 @@
 //                  a diffuse or a conductor base, two-sided, with a homogeneous medium between them
 //                  (thickness, albedo, Henyey-Greenstein g; none where the albedo is 0), evaluated
 //                  by pbrt-v4's stochastic layered random walk (LayeredBxDF), maxdepth, nsamples.
+//   measured       a tabulated BSDF file (pbrt-v4 MeasuredBxDF): reflection on both sides, from tables of
+//                  the microfacet normals' density, the visible normals' and the spectral factor (in RGB)
 // f() and pdf() of the coated materials are themselves unbiased random estimates, drawn from a
 // generator seeded by a hash of the directions (as pbrt does), so they are deterministic.
 #pragma once
 
+#include "bilinear_warp.h"
 #include "math.h"
+#include "tabulated_bsdf.h"
 
 #include <cstdint>
 
@@ -116,15 +120,39 @@ struct Coated {
     bool sample(Vec3 wo, double uc, double u1, double u2, Mode mode, Sample *s) const;
 };
 
+// A tabulated BSDF file's tables (scene/tabulated_bsdf.h) as functions on the unit square: ndf over the
+// normal's (theta, phi), sigma over the outgoing direction's, vndf over the normal's for each outgoing (phi,
+// theta) (the azimuth relative to the outgoing one where isotropic), luminance and the RGB factor over the
+// square vndf warps, for each outgoing (phi, theta); theta maps to sqrt(theta / (pi / 2)), phi to
+// phi / (2 pi) + 1/2.
+struct MeasuredTables {
+    BilinearWarp ndf, sigma, vndf, luminance, rgb[3];
+    bool isotropic = true;
+    explicit MeasuredTables(const udm1scene::TabulatedBsdf &b);
+};
+
+// pbrt-v4's MeasuredBxDF: f(wo, wi) = rgb(u) D(wm) / (4 sigma(wo) cos theta_i), wm the half vector and u the
+// point of the square that vndf (for wo) warps to wm's coordinates; sampled by warping (u1, u2) by luminance,
+// then by vndf, to a normal, and reflecting wo about it (none below the horizon). Reflection only, on both
+// sides (the directions mirrored where wo is below).
+struct Measured {
+    const MeasuredTables *t = nullptr;
+    Vec3 f(Vec3 wo, Vec3 wi) const;
+    double pdf(Vec3 wo, Vec3 wi) const;
+    bool sample(Vec3 wo, double u1, double u2, Sample *s) const;
+};
+
 // A material at a point: one of the above.
 struct Bsdf {
-    enum Kind { Diffuse, CoatedDiffuse, DielectricKind, ConductorKind, CoatedConductor, DiffuseTransmissionKind } kind =
-        Diffuse;
+    enum Kind {
+        Diffuse, CoatedDiffuse, DielectricKind, ConductorKind, CoatedConductor, DiffuseTransmissionKind, MeasuredKind
+    } kind = Diffuse;
     Lambert diffuse;
     Coated coated;  // coateddiffuse and coatedconductor
     Dielectric dielectric;
     Conductor conductor;
     DiffuseTransmission transmission;
+    Measured measured;
     Vec3 f(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     double pdf(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode = Mode::Radiance) const;

@@ -79,7 +79,7 @@ bool Estimator::scatter(PathState &p, const Hit &h, ShadowTest *shadow) const
     Vec3 ns = udm1scene::shading_normal(shape, h);  // (surface.h)
     Bsdf scratch;  // a textured material's BSDF at this vertex
     const Bsdf &bsdf = shape.material >= 0 ? materials_.at(shape.material, shape, h, wo, &ns, &scratch) : default_bsdf_;
-    Frame frame(ns);
+    Frame frame = shading_frame(bsdf, shape, h, ns);  // (material.h)
     Vec3 wo_l = frame.to_local(wo);
     if (wo_l.z == 0) return false;
     double importance_sum = NAN;  // (for MIS at a light the next ray may hit)
@@ -473,7 +473,7 @@ bool Estimator::surface_step(PathState &p, const Hit &h, ShadowTest *shadow) con
     Vec3 ns = shading_normal(shape, h);
     Bsdf scratch;
     const Bsdf &bsdf = shape.material >= 0 ? materials_.at(shape.material, shape, h, wo, &ns, &scratch) : default_bsdf_;
-    Frame frame(ns);
+    Frame frame = shading_frame(bsdf, shape, h, ns);  // (material.h)
     Vec3 wo_l = frame.to_local(wo);
     if (wo_l.z == 0) return false;
     double importance_sum = NAN;

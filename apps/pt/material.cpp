@@ -281,6 +281,19 @@ void conductor_index(const udm1scene::Scene &scene, const udm1scene::ParamSet &p
 
 }  // namespace
 
+udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns)
+{
+    udm1scene::Frame f(ns);
+    if (b.kind != Bsdf::MeasuredKind) return f;
+    Vec3 dpdu, dpdv;
+    udm1scene::surface_derivatives(shape, h, ns, &dpdu, &dpdv);
+    Vec3 x = dpdu - ns * udm1scene::dot(dpdu, ns);
+    double len = udm1scene::length(x);
+    if (!(len > 0) || !std::isfinite(len)) return f;  // (pbrt-v4 then takes CoordinateSystem(ns), which f is)
+    f.t = x * (1 / len), f.b = udm1scene::cross(ns, f.t);
+    return f;
+}
+
 Bsdf default_material()
 {
     Bsdf b;
@@ -408,11 +421,19 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             mm.amount_tex = texture_param(scene, ps, "amount", "float");
             if (mm.amount_tex < 0) mm.amount = ps.get_float("amount", 0.5);
         } else if (m.type == "measured") {
-            throw SceneError(ps.where + ": Material \"measured\" is not supported (pbrt-v4's tabulated BSDF files)");
+            only(ps, {"filename", "displacement", "normalmap"}, "measured");
+            const udm1scene::Param *file = ps.find("filename");
+            if (!m.tabulated || !file)  // (the parser reads the file)
+                throw SceneError(ps.where + ": Material \"measured\": no tabulated BSDF file read");
+            b.kind = Bsdf::MeasuredKind;
+            auto it = measured_.find(m.tabulated.get());
+            if (it == measured_.end())
+                it = measured_.emplace(m.tabulated.get(), std::make_shared<const MeasuredTables>(*m.tabulated)).first;
+            b.measured.t = it->second.get();
         } else {
             throw SceneError(ps.where + ": Material \"" + m.type +
                              "\" is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, "
-                             "diffusetransmission, mix, interface)");
+                             "diffusetransmission, measured, mix, interface)");
         }
         if (!mm.mix) {
             mm.displacement_tex = texture_param(scene, ps, "displacement", "float");

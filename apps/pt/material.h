@@ -1,5 +1,5 @@
 // material.h - the scene's materials for the path tracer. Each Material / MakeNamedMaterial of the
-// subset (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, diffusetransmission, mix;
+// subset (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, diffusetransmission, measured, mix;
 // interface, which only bounds media) becomes a BSDF template plus the textures that vary it over the
 // surface (any of pbrt-v4's texture-valued parameters of these materials: reflectance, transmittance, the
 // medium's albedo, g and thickness, roughnesses, a conductor's reflectance, a mix's amount), a bump map
@@ -7,7 +7,7 @@
 // pbrt-v4 does: the second material where a hash of the point and the outgoing direction falls below the
 // amount. Spectra become RGB as pbrt-v4's film would record them (scene/spectrum.h): reflectances under
 // D65, a spectral metal's Fresnel reflectance by channel and angle (a table), a dielectric's single index
-// at 550 nm.
+// at 550 nm, a tabulated BSDF's spectral factor per table entry (scene/tabulated_bsdf.h).
 #pragma once
 
 #include "bsdf.h"
@@ -16,6 +16,7 @@
 #include "surface.h"
 #include "textures.h"
 
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -71,7 +72,13 @@ private:
     udm1scene::Textures textures_;
     std::vector<MaterialModel> models_;
     std::vector<std::unique_ptr<FresnelTable>> tables_;  // spectral conductors' (their BSDFs point here)
+    std::map<const udm1scene::TabulatedBsdf *, std::shared_ptr<const MeasuredTables>> measured_;  // by file (likewise)
 };
+
+// The local frame of the BSDF at hit h (pt/bsdf.h's conventions: z the shading normal ns): a frame around ns; for a
+// tabulated BSDF, whose azimuths are the surface's, the frame pbrt-v4 gives every BSDF: x along dp/du
+// (udm1scene::surface_derivatives) made perpendicular to ns, y = ns x x (around ns alone where dp/du is along ns).
+udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns);
 
 // pbrt-v4's default material, that of a shape with no Material or NamedMaterial before it (area
 // lights' shapes often have none: their back reflects): diffuse, reflectance 0.5.

@@ -12,6 +12,7 @@
 #include "medium_presets.h"
 #include "mesh_io.h"
 #include "spectrum.h"
+#include "tabulated_bsdf.h"
 #include "textures.h"
 #include "white_balance.h"
 #include "udm1app/one_line.h"
@@ -982,6 +983,7 @@ private:
         m.type = string_arg(lex, "Material");
         m.params = with_attributes(params(lex, t), MATERIAL);
         resolve_material_files(&m.params);
+        tabulated_material(c.here, &m);
         scene_.materials.push_back(m);
         st_.material = (int)scene_.materials.size() - 1;
         st_.named_material.clear();
@@ -999,6 +1001,7 @@ private:
         m.name = name;
         m.type = m.params.get_string("type", "");
         if (m.type.empty()) throw SceneError(here + ": MakeNamedMaterial \"" + name + "\" has no \"string type\"");
+        tabulated_material(here, &m);
         auto it = named_.find(name);
         if (it != named_.end())
             throw SceneError(here + ": MakeNamedMaterial \"" + quote(name) + "\" was already made at " + it->second.where +
@@ -1013,6 +1016,32 @@ private:
         for (Param &p : ps->params)
             if (p.name == "normalmap" && p.type == "string" && p.strings.size() == 1 && !p.strings[0].empty())
                 p.strings[0] = resolve(p.strings[0]);
+    }
+
+    // Material "measured": its "string filename" (pbrt-v4 needs one) found by pbrt-v4's path rule (resolve) and
+    // read (tabulated_bsdf.h), once per file as pbrt-v4 reads it; a file it cannot read is one line naming it.
+    void tabulated_material(const std::string &here, Material *m)
+    {
+        if (m->type != "measured") return;
+        Param *file = nullptr;
+        for (Param &p : m->params.params)
+            if (p.name == "filename" && !file) file = &p;
+        if (!file || file->type != "string" || file->strings.size() != 1 || file->strings[0].empty())
+            throw SceneError((file ? file->where : here) + ": Material \"measured\": no \"string filename\" (pbrt-v4 needs "
+                                                          "the tabulated BSDF file)");
+        const std::string name = file->strings[0], path = resolve(name);
+        file->strings[0] = path;
+        auto it = tabulated_.find(path);
+        if (it != tabulated_.end()) {
+            m->tabulated = it->second;
+            return;
+        }
+        try {
+            m->tabulated = read_tabulated_bsdf(path);
+        } catch (const SceneError &e) {
+            throw SceneError(file->where + ": Material \"measured\": " + e.what() + where_looked(name, path));
+        }
+        tabulated_[path] = m->tabulated;
     }
 
     // The name is looked up when the scene is complete (finish()), as pbrt-v4 does when it creates the scene:
@@ -2158,6 +2187,7 @@ private:
     std::vector<State> stack_;                             // AttributeBegin and ObjectBegin push the state
     std::vector<std::pair<char, std::string>> blocks_;     // ... 'a' or 'o', and where
     std::map<std::string, NamedMaterial> named_;
+    std::map<std::string, std::shared_ptr<const TabulatedBsdf>> tabulated_;  // the measured materials' files, by path
     std::vector<PendingMaterial> pending_materials_;
     std::vector<AreaLight> templates_;  // AreaLightSource of the blocks; each shape gets a copy
     bool camera_set_ = false, in_world_ = false;

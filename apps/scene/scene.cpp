@@ -7,6 +7,7 @@
 #include "builtin.h"
 #include "mesh_io.h"
 #include "pbrt_parser.h"
+#include "tabulated_bsdf.h"
 
 #include <sys/stat.h>
 
@@ -302,6 +303,7 @@ uint64_t Scene::digest() const
             f.vec(std::vector<char>(p.name.begin(), p.name.end())), f.vec(p.numbers);
             for (const std::string &t : p.strings) f.vec(std::vector<char>(t.begin(), t.end()));
         }
+        if (m.tabulated) f.value(m.tabulated->digest);  // (the file's contents, not only its name)
     }
     for (const Texture &t : textures) {
         for (const std::string *x : {&t.name, &t.kind, &t.type, &t.filename, &t.wrap})

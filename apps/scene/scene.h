@@ -101,10 +101,13 @@ struct Texture {
     std::string where;
 };
 
+struct TabulatedBsdf;  // tabulated_bsdf.h
+
 struct Material {
     std::string name;  // MakeNamedMaterial's name ("" for Material)
     std::string type;  // "diffuse", "coateddiffuse", ...
     ParamSet params;
+    std::shared_ptr<const TabulatedBsdf> tabulated;  // "measured": its file, read (one per file, shared)
 };
 
 // A pbrt-v4 medium in linear sRGB (the parser reduces its spectra, pbrt_parser.h): absorption and scattering

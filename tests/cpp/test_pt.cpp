@@ -10,6 +10,8 @@
 #include "udm1app/image_write.h"
 #include "lights.h"
 #include "spectrum.h"
+#include "tabulated_bsdf.h"
+#include "file_read.h"
 
 #include <tbb/global_control.h>
 
@@ -18,6 +20,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <sys/stat.h>
 #include <unistd.h>
 
 using namespace udm1scene;
@@ -1199,6 +1202,154 @@ static void test_film_round_trip()
 
 // With no argument every test runs; with one, the test of that name (CTest runs them one by one, side by side);
 // "--listed NAME..." fails naming any test that is not among the names (CTest's list is checked against this one).
+// Material "measured" on tabulated BSDF files of known content (tests/python/tabulated_bsdf_files.py, written to
+// UDM1_TEST_BSDF_DIR by the CTest fixture cpp.pt.measured_files): a tabulated Trowbridge-Reitz conductor whose
+// f is F D(m) / (4 sigma(wo) cos theta_i) in closed form. Where the tables are exact (wo's elevation on a node,
+// the half vector on one of ndf's) f equals it; between nodes it is within the interpolation's error; f, pdf and
+// sampling agree (sample() against f() and pdf(), the sampled directions against pdf() by chi-square, the
+// albedo by sampling against quadrature), both sides alike, rotations about the normal change nothing
+// (isotropic), the spectral factor becomes the RGB of the spectrum under D65, and a scene's digest changes with
+// the tabulated file's contents.
+static void test_measured()
+{
+    const std::string dir = UDM1_TEST_BSDF_DIR;
+    auto load = [&](const char *name) {
+        try {
+            return read_tabulated_bsdf(dir + "/" + name);
+        } catch (const SceneError &e) {
+            std::fprintf(stderr, "test_measured: %s (the fixture cpp.pt.measured_files writes the files)\n", e.what());
+            std::exit(1);
+        }
+    };
+    constexpr double PI = M_PI;
+    // Trowbridge-Reitz of roughness ax along x and ay along y: the normals' density and the projected area
+    auto D = [](Vec3 m, double ax, double ay) {
+        return 1 / (PI * ax * ay * std::pow(m.x * m.x / (ax * ax) + m.y * m.y / (ay * ay) + m.z * m.z, 2));
+    };
+    auto sigma = [](Vec3 w, double ax, double ay) {
+        return (w.z + std::sqrt(w.z * w.z + ax * ax * w.x * w.x + ay * ay * w.y * w.y)) / 2;
+    };
+    struct Case {
+        const char *file;
+        double ax, ay, F;  // F 0: no closed form (ggx_warped: luminance and spectra vary over the warped square)
+    };
+    auto closed_form = [&](const Case &c, Vec3 wo, Vec3 wi) {
+        return D(normalize(wo + wi), c.ax, c.ay) / (4 * sigma(wo, c.ax, c.ay) * wi.z);
+    };
+    int lengthy = 0;  // (the albedo and chi-square checks on every other (file, wo): half the time, each file twice)
+    for (Case c : {Case{"ggx_grey.bsdf", 0.5, 0.5, 0.8}, Case{"ggx_sharp.bsdf", 0.15, 0.15, 0.8},
+                   Case{"ggx_warped.bsdf", 0.5, 0.5, 0}, Case{"ggx_aniso.bsdf", 0.2, 0.6, 0.8}}) {
+        ++lengthy;
+        auto tab = load(c.file);
+        const bool closed = c.F > 0, isotropic = c.ax == c.ay;
+        CHECKF(tab->isotropic == isotropic && tab->theta_i.size() == 9 && tab->phi_i.size() == (isotropic ? 1u : 9u),
+               "%s: read as %s, with 9 elevations", c.file, isotropic ? "isotropic" : "anisotropic");
+        MeasuredTables tables(*tab);
+        Bsdf b;
+        b.kind = Bsdf::MeasuredKind, b.measured.t = &tables;
+        const Vec3 grey = albedo_rgb(Spectrum::constant(c.F));
+        // exact: wo on each tabulated elevation (at any azimuth where isotropic, else on the tabulated ones), the
+        // half vector on ndf's nodes (its azimuth relative to wo's where isotropic)
+        std::mt19937_64 rng(17);
+        std::uniform_real_distribution<double> U(0, 1);
+        double worst = 0;
+        int n = 0;
+        for (size_t k = 0; k + 1 < tab->theta_i.size(); ++k)
+            for (size_t q = 0; q < tab->phi_i.size(); q += 3) {
+                double to = tab->theta_i[k], po = isotropic ? 0.3 + k : tab->phi_i[q];
+                Vec3 wo(std::sin(to) * std::cos(po), std::sin(to) * std::sin(po), std::cos(to));
+                for (int j = 1; j < tab->ndf_w; j += 3)
+                    for (int r = 0; r < tab->ndf_h; r += isotropic ? 1 : 4) {
+                        double u = (double)j / (tab->ndf_w - 1), tm = u * u * PI / 2;
+                        double pm = (2.0 * r / (tab->ndf_h - 1) - 1) * PI + (isotropic ? po + 0.7 : 0);
+                        Vec3 m(std::sin(tm) * std::cos(pm), std::sin(tm) * std::sin(pm), std::cos(tm));
+                        Vec3 wi = m * (2 * dot(wo, m)) - wo;
+                        if (wi.z < 0.05) continue;
+                        Vec3 f = b.f(wo, wi), expect = grey * closed_form(c, wo, wi);
+                        for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::fabs(f[ch] / expect[ch] - 1));
+                        ++n;
+                    }
+            }
+        CHECKF(!closed || (n > 100 && worst < 2e-4), "%s: f on the tables' nodes within %.2g of the closed form (%d directions)",
+               c.file, worst, n);
+        // between nodes: the bilinear tables' error, a few per cent at most away from the peak
+        double err = 0, total = 0;
+        for (int i = 0; i < (closed ? 20000 : 0); ++i) {
+            double zo = 0.15 + 0.85 * U(rng), po = 2 * PI * U(rng), ro = std::sqrt(1 - zo * zo);
+            double zi = 0.15 + 0.85 * U(rng), pi_ = 2 * PI * U(rng), ri = std::sqrt(1 - zi * zi);
+            Vec3 wo(ro * std::cos(po), ro * std::sin(po), zo), wi(ri * std::cos(pi_), ri * std::sin(pi_), zi);
+            double f = b.f(wo, wi).y, e = grey.y * closed_form(c, wo, wi);
+            err += std::fabs(f - e) * zi, total += e * zi;
+        }
+        CHECKF(!closed || err < 0.03 * total, "%s: f between the nodes within %.3f (relative, cosine-weighted mean) of the closed form",
+               c.file, err / total);
+        // sampling against evaluation, both sides, rotations about the normal
+        for (Vec3 wo : {normalize(Vec3(0.2, 0.1, 1.0)), normalize(Vec3(-0.6, 0.5, 0.4)), normalize(Vec3(0.9, 0.1, 0.15)),
+                        normalize(Vec3(0.3, -0.2, -0.7))}) {
+            char what[128];
+            std::snprintf(what, sizeof what, "measured %s, wo.z %.2f", c.file, wo.z);
+            double worst_f = 0, worst_pdf = 0, most_turned = 0;
+            int sampled = 0;
+            for (int i = 0; i < 2000; ++i) {
+                Sample s;
+                if (!b.sample(wo, U(rng), U(rng), U(rng), &s)) continue;
+                ++sampled;
+                CHECKF(s.wi.z * wo.z > 0 && s.reflection && !s.specular, "%s: a sample reflects", what);
+                Vec3 f = b.f(wo, s.wi);
+                worst_f = std::max(worst_f, std::fabs(f.y / s.f.y - 1));
+                worst_pdf = std::max(worst_pdf, std::fabs(b.pdf(wo, s.wi) / s.pdf - 1));
+                // the same directions turned about the normal, and mirrored to the other side
+                double a = 2 * PI * U(rng), ca = std::cos(a), sa = std::sin(a);
+                auto turn = [&](Vec3 v) { return Vec3(ca * v.x - sa * v.y, sa * v.x + ca * v.y, v.z); };
+                const double turned = std::fabs(b.f(turn(wo), turn(s.wi)).y / f.y - 1);
+                CHECKF(!isotropic || turned < 1e-3, "%s: f changes with a turn about the normal", what);
+                most_turned = std::max(most_turned, turned);
+                CHECKF(std::fabs(b.f(-wo, -s.wi).y / f.y - 1) < 1e-9, "%s: f differs on the other side", what);
+            }
+            CHECKF(isotropic || most_turned > 0.2, "%s: f does not change with a turn about the normal (at most %.3f)", what,
+                   most_turned);
+            CHECKF(sampled > 1000 && worst_f < 1e-6 && worst_pdf < 1e-6,
+                   "%s: %d samples, their f and pdf within %.2g and %.2g of f() and pdf()", what, sampled, worst_f, worst_pdf);
+            if (++lengthy % 2 == 0) albedo_check(b, wo, what), chi2_check(b, wo, what);
+            CHECKF(b.f(wo, Vec3(wo.x, wo.y, -wo.z)).y == 0 && b.pdf(wo, Vec3(wo.x, wo.y, -wo.z)) == 0,
+                   "%s: transmits", what);
+        }
+    }
+    // the spectral factor: the RGB of the interpolated spectrum under D65 (ggx_ramp: 0.2 at 360 nm to 0.9 at 830 nm)
+    auto grey = load("ggx_grey.bsdf"), ramp = load("ggx_ramp.bsdf");
+    MeasuredTables tg(*grey), tr(*ramp);
+    Bsdf bg, br;
+    bg.kind = br.kind = Bsdf::MeasuredKind, bg.measured.t = &tg, br.measured.t = &tr;
+    Spectrum s;
+    for (int i = 0; i <= 10; ++i) s.nm.push_back(360 + 47 * i), s.value.push_back(0.2 + 0.07 * i);
+    Vec3 expect = albedo_rgb(s) * (1 / 0.8), wo = normalize(Vec3(0.3, 0.2, 0.8)), wi = normalize(Vec3(-0.4, 0.1, 0.7));
+    Vec3 fg = bg.f(wo, wi), fr = br.f(wo, wi);
+    for (int ch = 0; ch < 3; ++ch)
+        CHECKF(std::fabs(fr[ch] / fg[ch] - expect[ch]) < 1e-4 * expect[ch] + 1e-6,
+               "ramp / grey channel %d: %.6f, the spectrum's RGB under D65 %.6f", ch, fr[ch] / fg[ch], expect[ch]);
+    CHECKF(expect.x > expect.y && expect.y > expect.z, "the ramp is reddish (%g %g %g)", expect.x, expect.y, expect.z);
+    // a scene's digest (the key of cached references) holds the tabulated file's contents, not only its name: the
+    // same scene file, its tabulated file rewritten with other tables
+    char tmpl[] = "/tmp/udm1-test-measured-XXXXXX";
+    const std::string tmp = mkdtemp(tmpl) ? tmpl : "";
+    CHECKF(!tmp.empty(), "a temporary folder");
+    FILE *f = std::fopen((tmp + "/s.pbrt").c_str(), "w");
+    std::fputs("Camera \"perspective\"\nWorldBegin\nMaterial \"measured\" \"string filename\" \"t.bsdf\"\n"
+               "Shape \"sphere\"\n", f);
+    std::fclose(f);
+    uint64_t digest[2];
+    for (int k = 0; k < 2; ++k) {
+        std::string bytes = udm1scene::read_regular_file(dir + (k ? "/ggx_ramp.bsdf" : "/ggx_grey.bsdf"), "file");
+        f = std::fopen((tmp + "/t.bsdf").c_str(), "wb");
+        std::fwrite(bytes.data(), 1, bytes.size(), f);
+        std::fclose(f);
+        digest[k] = load_scene(tmp + "/s.pbrt").digest();
+        CHECKF(load_scene(tmp + "/s.pbrt").digest() == digest[k], "the digest of a scene with a tabulated file is stable");
+    }
+    std::remove((tmp + "/t.bsdf").c_str()), std::remove((tmp + "/s.pbrt").c_str()), rmdir(tmp.c_str());
+    CHECKF(digest[0] != digest[1], "a scene whose tabulated file changed keeps its digest");
+}
+
 int main(int argc, char **argv)
 {
     static const struct { const char *name; void (*run)(); } tests[] = {
@@ -1219,6 +1370,7 @@ int main(int argc, char **argv)
         {"loops_agree", test_loops_agree},
         {"general_loop_equals_scalar", test_general_loop_equals_scalar},
         {"film_round_trip", test_film_round_trip},
+        {"measured", test_measured},
     };
     if (argc >= 2 && std::string(argv[1]) == "--listed") {
         int missing = 0;

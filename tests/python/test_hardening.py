@@ -2,7 +2,7 @@
 
 - bad input: each documented bad input gives a one-line error that names it, a non-zero exit, and no
   output file (not even a temporary one) in the output folder; so do inputs and outputs that make a
-  library fail (damaged images, unwritable outputs, broken meshes) and scene text with control characters;
+  library fail (damaged images, unwritable outputs, broken meshes and tabulated BSDF files) and scene text with control characters;
 - determinism: every tool's output is bit-identical across 1, 2 and 8 threads and across repeated runs."""
 
 import gzip
@@ -102,6 +102,10 @@ def library_inputs(tmp_path_factory):
     (d / "badhead.ply").write_bytes(b"ply\nformat \x1b[2Jbinary\r\nend_header\n")
     (d / "noend.ply").write_bytes(b"ply\nformat ascii 1.0\nelement vertex 3\n")
     (d / "ctl.obj").write_bytes(b"v 0 0 0\nv 1 \x1b[0m 0\n")
+    # a tabulated BSDF file (Material "measured") whose one field, named with control characters, lies outside it
+    name = b"nd\x1b[2J\r\x85\xff\tf"
+    (d / "ctl.bsdf").write_bytes(b"tensor_file\0\x01\x00" + struct.pack("<I", 1) + struct.pack("<H", len(name)) + name +
+                                 struct.pack("<HBQQ", 1, 10, 1 << 40, 4))
     scenes = {
         "texture.pbrt": SCENE_HEAD + 'Texture "t" "spectrum" "imagemap" "string filename" "cut.png"\n'
                         'Material "diffuse" "texture reflectance" "t"\n' + SCENE_TRI,
@@ -115,6 +119,7 @@ def library_inputs(tmp_path_factory):
         "gz.pbrt": SCENE_HEAD + 'Include "inc.pbrt"\n',
         "badgz.pbrt": SCENE_HEAD + 'Include "bad.pbrt.gz"\n',
         "spd.pbrt": SCENE_HEAD + 'AreaLightSource "diffuse" "spectrum L" "spd.txt"\n' + SCENE_TRI,
+        "measured.pbrt": SCENE_HEAD + 'Material "measured" "string filename" "ctl.bsdf"\n' + SCENE_TRI,
     }
     for name, text in scenes.items():
         (d / name).write_bytes(text.encode("latin-1"))
@@ -161,6 +166,8 @@ LIBRARY_BAD = [
     ("ao", ["--scene", "{in}/badhead.ply", "-o", "{out}.exr"], ["badhead.ply:2"], None),
     ("pt", ["--scene", "{in}/plymesh.pbrt", "-o", "{out}.exr"], ["plymesh.pbrt:4", "noend.ply"], None),
     ("ao", ["--scene", "{in}/ctl.obj", "-o", "{out}.exr"], ["ctl.obj:2"], None),
+    # a tabulated BSDF file's field named with control characters (quoted in the message)
+    ("pt", ["--scene", "{in}/measured.pbrt", "-o", "{out}.exr"], ["measured.pbrt:4", "ctl.bsdf", "lies outside"], None),
     # scene text quoted in the message: CR, tab, escape sequences, DEL, C1 controls, NUL, a line of 100000
     # bytes, a gzip file where text is expected, a file named .gz that is not gzip, a spectrum file's bad word
     ("pt", ["--scene", "{in}/cr.pbrt", "-o", "{out}.exr"], ["cr.pbrt:4"], None),

@@ -33,7 +33,7 @@ SCENES = {
     # renders as it stands: nothing it names is absent
     "plain/plain.pbrt": VIEW + LIGHT + 'Material "diffuse"\nShape "trianglemesh" "integer indices" [ 0 1 2 ]\n'
                                        '    "point3 P" [ -1 -1 0  1 -1 0  0 1 0 ]\n',
-    # renders with stand-ins: a mesh, image textures of every format, an environment map, spectra
+    # renders with stand-ins: a mesh, image textures of every format, an environment map, spectra, a tabulated BSDF
     "assets/assets.pbrt": VIEW + LIGHT + 'LightSource "infinite" "string filename" "textures/sky.exr"\n'
         + "".join(f'Texture "t{e}" "spectrum" "imagemap" "string filename" "textures/wood.{e}"\n'
                   for e in ("png", "exr", "pfm", "tga", "hdr"))
@@ -42,7 +42,8 @@ SCENES = {
                   f'Shape "sphere" "float radius" 0.3\nAttributeEnd\n'
                   for i, e in enumerate(("exr", "pfm", "tga", "hdr")))
         + 'Material "conductor" "spectrum eta" "spds/x.eta.spd" "spectrum k" "spds/x.k.spd"\n'
-          'Shape "sphere" "float radius" 0.2\n',
+          'Shape "sphere" "float radius" 0.2\n'
+        + 'Material "measured" "string filename" "bsdfs/x.bsdf"\nTranslate 0 1 0\nShape "sphere" "float radius" 0.2\n',
     # refused: curves are not modelled
     "unsupported/curve.pbrt": VIEW + LIGHT
     + 'Shape "curve" "point3 P" [ 0 0 0  1 0 0  1 1 0  0 1 0 ] "float width" 0.1\n',
@@ -133,9 +134,11 @@ def test_stand_ins_are_what_they_say():
     normal, what = stand_in("n.png", normal_map=True)
     assert what.endswith("(flat normal map)") and zlib.decompress(
         normal[normal.index(b"IDAT") + 4:normal.index(b"IEND") - 8]) == (b"\x00" + bytes((128, 128, 255)) * 4) * 4
-    for name in ("g.nvdb", "b.bsdf", "p.jpg"):
+    for name in ("g.nvdb", "p.jpg"):
         data, why = stand_in(name)
         assert data is None and why
+    bsdf, what = stand_in("b.bsdf")
+    assert what == "a grey tabulated BSDF" and bsdf.startswith(b"tensor_file\0\x01\x00")
     assert stand_in("x.spd")[0].split(b"\n")[1:3] == [b"300 1", b"900 1"]
 
 
@@ -160,10 +163,12 @@ def test_renders_with_stand_ins_udm1_pt_reads(census):
     rows = census["rows"]
     assert rows["plain/plain.pbrt"]["result"] == "renders" and rows["plain/plain.pbrt"]["stand_ins"] == {}
     assets = rows["assets/assets.pbrt"]
-    # udm1-pt read every stand-in (a mesh, five image formats, an environment map, two spectra) to render it
+    # udm1-pt read every stand-in (a mesh, five image formats, an environment map, two spectra, a tabulated BSDF)
+    # to render it
     assert assets["result"] == "renders", assets
     assert sorted(assets["stand_ins"]) == sorted(
-        ["assets/geometry/part.ply", "assets/textures/sky.exr", "assets/spds/x.eta.spd", "assets/spds/x.k.spd"]
+        ["assets/geometry/part.ply", "assets/textures/sky.exr", "assets/spds/x.eta.spd", "assets/spds/x.k.spd",
+         "assets/bsdfs/x.bsdf"]
         + [f"assets/textures/wood.{e}" for e in ("png", "exr", "pfm", "tga", "hdr")])
     overlay = census["out"] / "overlay"
     assert (overlay / "assets/geometry/part.ply").read_bytes() == stand_in("part.ply")[0]

@@ -270,7 +270,7 @@ HEAD = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]\nCame
         ('Material "conductor" "spectrum eta" [ 400 -0.2 700 0.2 ] "spectrum k" [ 300 3 900 3 ]\nShape "sphere"\n', 4,
          "eta and k must not be negative"),
         ('Material "diffuse" "string normalmap" "nothere.png"\nShape "sphere"\n', 4, "nothere.png"),
-        ('Material "measured" "string filename" "x.bsdf"\nShape "sphere"\n', 4, 'Material "measured" is not supported'),
+        ('Material "measured" "string filename" "x.bsdf"\nShape "sphere"\n', 4, "x.bsdf: cannot open the tabulated BSDF file"),
     ],
 )
 def test_refusals_name_file_and_line(body, line, words, tmp_path):
