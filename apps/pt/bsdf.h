@@ -156,6 +156,20 @@ struct Bsdf {
     Vec3 f(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     double pdf(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode = Mode::Radiance) const;
+    // Whether a turn of the frame about the normal changes the BSDF: anisotropic microfacets (uroughness and
+    // vroughness differ) and tabulated BSDFs, which pbrt-v4 orients by the surface's dp/du (shading_frame).
+    bool oriented() const
+    {
+        auto aniso = [](const Microfacets &m) { return m.ax != m.ay; };
+        switch (kind) {
+        case MeasuredKind: return true;
+        case DielectricKind: return aniso(dielectric.mf);
+        case ConductorKind: return aniso(conductor.mf);
+        case CoatedDiffuse: return aniso(coated.top.mf);
+        case CoatedConductor: return aniso(coated.top.mf) || aniso(coated.metal.mf);
+        default: return false;
+        }
+    }
     // false for perfect mirrors and smooth glass: next-event estimation cannot reach them
     bool has_non_specular() const
     {

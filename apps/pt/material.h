@@ -76,8 +76,9 @@ private:
 };
 
 // The local frame of the BSDF at hit h (pt/bsdf.h's conventions: z the shading normal ns): a frame around ns; for a
-// tabulated BSDF, whose azimuths are the surface's, the frame pbrt-v4 gives every BSDF: x along dp/du
-// (udm1scene::surface_derivatives) made perpendicular to ns, y = ns x x (around ns alone where dp/du is along ns).
+// BSDF that a turn about ns changes (Bsdf::oriented: anisotropic microfacets, tabulated BSDFs), the frame pbrt-v4
+// gives every BSDF: x along dp/du (udm1scene::surface_derivatives) made perpendicular to ns, y = ns x x (around ns
+// alone where dp/du is along ns).
 udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns);
 
 // pbrt-v4's default material, that of a shape with no Material or NamedMaterial before it (area
