@@ -654,39 +654,48 @@ inline double measured_jacobian(double ux, double sin_theta_m, double cos_om)
 
 }  // namespace
 
-Vec3 Measured::f(Vec3 wo, Vec3 wi) const
+// Where the pair (wo, wi) lies in the tables: wo's angles (param), the half vector's point (ux, uy) of the
+// ndf's square, and the point (a, b) that vndf warps to it, with vndf's density there. False where pbrt-v4's
+// MeasuredBxDF is 0: wi on the other side, or wi = -wo. Directions below the surface are mirrored above.
+struct MeasuredLookup {
+    Vec3 wo, wm;
+    double theta_o = 0, phi_o = 0, param[2] = {0, 0};
+    double ux = 0, uy = 0, a = 0, b = 0, vndf_pdf = 0;
+};
+
+static bool measured_lookup(const MeasuredTables &t, Vec3 wo, Vec3 wi, MeasuredLookup *l)
 {
-    if (!same_hemisphere(wo, wi)) return Vec3();
+    if (!same_hemisphere(wo, wi)) return false;
     if (wo.z < 0) wo = -wo, wi = -wi;
     Vec3 wm = wi + wo;
-    if (udm1scene::dot(wm, wm) == 0) return Vec3();
-    wm = udm1scene::normalize(wm);
-    const double theta_o = theta_of(wo), phi_o = std::atan2(wo.y, wo.x);
-    const double param[2] = {phi_o, theta_o};
-    double ux = theta_to_u(theta_of(wm)), uy = phi_to_u(t->isotropic ? std::atan2(wm.y, wm.x) - phi_o : std::atan2(wm.y, wm.x));
-    uy -= std::floor(uy);
-    double a, b, vndf_pdf;
-    t->vndf.invert(ux, uy, param, &a, &b, &vndf_pdf);
-    Vec3 fr(std::max(0.0, t->rgb[0].eval(a, b, param)), std::max(0.0, t->rgb[1].eval(a, b, param)),
-            std::max(0.0, t->rgb[2].eval(a, b, param)));
-    return fr * (t->ndf.eval(ux, uy) / (4 * t->sigma.eval(theta_to_u(theta_o), phi_to_u(phi_o)) * wi.z));
+    if (udm1scene::dot(wm, wm) == 0) return false;
+    l->wo = wo, l->wm = wm = udm1scene::normalize(wm);
+    l->theta_o = theta_of(wo), l->phi_o = std::atan2(wo.y, wo.x);
+    l->param[0] = l->phi_o, l->param[1] = l->theta_o;
+    l->ux = theta_to_u(theta_of(wm));
+    l->uy = phi_to_u(t.isotropic ? std::atan2(wm.y, wm.x) - l->phi_o : std::atan2(wm.y, wm.x));
+    l->uy -= std::floor(l->uy);
+    t.vndf.invert(l->ux, l->uy, l->param, &l->a, &l->b, &l->vndf_pdf);
+    return true;
+}
+
+Vec3 Measured::f(Vec3 wo, Vec3 wi) const
+{
+    MeasuredLookup l;
+    if (!measured_lookup(*t, wo, wi, &l)) return Vec3();
+    if (wo.z < 0) wi = -wi;
+    Vec3 fr(std::max(0.0, t->rgb[0].eval(l.a, l.b, l.param)), std::max(0.0, t->rgb[1].eval(l.a, l.b, l.param)),
+            std::max(0.0, t->rgb[2].eval(l.a, l.b, l.param)));
+    return fr * (t->ndf.eval(l.ux, l.uy) / (4 * t->sigma.eval(theta_to_u(l.theta_o), phi_to_u(l.phi_o)) * wi.z));
 }
 
 double Measured::pdf(Vec3 wo, Vec3 wi) const
 {
-    if (!same_hemisphere(wo, wi)) return 0;
-    if (wo.z < 0) wo = -wo, wi = -wi;
-    Vec3 wm = wi + wo;
-    if (udm1scene::dot(wm, wm) == 0) return 0;
-    wm = udm1scene::normalize(wm);
-    const double theta_o = theta_of(wo), phi_o = std::atan2(wo.y, wo.x);
-    const double param[2] = {phi_o, theta_o};
-    double ux = theta_to_u(theta_of(wm)), uy = phi_to_u(t->isotropic ? std::atan2(wm.y, wm.x) - phi_o : std::atan2(wm.y, wm.x));
-    uy -= std::floor(uy);
-    double a, b, vndf_pdf;
-    t->vndf.invert(ux, uy, param, &a, &b, &vndf_pdf);
-    const double lum_pdf = t->luminance.eval(a, b, param);
-    return vndf_pdf * lum_pdf / measured_jacobian(ux, std::sqrt(wm.x * wm.x + wm.y * wm.y), udm1scene::dot(wo, wm));
+    MeasuredLookup l;
+    if (!measured_lookup(*t, wo, wi, &l)) return 0;
+    const double lum_pdf = t->luminance.eval(l.a, l.b, l.param);
+    return l.vndf_pdf * lum_pdf /
+           measured_jacobian(l.ux, std::sqrt(l.wm.x * l.wm.x + l.wm.y * l.wm.y), udm1scene::dot(l.wo, l.wm));
 }
 
 bool Measured::sample(Vec3 wo, double u1, double u2, Sample *s) const

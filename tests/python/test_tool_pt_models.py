@@ -247,6 +247,14 @@ def test_image_encodings_as_pbrt_reads_them(tmp_path):
 HEAD = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]\nCamera "perspective"\nWorldBegin\n'
 
 
+def refused_at(tmp_path, text, line, words):
+    """The scene `text` is refused with one line holding `words`, naming the scene file and `line`, and no image."""
+    scene = tmp_path / "s.pbrt"
+    scene.write_text(text)
+    r = fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "-o", str(tmp_path / "x.exr")], words, tmp_path)
+    assert f"{scene}:{line}:" in r.stderr, r.stderr
+
+
 @pytest.mark.parametrize(
     "body,line,words",
     [
@@ -274,10 +282,7 @@ HEAD = 'Film "rgb" "integer xresolution" [ 8 ] "integer yresolution" [ 8 ]\nCame
     ],
 )
 def test_refusals_name_file_and_line(body, line, words, tmp_path):
-    scene = tmp_path / "s.pbrt"
-    scene.write_text(HEAD + body)
-    r = fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "-o", str(tmp_path / "x.exr")], words, tmp_path)
-    assert f"{scene}:{line}:" in r.stderr, r.stderr
+    refused_at(tmp_path, HEAD + body, line, words)
 
 
 SCENES = Path(__file__).resolve().parents[1] / "scenes"
@@ -295,12 +300,9 @@ GRID = SCENES / "displacement" / "grid.ply"  # a 4 x 4-vertex grid with normals 
     ],
 )
 def test_displacement_refusals(params, line, words, tmp_path):
-    scene = tmp_path / "s.pbrt"
-    scene.write_text(HEAD + 'Texture "lift" "float" "constant" "float value" [ 0.1 ]\n'
-                     'Texture "colour" "spectrum" "constant" "rgb value" [ 0.1 0.2 0.3 ]\n'
-                     f'Shape "plymesh" "string filename" "{GRID}" {params}\n')
-    r = fails_cleanly(run, ["--scene", str(scene), "--spp", "1", "-o", str(tmp_path / "x.exr")], words, tmp_path)
-    assert f"{scene}:{line}:" in r.stderr, r.stderr
+    refused_at(tmp_path, HEAD + 'Texture "lift" "float" "constant" "float value" [ 0.1 ]\n'
+               'Texture "colour" "spectrum" "constant" "rgb value" [ 0.1 0.2 0.3 ]\n'
+               f'Shape "plymesh" "string filename" "{GRID}" {params}\n', line, words)
 
 
 def test_displacement_needs_uv(tmp_path):
