@@ -136,6 +136,7 @@ def cases() -> list[Case]:
         Case("cloud", TEST_SCENES / "cloud.pbrt", (96, 72), 256),
         Case("noise", TEST_SCENES / "noise.pbrt", (96, 72), 256),
         Case("anisotropic", TEST_SCENES / "anisotropic.pbrt", (96, 72), 256),
+        Case("thin", TEST_SCENES / "thin.pbrt", (96, 72), 256),
         Case("format", TEST_SCENES / "format.pbrt", (160, 120), 1024),
         Case("displacement", TEST_SCENES / "displacement.pbrt", (96, 64), 1024),
         Case("measured", TEST_SCENES / "measured.pbrt", (160, 120), 1024, setup=tabulated_bsdfs),

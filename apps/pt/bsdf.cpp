@@ -721,6 +721,24 @@ bool Measured::sample(Vec3 wo, double u1, double u2, Sample *s) const
     return s->pdf > 0 && std::isfinite(s->pdf);
 }
 
+bool ThinDielectric::sample(Vec3 wo, double uc, Sample *s) const
+{
+    double R = fresnel_dielectric(std::fabs(wo.z), eta), T = 1 - R;
+    if (R < 1) R += T * T * R / (1 - R * R), T = 1 - R;  // (the inner reflections, as pbrt-v4 sums them)
+    if (!(R + T > 0) || wo.z == 0) return false;
+    s->specular = true, s->eta = 1;
+    if (uc < R / (R + T)) {
+        s->wi = Vec3(-wo.x, -wo.y, wo.z);
+        double v = R / std::fabs(s->wi.z);
+        s->f = Vec3(v, v, v), s->pdf = R / (R + T), s->reflection = true;
+    } else {
+        s->wi = -wo;
+        double v = T / std::fabs(s->wi.z);
+        s->f = Vec3(v, v, v), s->pdf = T / (R + T), s->reflection = false;
+    }
+    return s->pdf > 0;
+}
+
 // ---- the material ----
 
 Vec3 Bsdf::f(Vec3 wo, Vec3 wi, Mode mode) const
@@ -731,6 +749,7 @@ Vec3 Bsdf::f(Vec3 wo, Vec3 wi, Mode mode) const
     case DielectricKind: return dielectric.f(wo, wi, mode);
     case DiffuseTransmissionKind: return transmission.f(wo, wi);
     case MeasuredKind: return measured.f(wo, wi);
+    case ThinDielectricKind: return Vec3();  // (specular only)
     default: return conductor.f(wo, wi);
     }
 }
@@ -743,6 +762,7 @@ double Bsdf::pdf(Vec3 wo, Vec3 wi, Mode mode) const
     case DielectricKind: return dielectric.pdf(wo, wi, mode, Both);
     case DiffuseTransmissionKind: return transmission.pdf(wo, wi);
     case MeasuredKind: return measured.pdf(wo, wi);
+    case ThinDielectricKind: return 0;
     default: return conductor.pdf(wo, wi);
     }
 }
@@ -756,6 +776,7 @@ bool Bsdf::sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode
     case DielectricKind: return dielectric.sample(wo, uc, u1, u2, mode, Both, s);
     case DiffuseTransmissionKind: return transmission.sample(wo, uc, u1, u2, s);
     case MeasuredKind: return measured.sample(wo, u1, u2, s);
+    case ThinDielectricKind: return thin.sample(wo, uc, s);
     default: return conductor.sample(wo, u1, u2, s);
     }
 }

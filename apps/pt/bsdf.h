@@ -8,6 +8,7 @@
 //                  a diffuse or a conductor base, two-sided, with a homogeneous medium between them
 //                  (thickness, albedo, Henyey-Greenstein g; none where the albedo is 0), evaluated
 //                  by pbrt-v4's stochastic layered random walk (LayeredBxDF), maxdepth, nsamples.
+//   thindielectric a thin glass sheet: specular reflection and straight transmission (pbrt-v4 ThinDielectricBxDF)
 //   measured       a tabulated BSDF file (pbrt-v4 MeasuredBxDF): reflection on both sides, from tables of
 //                  the microfacet normals' density, the visible normals' and the spectral factor (in RGB)
 // f() and pdf() of the coated materials are themselves unbiased random estimates, drawn from a
@@ -99,6 +100,14 @@ struct DiffuseTransmission {
     bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s) const;
 };
 
+// A thin dielectric sheet (pbrt-v4's ThinDielectricBxDF): specular reflection about the normal and transmission
+// straight through (no refraction), with the Fresnel reflectance R of one interface summed over the light's
+// inner reflections, R' = R + T^2 R / (1 - R^2), T' = 1 - R', chosen in proportion to them.
+struct ThinDielectric {
+    double eta = 1.5;
+    bool sample(Vec3 wo, double uc, Sample *s) const;
+};
+
 // pbrt-v4's Henyey-Greenstein phase function p(wo, wi) = HG(wo . wi, g) (wo pointing away), g clamped to
 // [-0.99, 0.99], and its sampling.
 double henyey_greenstein(double cos_theta, double g);
@@ -145,7 +154,8 @@ struct Measured {
 // A material at a point: one of the above.
 struct Bsdf {
     enum Kind {
-        Diffuse, CoatedDiffuse, DielectricKind, ConductorKind, CoatedConductor, DiffuseTransmissionKind, MeasuredKind
+        Diffuse, CoatedDiffuse, DielectricKind, ConductorKind, CoatedConductor, DiffuseTransmissionKind, MeasuredKind,
+        ThinDielectricKind
     } kind = Diffuse;
     Lambert diffuse;
     Coated coated;  // coateddiffuse and coatedconductor
@@ -153,6 +163,7 @@ struct Bsdf {
     Conductor conductor;
     DiffuseTransmission transmission;
     Measured measured;
+    ThinDielectric thin;
     Vec3 f(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     double pdf(Vec3 wo, Vec3 wi, Mode mode = Mode::Radiance) const;
     bool sample(Vec3 wo, double uc, double u1, double u2, Sample *s, Mode mode = Mode::Radiance) const;
@@ -176,7 +187,9 @@ struct Bsdf {
         if (kind == CoatedConductor)  // (pbrt-v4's LayeredBxDF: specular only if both interfaces are and no medium)
             return !(coated.top.specular() && coated.metal.specular() && coated.albedo.x == 0 && coated.albedo.y == 0 &&
                      coated.albedo.z == 0);
-        return kind == DielectricKind ? !dielectric.specular() : kind == ConductorKind ? !conductor.specular() : true;
+        return kind == DielectricKind ? !dielectric.specular()
+               : kind == ConductorKind ? !conductor.specular()
+                                       : kind != ThinDielectricKind;
     }
 };
 

@@ -383,6 +383,11 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             b.dielectric.eta = eta.y;  // one index for all channels (no dispersion): 550 nm's
             roughness_params(scene, ps, "", &mm, &b.dielectric.mf, Slot::URoughness, Slot::VRoughness, "dielectric");
             if (!(b.dielectric.eta > 0)) throw SceneError(ps.where + ": dielectric: eta must be positive");
+        } else if (m.type == "thindielectric") {
+            only(ps, {"eta", "displacement", "normalmap"}, "thindielectric");
+            b.kind = Bsdf::ThinDielectricKind;
+            b.thin.eta = spectrum_param(ps, "eta", Vec3(1.5, 1.5, 1.5)).y;  // (one index for all channels, as dielectric)
+            if (!(b.thin.eta > 0) || !std::isfinite(b.thin.eta)) throw SceneError(ps.where + ": thindielectric: eta must be positive");
         } else if (m.type == "diffusetransmission") {
             only(ps, {"reflectance", "transmittance", "scale", "displacement", "normalmap"}, "diffusetransmission");
             b.kind = Bsdf::DiffuseTransmissionKind;
@@ -432,7 +437,7 @@ Materials::Materials(const udm1scene::Scene &scene) : textures_(scene)
             b.measured.t = it->second.get();
         } else {
             throw SceneError(ps.where + ": Material \"" + m.type +
-                             "\" is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, "
+                             "\" is not supported (diffuse, coateddiffuse, coatedconductor, conductor, dielectric, thindielectric, "
                              "diffusetransmission, measured, mix, interface)");
         }
         if (!mm.mix) {
@@ -476,6 +481,7 @@ void Materials::refuse_specular(const udm1scene::Scene &scene) const
         const Coated &c = m.base.coated;
         bool specular = m.base.kind == Bsdf::ConductorKind    ? textured || m.base.conductor.specular()
                         : m.base.kind == Bsdf::DielectricKind ? textured || m.base.dielectric.specular()
+                        : m.base.kind == Bsdf::ThinDielectricKind ? true
                         : m.base.kind == Bsdf::CoatedDiffuse  ? textured || (c.top.mf.smooth() && c.top.eta != 1)
                         : m.base.kind == Bsdf::CoatedConductor
                             ? textured || (c.top.mf.smooth() && (c.top.eta != 1 || base_textured || c.metal.specular()))
