@@ -725,7 +725,7 @@ bool ThinDielectric::sample(Vec3 wo, double uc, Sample *s) const
 {
     double R = fresnel_dielectric(std::fabs(wo.z), eta), T = 1 - R;
     if (R < 1) R += T * T * R / (1 - R * R), T = 1 - R;  // (the inner reflections, as pbrt-v4 sums them)
-    if (!(R + T > 0) || wo.z == 0) return false;
+    if (wo.z == 0) return false;
     s->specular = true, s->eta = 1;
     if (uc < R / (R + T)) {
         s->wi = Vec3(-wo.x, -wo.y, wo.z);

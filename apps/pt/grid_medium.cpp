@@ -71,10 +71,7 @@ Vec3 blackbody_rgb(double kelvin)
 
 GridMedium::GridMedium(const udm1scene::Medium &m) : m_(m), extent_(m.p1 - m.p0), sigma_t_(m.sigma_a + m.sigma_s)
 {
-    if (m.kind == udm1scene::Medium::Cloud) {
-        cloud_ = true;
-        return;
-    }
+    if (m.kind == udm1scene::Medium::Cloud) return;  // (its density is pbrt_noise.h's, no grid)
     emissive_ = m.emissive();
     if (m.kind == udm1scene::Medium::NanoVDB) {
         nanovdb_majorants();
@@ -225,7 +222,7 @@ GridMedium::Point GridMedium::at(Vec3 p) const
 {
     Point out;
     Vec3 pm = m_.medium_from_world.point(p);
-    if (cloud_) {
+    if (m_.kind == udm1scene::Medium::Cloud) {
         double d = cloud_density(pm);
         out.sigma_a = m_.sigma_a * d, out.sigma_s = m_.sigma_s * d;
         return out;
@@ -272,7 +269,7 @@ MajorantIterator GridMedium::majorants(Vec3 o, Vec3 d, double t_max) const
         t1 = far < t1 ? far : t1;
         if (t0 > t1) return MajorantIterator();
     }
-    return MajorantIterator(ou, du, t0, t1, cloud_ ? nullptr : &grid_, sigma_t_);
+    return MajorantIterator(ou, du, t0, t1, m_.kind == udm1scene::Medium::Cloud ? nullptr : &grid_, sigma_t_);
 }
 
 uint64_t tracking_seed(const double *v, int n)

@@ -91,7 +91,6 @@ private:
     Vec3 sigma_t_;
     MajorantGrid grid_;
     bool emissive_ = false;
-    bool cloud_ = false;  // pbrt-v4's procedural cloud (its density from pbrt_noise.h)
     std::vector<Vec3> blackbody_;  // RGB at 100 K + i step_
     double bb_step_ = 1;
 };

@@ -1279,8 +1279,8 @@ private:
             }
             if (!st_.ctm[0].affine() || !st_.ctm[0].inverse(&tx.mapping.texture_from_world))
                 throw SceneError(here + ": Texture " + tx.type + ": its transform is singular or projective");
-            if (noise_texture_note_.empty()) {
-                noise_texture_note_ = here;
+            if (!noise_texture_noted_) {
+                noise_texture_noted_ = true;
                 scene_.notes.push_back(here + ": Texture \"" + tx.type + "\": udm1-pt traces no ray differentials, so its "
                                        "noise sums every octave, where pbrt-v4 puts the average of those finer than a "
                                        "pixel's footprint");
@@ -2204,7 +2204,7 @@ private:
                                                                    // have names of their own, as in pbrt-v4
     std::vector<bool> image_first_;   // per texture: an image texture, the first of its file
     std::set<std::string> image_files_;
-    std::string noise_texture_note_;  // where the first noise texture is (its note is made once)
+    bool noise_texture_noted_ = false;  // the noise textures' note is made once, at the first
     std::vector<PendingTexture> pending_textures_;
     std::vector<PendingAlpha> pending_alpha_;
     std::map<std::string, std::array<Mat4, 2>> coordinate_systems_;
