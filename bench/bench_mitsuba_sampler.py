@@ -1,5 +1,7 @@
 """udm1's samplers inside Mitsuba 3 (udm1.mitsuba) against Mitsuba's own, in one run, on Mitsuba's
-Cornell box (mi.cornell_box(), its path integrator):
+Cornell box (mi.cornell_box(), its path integrator) or, with --scene, a pbrt-v4 scene given to Mitsuba
+(`udm1-pt export` and bench/mitsuba_scene.py: veach-mis of ../shared/scenes, skipped with a message where
+it is absent; --size is then the film's width, its height from the scene's aspect):
 
 1. Equal spp: RMSE against a reference (Mitsuba's independent sampler at --ref-spp, cached in --out)
    of every sampler at each spp, root of the MSE averaged over --seeds renders, and the render time
@@ -28,6 +30,7 @@ date in a second); where it cannot be built and is not, udm1.mitsuba's Python sa
    thread's: what a render costs, not counting the time its threads wait for a core).
 
     python bench/bench_mitsuba_sampler.py [--size 128] [--spps 4,16,64,256] [--seeds 4] [--out DIR]
+    python bench/bench_mitsuba_sampler.py --scene veach-mis [--size 192 --scalar-size 96]
     python bench/bench_mitsuba_sampler.py --speed [--speed-spps 4,16,64,256,1024] [--repeats 3]
 """
 
@@ -46,7 +49,9 @@ LLVM_PATH = os.environ.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-g
 import numpy as np  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
+SHARED_SCENES = ROOT.parent / "shared" / "scenes"
 sys.path.insert(0, str(ROOT / "python"))
+sys.path.insert(0, str(ROOT / "bench"))
 
 MITSUBA = [("independent", {"type": "independent"}), ("stratified", {"type": "stratified"}),
            ("multijitter", {"type": "multijitter"}), ("orthogonal", {"type": "orthogonal"}),
@@ -66,23 +71,48 @@ def use_native(mi) -> bool:
     return not isinstance(udm1.mitsuba.register(), type)
 
 
-def udm1_samplers(size: int, vector: bool):
+class Scene:
+    """What is rendered: Mitsuba's Cornell box, or a pbrt-v4 scene exported by udm1-pt for Mitsuba."""
+
+    def __init__(self, name: str, tool: str, out: Path):
+        self.name, self.folder, self.aspect = name, None, 1.0
+        if name == "cornell-box":
+            return
+        path = Path(name) if name.endswith(".pbrt") else SHARED_SCENES / name / f"{name}.pbrt"
+        if not path.is_file():
+            raise FileNotFoundError(f"{path} is absent (the shared scenes)")
+        self.name = path.stem
+        self.folder = out / f"{self.name}-export"
+        import subprocess
+        r = subprocess.run([tool, "export", str(self.folder), "--scene", str(path)], capture_output=True, text=True)
+        if r.returncode != 0:
+            raise ValueError(f"udm1-pt export {path}: {r.stderr.strip()}")
+        js = json.loads((self.folder / "scene.json").read_text())
+        self.aspect = js["height"] / js["width"]
+
+    def film(self, width: int) -> tuple[int, int]:
+        return width, max(1, round(width * self.aspect))
+
+    def load(self, mi, sampler: dict, film: tuple[int, int], spp: int):
+        if self.folder is None:
+            d = mi.cornell_box()
+            d["sensor"]["film"]["width"], d["sensor"]["film"]["height"] = film
+            d["sensor"]["sampler"] = dict(sampler, sample_count=spp)
+            return mi.load_dict(d)
+        import mitsuba_scene
+        return mitsuba_scene.load(self.folder, spp, sampler, 0, film)
+
+
+def udm1_samplers(film: tuple[int, int], vector: bool):
     """udm1's rows: wr (D = 64), the table presets at D = 32, and (vector variants only) screen; each with
     the film's size (the vector variants need it)."""
-    film = {"film_width": size, "film_height": size}
+    film = {"film_width": film[0], "film_height": film[1]}
     rows = [("udm1 wr", {"type": "udm1", "preset": "wr", **film}),
             ("udm1 sobol-owen", {"type": "udm1", "preset": "sobol-owen", "dimensions": 32, **film}),
             ("udm1 pmj02", {"type": "udm1", "preset": "pmj02", "dimensions": 32, **film})]
     if vector:
         rows.append(("udm1 wr screen", {"type": "udm1", "preset": "wr", "randomize": "screen", **film}))
     return rows
-
-
-def load(mi, sampler: dict, size: int, spp: int):
-    d = mi.cornell_box()
-    d["sensor"]["film"]["width"] = d["sensor"]["film"]["height"] = size
-    d["sensor"]["sampler"] = dict(sampler, sample_count=spp)
-    return mi.load_dict(d)
 
 
 def render(mi, scene, spp: int, seed: int, threads: int = 0, cpu: list | None = None) -> tuple[np.ndarray, float]:
@@ -114,20 +144,22 @@ def interp_time(points, target):
     return None
 
 
-def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Path) -> dict:
+def run_variant(source: Scene, variant: str, size: int, spps, seeds: int, ref_spp: int, out: Path) -> dict:
     import mitsuba as mi
     mi.set_variant(variant)
     native = use_native(mi)
-    ref_path = out / f"reference_{variant}_{size}_{ref_spp}.npy"
+    film = source.film(size)
+    tag = "" if source.name == "cornell-box" else f"{source.name}_"
+    ref_path = out / f"reference_{tag}{variant}_{film[0]}x{film[1]}_{ref_spp}.npy"
     if ref_path.exists():
         ref = np.load(ref_path)
     else:
-        print(f"[{variant}] reference: independent at {ref_spp} spp ({size}x{size}) ...", flush=True)
-        ref_scene = load(mi, {"type": "independent"}, size, ref_spp)
+        print(f"[{variant}] reference: independent at {ref_spp} spp ({film[0]}x{film[1]}) ...", flush=True)
+        ref_scene = source.load(mi, {"type": "independent"}, film, ref_spp)
         ref, t = render(mi, ref_scene, ref_spp, 12345)
         np.save(ref_path, ref)
         print(f"[{variant}] reference in {t:.1f} s", flush=True)
-    samplers = MITSUBA + udm1_samplers(size, not variant.startswith("scalar"))
+    samplers = MITSUBA + udm1_samplers(film, not variant.startswith("scalar"))
     # a Python sampler in a scalar variant serializes Mitsuba's render threads on the GIL, and their contention
     # costs more than one thread: udm1's rows there render on one thread (Mitsuba's on all)
     # (the Python sampler, in a scalar variant, on one thread)
@@ -137,7 +169,7 @@ def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Pa
     for spp in spps:
         scenes = {}
         for name, s in samplers:
-            scenes[name] = load(mi, s, size, spp)
+            scenes[name] = source.load(mi, s, film, spp)
             render(mi, scenes[name], spp, 999, threads[name])  # compile (JIT) / warm up
         mse = {n: [] for n in scenes}
         secs = {n: [] for n in scenes}
@@ -178,11 +210,11 @@ def run_variant(variant: str, size: int, spps, seeds: int, ref_spp: int, out: Pa
             equal.append({"variant": variant, "target_rmse": target, "target_of": f"independent at {spp} spp",
                           "best_udm1": bo, "udm1_seconds": ours[bo], "best_mitsuba": bt, "mitsuba_seconds": theirs[bt],
                           "speedup": theirs[bt] / ours[bo], "times": times})
-    return {"variant": variant, "rows": rows, "equal_error": equal, "size": size, "seeds": seeds, "ref_spp": ref_spp,
-            "udm1": "native plugin" if native else "Python sampler"}
+    return {"variant": variant, "scene": source.name, "rows": rows, "equal_error": equal, "size": size,
+            "film": list(film), "seeds": seeds, "ref_spp": ref_spp, "udm1": "native plugin" if native else "Python sampler"}
 
 
-def run_speed(variant: str, threads: int, size: int, spps, repeats: int) -> dict:
+def run_speed(source: Scene, variant: str, threads: int, size: int, spps, repeats: int) -> dict:
     """--speed: the native plugin's render time against the independent sampler's (see the docstring)."""
     import statistics
 
@@ -190,10 +222,11 @@ def run_speed(variant: str, threads: int, size: int, spps, repeats: int) -> dict
     mi.set_variant(variant)
     if not use_native(mi):
         return {"variant": variant, "threads": threads, "skipped": "the native plugin is not built"}
-    samplers = [("independent", {"type": "independent"})] + udm1_samplers(size, not variant.startswith("scalar"))
+    film = source.film(size)
+    samplers = [("independent", {"type": "independent"})] + udm1_samplers(film, not variant.startswith("scalar"))
     rows = []
     for spp in spps:
-        scenes = {name: load(mi, s, size, spp) for name, s in samplers}
+        scenes = {name: source.load(mi, s, film, spp) for name, s in samplers}
         if not variant.startswith("scalar"):
             for name, scene in scenes.items():
                 render(mi, scene, spp, 999, threads)  # compile the kernels
@@ -215,14 +248,16 @@ def run_speed(variant: str, threads: int, size: int, spps, repeats: int) -> dict
         print(f"[{variant}, {threads or 'every'} thread(s)] {spp} spp: " +
               ", ".join(f"{r['sampler']} {r['x_independent_time']:.3f}x (cpu {r['x_independent_cpu']:.3f}x)"
                       for r in rows[-len(scenes):]), flush=True)
-    return {"variant": variant, "threads": threads, "size": size, "repeats": repeats, "rows": rows}
+    return {"variant": variant, "scene": source.name, "threads": threads, "size": size, "film": list(film),
+            "repeats": repeats, "rows": rows}
 
 
 def print_speed(res: dict):
     if res.get("skipped"):
         print(f"\n{res['variant']} ({res['threads']} threads): skipped: {res['skipped']}")
         return
-    print(f"\n{res['variant']}, {res['threads'] or 'every'} render thread(s), {res['size']}x{res['size']}, fastest of "
+    w, h = res["film"]
+    print(f"\n{res['scene']}, {res['variant']}, {res['threads'] or 'every'} render thread(s), {w}x{h}, fastest of "
           f"{res['repeats']}: wall time over the independent sampler's (the medians' ratio, then the processor "
           "times', in brackets)")
     names = list(dict.fromkeys(r["sampler"] for r in res["rows"]))
@@ -238,7 +273,8 @@ def print_speed(res: dict):
 
 
 def print_result(res: dict):
-    print(f"\n{res['rows'][0]['variant']}: {res['size']}x{res['size']}, {res['seeds']} seeds, reference "
+    w, h = res["film"]
+    print(f"\n{res['scene']}, {res['rows'][0]['variant']}: {w}x{h}, {res['seeds']} seeds, reference "
           f"{res['ref_spp']} spp")
     print(f"{'sampler':<18} {'spp':>5} {'taken':>6} {'threads':>7} {'RMSE':>10} {'seconds':>9} {'x indep. time':>14}")
     for r in res["rows"]:
@@ -255,6 +291,9 @@ def print_result(res: dict):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scene", default="cornell-box",
+                    help="cornell-box (Mitsuba's), a shared scene's name (veach-mis) or a .pbrt file")
+    ap.add_argument("--tool", default=str(ROOT / "build" / "bin" / "udm1-pt"), help="udm1-pt, which exports --scene")
     ap.add_argument("--size", type=int, default=128)
     ap.add_argument("--spps", default="4,16,64,256")
     ap.add_argument("--seeds", type=int, default=4)
@@ -273,19 +312,27 @@ def main(argv=None) -> int:
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     results = []
+    suffix = "" if args.scene == "cornell-box" else "-" + Path(args.scene).stem
+    try:
+        source = Scene(args.scene, args.tool, out)
+    except (FileNotFoundError, ValueError) as exc:
+        print(f"bench_mitsuba_sampler: {exc}: skipped", file=sys.stderr)
+        name = "speed" if args.speed else "results"
+        (out / f"{name}{suffix}.json").write_text(json.dumps([{"skipped": str(exc)}]))
+        return 0
     if args.speed:
         for run in args.speed_runs.split(","):
             variant, threads = run.split(":")
             if variant.startswith("llvm") and not Path(LLVM_PATH).exists():
                 results.append({"variant": variant, "threads": int(threads), "skipped": f"{LLVM_PATH} is missing"})
                 continue
-            res = run_speed(variant, int(threads), args.size, [int(s) for s in args.speed_spps.split(",")],
+            res = run_speed(source, variant, int(threads), args.size, [int(s) for s in args.speed_spps.split(",")],
                             args.repeats)
             results.append(res)
         for res in results:
             print_speed(res)
-        (out / "speed.json").write_text(json.dumps(results, indent=1))
-        print(f"\nwrote {out / 'speed.json'}")
+        (out / f"speed{suffix}.json").write_text(json.dumps(results, indent=1))
+        print(f"\nwrote {out / f'speed{suffix}.json'}")
         return 0
     try:
         import mitsuba  # noqa: F401
@@ -301,13 +348,13 @@ def main(argv=None) -> int:
             results.append({"variant": variant, "skipped": why})
             continue
         scalar = variant.startswith("scalar")
-        res = run_variant(variant, args.scalar_size if scalar else args.size,
+        res = run_variant(source, variant, args.scalar_size if scalar else args.size,
                           [int(s) for s in (args.scalar_spps if scalar else args.spps).split(",")],
                           args.scalar_seeds if scalar else args.seeds, 1024 if scalar else args.ref_spp, out)
         print_result(res)
         results.append(res)
-    (out / "results.json").write_text(json.dumps(results, indent=1))
-    print(f"\nwrote {out / 'results.json'}")
+    (out / f"results{suffix}.json").write_text(json.dumps(results, indent=1))
+    print(f"\nwrote {out / f'results{suffix}.json'}")
     return 0
 
 

@@ -34,7 +34,11 @@ import time
 from pathlib import Path
 
 
-def load(dir: str | Path, spp: int = 16, sampler: str = "independent", seed: int = 0):
+def load(dir: str | Path, spp: int = 16, sampler: str | dict = "independent", seed: int = 0,
+         size: tuple[int, int] | None = None):
+    """The exported scene in Mitsuba: `sampler` a Mitsuba sampler's type or its whole dictionary (a plugin's
+    parameters: udm1's takes the film's size); `size` (width, height) another film size than the file's, the
+    camera's field of view along its axis kept."""
     import mitsuba as mi
 
     if mi.variant() is None:
@@ -51,9 +55,9 @@ def load(dir: str | Path, spp: int = 16, sampler: str = "independent", seed: int
         "integrator": {"type": "path", "max_depth": js["maxdepth"] + 1},
         "sensor": {
             "type": "perspective", "fov": cam["fov"], "fov_axis": cam["fov_axis"], "to_world": to_world,
-            "film": {"type": "hdrfilm", "width": js["width"], "height": js["height"], "rfilter": {"type": "box"},
-                     "pixel_format": "rgb"},
-            "sampler": {"type": sampler, "sample_count": spp, "seed": seed},
+            "film": {"type": "hdrfilm", "width": (size or (js["width"], js["height"]))[0],
+                     "height": (size or (js["width"], js["height"]))[1], "rfilter": {"type": "box"}, "pixel_format": "rgb"},
+            "sampler": dict(sampler if isinstance(sampler, dict) else {"type": sampler}, sample_count=spp, seed=seed),
         },
     }
     for k, s in enumerate(js["shapes"]):
