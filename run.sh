@@ -199,6 +199,11 @@ bench)
     udm1_log "llvm_ad_rgb and scalar_rgb"
     udm1_log "(bench/bench_mitsuba_sampler.py, about 10 minutes)"
     "$PY" bench/bench_mitsuba_sampler.py --out "$ROOT/build/bench_mitsuba_sampler"
+    udm1_log "the same on veach-mis given to Mitsuba (udm1-pt export; skipped with a message where ../shared is absent)"
+    "$PY" bench/bench_mitsuba_sampler.py --scene veach-mis --size 192 --scalar-size 96 --tool "$ROOT/build/bin/udm1-pt" \
+        --out "$ROOT/build/bench_mitsuba_sampler"
+    udm1_log "the native plugin's render time against Mitsuba's independent sampler (bench/bench_mitsuba_sampler.py --speed)"
+    "$PY" bench/bench_mitsuba_sampler.py --speed --out "$ROOT/build/bench_mitsuba_sampler"
     udm1_log "integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's six families (bench/bench_integrate.py;"
     udm1_log "1000 trials per case: hours; --trials N for fewer)"
     "$PY" bench/bench_integrate.py --out "$ROOT/build/bench_integrate"
