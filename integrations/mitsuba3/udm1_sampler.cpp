@@ -215,6 +215,19 @@ public:
 
     explicit Udm1Sampler(const Properties &props) : Udm1Sampler(udm1mi::Options(props), props) { }
 
+    // The loop state. Mitsuba's integrators hold the sampler in the state of their symbolic loops
+    // (dr::while_loop), which traverses it: the dimension index must be traversed there, or every iteration
+    // (every bounce) would draw the dimensions of the first. Mitsuba's base class traverses its members only
+    // for frozen functions (JitFlag::EnableObjectTraversal), and then it does so itself.
+    void traverse_1_cb_ro(void *payload, dr::detail::traverse_callback_ro fn) const override {
+        if (jit_flag(JitFlag::EnableObjectTraversal)) return Base::traverse_1_cb_ro(payload, fn);
+        if constexpr (Jit) dr::traverse_1_fn_ro(m_dimension_index, payload, fn);
+    }
+    void traverse_1_cb_rw(void *payload, dr::detail::traverse_callback_rw fn) override {
+        if (jit_flag(JitFlag::EnableObjectTraversal)) return Base::traverse_1_cb_rw(payload, fn);
+        if constexpr (Jit) dr::traverse_1_fn_rw(m_dimension_index, payload, fn);
+    }
+
     ref<Base> fork() override { return new Udm1Sampler(*this, Fork{}); }
     ref<Base> clone() override { return new Udm1Sampler(*this); }
 
