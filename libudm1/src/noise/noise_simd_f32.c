@@ -290,6 +290,12 @@ AVX2 static inline __m256 lerp8(__m256 t, __m256 a, __m256 b)
     return _mm256_add_ps(a, _mm256_mul_ps(t, _mm256_sub_ps(b, a)));
 }
 
+/* lerp8 where b - a is a small integer (0, +-1, +-2): t (b - a) is exact, so the fused form rounds alike */
+AVX2 static inline __m256 lerp8x(__m256 t, __m256 a, __m256 b)
+{
+    return _mm256_fmadd_ps(t, _mm256_sub_ps(b, a), a);
+}
+
 AVX2 static inline __m256 mask8(__m256i h, int bits, int equal) /* (h & bits) == equal, as a lane mask */
 {
     return _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(h, _mm256_set1_epi32(bits)), _mm256_set1_epi32(equal)));
@@ -418,9 +424,9 @@ AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, si
             gvec3_bytes8(&gA, 0, G[0]), gvec3_bytes8(&gB, 0, G[1]), gvec3_bytes8(&gA1, 0, G[2]), gvec3_bytes8(&gB1, 0, G[3]);
             gvec3_bytes8(&gA, 3, G[4]), gvec3_bytes8(&gB, 3, G[5]), gvec3_bytes8(&gA1, 3, G[6]), gvec3_bytes8(&gB1, 3, G[7]);
             __m256 g[3];
-            for (int k = 0; k < 3; ++k)
-                g[k] = lerp8(w, lerp8(v, lerp8(u, G[0][k], G[1][k]), lerp8(u, G[2][k], G[3][k])),
-                             lerp8(v, lerp8(u, G[4][k], G[5][k]), lerp8(u, G[6][k], G[7][k])));
+            for (int k = 0; k < 3; ++k) /* (first level: u times a difference of small integers, exact: fused) */
+                g[k] = lerp8(w, lerp8(v, lerp8x(u, G[0][k], G[1][k]), lerp8x(u, G[2][k], G[3][k])),
+                             lerp8(v, lerp8x(u, G[4][k], G[5][k]), lerp8x(u, G[6][k], G[7][k])));
             __m256 du = dfade8(x), dv = dfade8(y), dw = dfade8(z);
             __m256 k1 = _mm256_sub_ps(c100, c000), k2 = _mm256_sub_ps(c010, c000), k3 = _mm256_sub_ps(c001, c000);
             __m256 k4 = _mm256_sub_ps(_mm256_sub_ps(c110, c010), k1), k5 = _mm256_sub_ps(_mm256_sub_ps(c011, c001), k2);
