@@ -257,6 +257,11 @@ AVX2 static inline __m256 load8(const float *p, size_t stride, __m256i vindex)
     return stride == 1 ? _mm256_loadu_ps(p) : _mm256_i32gather_ps(p, vindex, 4);
 }
 
+AVX2 static inline __m256 finite8_mask(__m256 x) /* |x| < inf (not NaN), as a lane mask */
+{
+    return _mm256_cmp_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), x), _mm256_set1_ps(INFINITY), _CMP_LT_OQ);
+}
+
 AVX2 static inline int finite8(__m256 x)
 {
     __m256 ax = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), x);
@@ -384,8 +389,12 @@ AVX2 static inline void gvec3_bytes8(const edge_bytes8 *g, const int k, __m256 v
     v[2] = _mm256_mul_ps(top_byte8(g->z, k), half);
 }
 
-AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
-                               float *value, float *gradient, udm1_side_check *side)
+/* specialized by the compiler for the values alone (with_gradient 0) and for values and gradients, as the
+ * AVX-512 kernel */
+AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm1_noise *n, const float *const *axes,
+                                                                      size_t stride, size_t count, float *value,
+                                                                      float *gradient, const int with_gradient,
+                                                                      udm1_side_check *side)
 {
     const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
     const __m256i m255 = _mm256_set1_epi32(255);
@@ -398,7 +407,7 @@ AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, si
         checked = udm1_side_step256_ps(side, checked);
         __m256 x = load8(axes[0] + i * stride, stride, vindex), y = load8(axes[1] + i * stride, stride, vindex);
         __m256 z = load8(axes[2] + i * stride, stride, vindex);
-        if (!(finite8(x) && finite8(y) && finite8(z))) break;
+        if (_mm256_movemask_ps(_mm256_and_ps(_mm256_and_ps(finite8_mask(x), finite8_mask(y)), finite8_mask(z))) != 0xFF) break;
         __m256i X0, Y0, Z0;
         x = axis8(x, &X0), y = axis8(y, &Y0), z = axis8(z, &Z0);
         /* the four column hashes [p[A], p[A1], p[B], p[B1]] in one load, then each column's hashes at
@@ -419,7 +428,7 @@ AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, si
         if (value)
             _mm256_storeu_ps(value + i, lerp8(w, lerp8(v, lerp8(u, c000, c100), lerp8(u, c010, c110)),
                                               lerp8(v, lerp8(u, c001, c101), lerp8(u, c011, c111))));
-        if (gradient) {
+        if (with_gradient) {
             __m256 G[8][3];
             gvec3_bytes8(&gA, 0, G[0]), gvec3_bytes8(&gB, 0, G[1]), gvec3_bytes8(&gA1, 0, G[2]), gvec3_bytes8(&gB1, 0, G[3]);
             gvec3_bytes8(&gA, 3, G[4]), gvec3_bytes8(&gB, 3, G[5]), gvec3_bytes8(&gA1, 3, G[6]), gvec3_bytes8(&gB1, 3, G[7]);
@@ -447,6 +456,13 @@ AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, si
     }
     udm1_side_end256_ps(side, checked);
     return i;
+}
+
+AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
+                               float *value, float *gradient, udm1_side_check *side)
+{
+    return gradient ? noise3_avx2_k(n, axes, stride, count, value, gradient, 1, side)
+                    : noise3_avx2_k(n, axes, stride, count, value, NULL, 0, side);
 }
 
 AVX2 static size_t noise2_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
