@@ -5,6 +5,8 @@
  *    noise1234 (2D) bit for bit, signed zeros included: every table, near and far (to 1e12), packed,
  *    one array per axis and strided, counts that leave tails;
  *  - double values equal udm1_noise_1d..4d bit for bit; 4D equals an independent transcription;
+ *  - float values and gradients of a batch equal those of each point alone (the scalar code) bit for bit,
+ *    zeros' signs included (lattice points, -0 and halves);
  *  - with a gradient asked for, the values are the value-only call's bit for bit;
  *  - gradients against central differences of the noise (double), and float's against double's;
  *  - float far from the origin: as accurate as the double code at the same (float) coordinates;
@@ -146,6 +148,40 @@ static void test_float_equals_transcription(void)
                            "the gradient from without",
                            udm1_isa(), t, dims, layout, m, bad, bad_with_grad);
                 }
+        udm1_noise_destroy(n);
+    }
+}
+
+/* The float batch (the vector kernels in groups of 8 or 16) against the scalar float code for the point
+ * alone (a call of one point), values and gradients bit for bit, zeros' signs included: lattice points,
+ * -0 and halves on some axes, where corners' values and the gradient's terms are zeros of either sign. */
+static void test_float_equals_per_call(void)
+{
+    static float xs[3][N], v[N], g[3 * N];
+    for (int i = 0; i < N; ++i)
+        for (int c = 0; c < 3; ++c) {
+            double r = (uniform() - 0.5) * 500;
+            xs[c][i] = (float)r;
+            if (i % 3 != 1) continue;
+            double u = uniform();
+            xs[c][i] = u < 0.4 ? (float)floor(r) : u < 0.55 ? -0.0f : u < 0.7 ? 0.0f : u < 0.85 ? (float)floor(r) + 0.5f : xs[c][i];
+        }
+    static const char *tables[] = {NULL, "wr", "drand48"};
+    for (int t = 0; t < 3; ++t) {
+        udm1_noise *n = make(tables[t], UDM1_NOISE_IMPROVED, 0, 0);
+        for (uint32_t dims = 2; dims <= 3; ++dims) {
+            const float *axes[3] = {xs[0], xs[1], xs[2]};
+            CHECK_STATUS(udm1_noise_eval_f32(n, dims, axes, 1, N, v, g), UDM1_OK);
+            int bad = 0;
+            for (int i = 0; i < N; ++i) {
+                const float *one[3] = {xs[0] + i, xs[1] + i, xs[2] + i};
+                float v1, g1[3];
+                CHECK_STATUS(udm1_noise_eval_f32(n, dims, one, 1, 1, &v1, g1), UDM1_OK);
+                bad += memcmp(&v1, &v[i], sizeof v1) != 0 || memcmp(g1, g + (size_t)i * dims, sizeof(float) * dims) != 0;
+            }
+            CHECKF(bad == 0, "%s: table %d dims %u: %d float values or gradients differ from the per-point call", udm1_isa(), t,
+                   dims, bad);
+        }
         udm1_noise_destroy(n);
     }
 }
@@ -444,6 +480,7 @@ static void test_bad_input(void)
 int main(void)
 {
     test_float_equals_transcription();
+    test_float_equals_per_call();
     test_double_equals_per_call();
     test_4d();
     test_gradients();

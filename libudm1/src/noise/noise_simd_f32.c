@@ -2,8 +2,10 @@
  * the permutation held in four registers and looked up 64 bytes at a time, a point's four hashes of a
  * step in the bytes of its lane) or 8 (AVX2: the combined tables hash4 and pair of noise_tables.h read by
  * gathers), with the scalar float code's operations in the same order (noise/lattice_impl.h), so the same
- * bits: the exact floor and offset, the quintic fade, Perlin's gradients as blends and sign flips, the
- * nested lerps, and for the gradient the same derivative. Improved noise in 2D and 3D, not periodic;
+ * bits: the exact floor and offset, the quintic fade, Perlin's 3D gradients as the dot product with the
+ * edge vector (its components by a permutation of registers, or in AVX2 by byte shuffles of the hash),
+ * noise1234's 2D ones as blends and sign flips in AVX2, the nested lerps, and for the gradient the same
+ * derivative. Improved noise in 2D and 3D, not periodic;
  * everything else (1D, 4D, classic, periodic, a stride too large for a gather) is left to the scalar
  * code. Chosen at run time by core/isa.h: the AVX-512 kernel where the processor has AVX-512 VBMI too
  * (UDM1_ISA=avx2 or baseline caps the choice), else the AVX2 one. */
@@ -248,11 +250,16 @@ AVX512 static size_t noise2_avx512(const udm1_noise *n, const float *const *axes
 }
 
 /* ---- AVX2: 8 points ---- */
-#define AVX2 __attribute__((target("avx2")))
+#define AVX2 __attribute__((target("avx2,fma")))
 
 AVX2 static inline __m256 load8(const float *p, size_t stride, __m256i vindex)
 {
     return stride == 1 ? _mm256_loadu_ps(p) : _mm256_i32gather_ps(p, vindex, 4);
+}
+
+AVX2 static inline __m256 finite8_mask(__m256 x) /* |x| < inf (not NaN), as a lane mask */
+{
+    return _mm256_cmp_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), x), _mm256_set1_ps(INFINITY), _CMP_LT_OQ);
 }
 
 AVX2 static inline int finite8(__m256 x)
@@ -288,6 +295,12 @@ AVX2 static inline __m256 lerp8(__m256 t, __m256 a, __m256 b)
     return _mm256_add_ps(a, _mm256_mul_ps(t, _mm256_sub_ps(b, a)));
 }
 
+/* lerp8 where b - a is a small integer (0, +-1, +-2): t (b - a) is exact, so the fused form rounds alike */
+AVX2 static inline __m256 lerp8x(__m256 t, __m256 a, __m256 b)
+{
+    return _mm256_fmadd_ps(t, _mm256_sub_ps(b, a), a);
+}
+
 AVX2 static inline __m256 mask8(__m256i h, int bits, int equal) /* (h & bits) == equal, as a lane mask */
 {
     return _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(h, _mm256_set1_epi32(bits)), _mm256_set1_epi32(equal)));
@@ -297,30 +310,6 @@ AVX2 static inline __m256 flip8(__m256 v, __m256i h, int bit) /* negate the lane
 {
     __m256 m = _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(h, _mm256_set1_epi32(bit)), _mm256_set1_epi32(bit)));
     return _mm256_xor_ps(v, _mm256_and_ps(m, _mm256_set1_ps(-0.0f)));
-}
-
-/* Perlin's gradient of the hash h (low 4 bits; the others ignored) */
-AVX2 static inline __m256 grad3_8(__m256i h, __m256 x, __m256 y, __m256 z)
-{
-    /* the hash's bits moved to the sign bit, which blendv reads and the sign flips take: bit 3 picks u,
-     * bits 0 and 1 negate u and v */
-    __m256 below4 = mask8(h, 12, 0), is12or14 = mask8(h, 13, 12);
-    __m256 u = _mm256_blendv_ps(x, y, _mm256_castsi256_ps(_mm256_slli_epi32(h, 28)));
-    __m256 v = _mm256_blendv_ps(_mm256_blendv_ps(z, x, is12or14), y, below4);
-    u = _mm256_xor_ps(u, _mm256_castsi256_ps(_mm256_slli_epi32(h, 31)));
-    v = _mm256_xor_ps(v, _mm256_and_ps(_mm256_castsi256_ps(_mm256_slli_epi32(h, 30)), _mm256_set1_ps(-0.0f)));
-    return _mm256_add_ps(_mm256_add_ps(u, v), _mm256_setzero_ps()); /* (a zero +0) */
-}
-
-AVX2 static inline void gvec3_8(__m256i h, __m256 g[3])
-{
-    __m256 below8 = mask8(h, 8, 0), below4 = mask8(h, 12, 0), is12or14 = mask8(h, 13, 12);
-    __m256 one = _mm256_set1_ps(1.0f), zero = _mm256_setzero_ps();
-    __m256 su = flip8(one, h, 1), sv = flip8(one, h, 2);
-    __m256 v_on_x = _mm256_andnot_ps(below4, is12or14), v_on_z = _mm256_andnot_ps(below4, _mm256_andnot_ps(is12or14, _mm256_castsi256_ps(_mm256_set1_epi32(-1))));
-    g[0] = _mm256_blendv_ps(_mm256_blendv_ps(zero, sv, v_on_x), su, below8);
-    g[1] = _mm256_blendv_ps(su, _mm256_blendv_ps(zero, sv, below4), below8);
-    g[2] = _mm256_blendv_ps(zero, sv, v_on_z);
 }
 
 AVX2 static inline __m256 grad2_8(__m256i h, __m256 x, __m256 y)
@@ -339,20 +328,86 @@ AVX2 static inline void gvec2_8(__m256i h, __m256 g[2])
     g[1] = _mm256_blendv_ps(su, sv, below4);
 }
 
-AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
-                               float *value, float *gradient, udm1_side_check *side)
+/* Perlin's 3D gradient by the hash's low four bits without blends: each component doubled (+-2 or 0) is
+ * a float whose low three bytes are 0, so its top byte comes from a 16-entry byte table (vpshufb), for
+ * the hashes of every byte of a lane at once. */
+typedef struct {
+    __m256i x, y, z; /* the top bytes of 2 g by hash & 15 */
+} edges2_8;
+
+AVX2 static inline edges2_8 edges2_load(void)
+{
+    /* gx = 1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0, 1, 0, -1, 0; gy = 1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1,
+     * 1, -1, 1, -1; gz = 0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 0, 1, 0, -1 (EDGES) */
+    uint8_t b[3][16];
+    for (int k = 0; k < 3; ++k)
+        for (int h = 0; h < 16; ++h) b[k][h] = EDGES[k][h] > 0 ? 0x40 : EDGES[k][h] < 0 ? 0xC0 : 0x00;
+    edges2_8 e;
+    e.x = _mm256_broadcastsi128_si256(_mm_loadu_si128((const __m128i *)b[0]));
+    e.y = _mm256_broadcastsi128_si256(_mm_loadu_si128((const __m128i *)b[1]));
+    e.z = _mm256_broadcastsi128_si256(_mm_loadu_si128((const __m128i *)b[2]));
+    return e;
+}
+
+/* 2 g for a pair's two hashes (bytes 0 and 1 of each lane of q, the bits above the low four of each
+ * ignored), as bytes 0 and 3 of each lane (the others not used) */
+typedef struct {
+    __m256i x, y, z;
+} edge_bytes8;
+
+AVX2 static inline edge_bytes8 edge_bytes(const edges2_8 *e, __m256i q)
+{
+    const __m256i to03 = _mm256_setr_epi32(0x01808000, 0x05808004, 0x09808008, 0x0D80800C, 0x01808000, 0x05808004, 0x09808008, 0x0D80800C);
+    __m256i i = _mm256_and_si256(_mm256_shuffle_epi8(q, to03), _mm256_set1_epi8(15));
+    edge_bytes8 r = {_mm256_shuffle_epi8(e->x, i), _mm256_shuffle_epi8(e->y, i), _mm256_shuffle_epi8(e->z, i)};
+    return r;
+}
+
+/* byte k (0 or 3) of each lane of t as the top byte of a float, the rest 0 */
+AVX2 static inline __m256 top_byte8(__m256i t, const int k)
+{
+    return _mm256_castsi256_ps(k ? _mm256_and_si256(t, _mm256_set1_epi32((int)0xFF000000u)) : _mm256_slli_epi32(t, 24));
+}
+
+/* The corner's value of the hash in byte k (0 or 3): the dot product with 2 g by fused multiply-adds from +0,
+ * halved. Each product is exact; the two non-zero terms are rounded once, as the scalar code's
+ * (+-u +-v) + 0, doubled (exact: a sum of two floats doubled rounds as the doubled sum), and a zero comes
+ * out +0 (the accumulator is never -0); halving is exact. */
+AVX2 static inline __m256 corner3_8(const edge_bytes8 *g, const int k, __m256 x, __m256 y, __m256 z)
+{
+    __m256 acc = _mm256_fmadd_ps(top_byte8(g->z, k), z, _mm256_setzero_ps());
+    acc = _mm256_fmadd_ps(top_byte8(g->y, k), y, acc);
+    acc = _mm256_fmadd_ps(top_byte8(g->x, k), x, acc);
+    return _mm256_mul_ps(acc, _mm256_set1_ps(0.5f));
+}
+
+/* the corner's gradient vector (+-1 or 0 each) */
+AVX2 static inline void gvec3_bytes8(const edge_bytes8 *g, const int k, __m256 v[3])
+{
+    const __m256 half = _mm256_set1_ps(0.5f);
+    v[0] = _mm256_mul_ps(top_byte8(g->x, k), half), v[1] = _mm256_mul_ps(top_byte8(g->y, k), half);
+    v[2] = _mm256_mul_ps(top_byte8(g->z, k), half);
+}
+
+/* specialized by the compiler for the values alone (with_gradient 0) and for values and gradients, as the
+ * AVX-512 kernel */
+AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm1_noise *n, const float *const *axes,
+                                                                      size_t stride, size_t count, float *value,
+                                                                      float *gradient, const int with_gradient,
+                                                                      udm1_side_check *side)
 {
     const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
     const __m256i m255 = _mm256_set1_epi32(255);
     const __m256 onef = _mm256_set1_ps(1.0f);
     const int *hash4 = (const int *)n->hash4, *pair = n->pair;
+    const edges2_8 E = edges2_load();
     __m256 checked = _mm256_setzero_ps();
     size_t i = 0;
     for (; i + 8 <= count; i += 8) {
         checked = udm1_side_step256_ps(side, checked);
         __m256 x = load8(axes[0] + i * stride, stride, vindex), y = load8(axes[1] + i * stride, stride, vindex);
         __m256 z = load8(axes[2] + i * stride, stride, vindex);
-        if (!(finite8(x) && finite8(y) && finite8(z))) break;
+        if (_mm256_movemask_ps(_mm256_and_ps(_mm256_and_ps(finite8_mask(x), finite8_mask(y)), finite8_mask(z))) != 0xFF) break;
         __m256i X0, Y0, Z0;
         x = axis8(x, &X0), y = axis8(y, &Y0), z = axis8(z, &Z0);
         /* the four column hashes [p[A], p[A1], p[B], p[B1]] in one load, then each column's hashes at
@@ -364,23 +419,23 @@ AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, si
         __m256i qB1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_srli_epi32(c, 24), Z0), 4);
         __m256 x1 = _mm256_sub_ps(x, onef), y1 = _mm256_sub_ps(y, onef), z1 = _mm256_sub_ps(z, onef);
         __m256 u = fade8(x), v = fade8(y), w = fade8(z);
-        __m256i hA1 = _mm256_srli_epi32(qA, 8), hB1 = _mm256_srli_epi32(qB, 8);
-        __m256i hA11 = _mm256_srli_epi32(qA1, 8), hB11 = _mm256_srli_epi32(qB1, 8);
-        __m256 c000 = grad3_8(qA, x, y, z), c100 = grad3_8(qB, x1, y, z);
-        __m256 c010 = grad3_8(qA1, x, y1, z), c110 = grad3_8(qB1, x1, y1, z);
-        __m256 c001 = grad3_8(hA1, x, y, z1), c101 = grad3_8(hB1, x1, y, z1);
-        __m256 c011 = grad3_8(hA11, x, y1, z1), c111 = grad3_8(hB11, x1, y1, z1);
+        /* each column's hashes at z and z + 1 (bytes 0 and 3 of its edge bytes) */
+        edge_bytes8 gA = edge_bytes(&E, qA), gB = edge_bytes(&E, qB), gA1 = edge_bytes(&E, qA1), gB1 = edge_bytes(&E, qB1);
+        __m256 c000 = corner3_8(&gA, 0, x, y, z), c100 = corner3_8(&gB, 0, x1, y, z);
+        __m256 c010 = corner3_8(&gA1, 0, x, y1, z), c110 = corner3_8(&gB1, 0, x1, y1, z);
+        __m256 c001 = corner3_8(&gA, 3, x, y, z1), c101 = corner3_8(&gB, 3, x1, y, z1);
+        __m256 c011 = corner3_8(&gA1, 3, x, y1, z1), c111 = corner3_8(&gB1, 3, x1, y1, z1);
         if (value)
             _mm256_storeu_ps(value + i, lerp8(w, lerp8(v, lerp8(u, c000, c100), lerp8(u, c010, c110)),
                                               lerp8(v, lerp8(u, c001, c101), lerp8(u, c011, c111))));
-        if (gradient) {
+        if (with_gradient) {
             __m256 G[8][3];
-            gvec3_8(qA, G[0]), gvec3_8(qB, G[1]), gvec3_8(qA1, G[2]), gvec3_8(qB1, G[3]);
-            gvec3_8(hA1, G[4]), gvec3_8(hB1, G[5]), gvec3_8(hA11, G[6]), gvec3_8(hB11, G[7]);
+            gvec3_bytes8(&gA, 0, G[0]), gvec3_bytes8(&gB, 0, G[1]), gvec3_bytes8(&gA1, 0, G[2]), gvec3_bytes8(&gB1, 0, G[3]);
+            gvec3_bytes8(&gA, 3, G[4]), gvec3_bytes8(&gB, 3, G[5]), gvec3_bytes8(&gA1, 3, G[6]), gvec3_bytes8(&gB1, 3, G[7]);
             __m256 g[3];
-            for (int k = 0; k < 3; ++k)
-                g[k] = lerp8(w, lerp8(v, lerp8(u, G[0][k], G[1][k]), lerp8(u, G[2][k], G[3][k])),
-                             lerp8(v, lerp8(u, G[4][k], G[5][k]), lerp8(u, G[6][k], G[7][k])));
+            for (int k = 0; k < 3; ++k) /* (first level: u times a difference of small integers, exact: fused) */
+                g[k] = lerp8(w, lerp8(v, lerp8x(u, G[0][k], G[1][k]), lerp8x(u, G[2][k], G[3][k])),
+                             lerp8(v, lerp8x(u, G[4][k], G[5][k]), lerp8x(u, G[6][k], G[7][k])));
             __m256 du = dfade8(x), dv = dfade8(y), dw = dfade8(z);
             __m256 k1 = _mm256_sub_ps(c100, c000), k2 = _mm256_sub_ps(c010, c000), k3 = _mm256_sub_ps(c001, c000);
             __m256 k4 = _mm256_sub_ps(_mm256_sub_ps(c110, c010), k1), k5 = _mm256_sub_ps(_mm256_sub_ps(c011, c001), k2);
@@ -401,6 +456,13 @@ AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, si
     }
     udm1_side_end256_ps(side, checked);
     return i;
+}
+
+AVX2 static size_t noise3_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,
+                               float *value, float *gradient, udm1_side_check *side)
+{
+    return gradient ? noise3_avx2_k(n, axes, stride, count, value, gradient, 1, side)
+                    : noise3_avx2_k(n, axes, stride, count, value, NULL, 0, side);
 }
 
 AVX2 static size_t noise2_avx2(const udm1_noise *n, const float *const *axes, size_t stride, size_t count,

@@ -11,7 +11,8 @@
  * So every value equals udm1_noise_1d..3d bit for bit, signed zeros included (tests/c/test_noise.c,
  * test_noise_eval.c). Improved noise in 2D and 3D, not periodic, any layout of the coordinates.
  * Without AVX-512 VBMI, an AVX2 + FMA kernel on 8 points at a time (below: gathers from the combined
- * tables, Perlin's +-u +-v as blends and sign flips, signed zeros as the scalar code's). The rest (1D,
+ * tables, Perlin's 3D +-u +-v as a dot product whose zero components are zeros of the sign that keeps
+ * the scalar code's signed zeros, noise1234's 2D as blends and sign flips). The rest (1D,
  * 4D, classic, periodic) goes to the scalar code. */
 #include "core/isa.h"
 #include "noise/noise_tables.h"
@@ -267,8 +268,9 @@ AVX512 static size_t noise_f64_avx512(const udm1_noise *n, uint32_t dims, const 
 
 /* ---- AVX2 + FMA: 8 points, the arithmetic in two halves of 4 doubles ----
  * The hashes of 8 points by gathers from the combined tables (noise_tables.h: hash4, a cell's four column
- * hashes in one word; pair, a column's hashes at z and z + 1), Perlin's gradients as blends and sign flips
- * (the scalar double code's +-u +-v, signed zeros included), the rest the scalar code's operations. */
+ * hashes in one word; pair, a column's hashes at z and z + 1), Perlin's 3D gradients by byte shuffles of
+ * the hash and noise1234's 2D ones as blends and sign flips (the scalar double code's +-u +-v, signed
+ * zeros included), the rest the scalar code's operations. */
 #define AVX2 __attribute__((target("avx2,fma")))
 
 AVX2 static inline __m256d load4d(const double *p, size_t stride, __m128i vindex)
@@ -324,20 +326,6 @@ AVX2 static inline __m256d flip4d(__m256d v, __m128i h, int bit) /* negate the l
     return _mm256_xor_pd(v, _mm256_and_pd(mask4d(h, bit, bit), _mm256_set1_pd(-0.0)));
 }
 
-/* Perlin's gradient: u = x (h < 8) or y; v = y (h < 4), x (h = 12, 14) or z; +-u +-v (low 4 bits of h) */
-AVX2 static inline __m256d grad3_4d(__m128i h, __m256d x, __m256d y, __m256d z)
-{
-    /* the hash in 64-bit lanes, its bits moved to the sign bit, which blendv reads and the sign flips
-     * take: bit 3 picks u, bits 0 and 1 negate u and v */
-    __m256i w = _mm256_cvtepu32_epi64(h);
-    __m256d below4 = mask4d(h, 12, 0), is12or14 = mask4d(h, 13, 12);
-    __m256d u = _mm256_blendv_pd(x, y, _mm256_castsi256_pd(_mm256_slli_epi64(w, 60)));
-    __m256d v = _mm256_blendv_pd(_mm256_blendv_pd(z, x, is12or14), y, below4);
-    u = _mm256_xor_pd(u, _mm256_castsi256_pd(_mm256_slli_epi64(w, 63)));
-    v = _mm256_xor_pd(v, _mm256_and_pd(_mm256_castsi256_pd(_mm256_slli_epi64(w, 62)), _mm256_set1_pd(-0.0)));
-    return _mm256_add_pd(u, v);
-}
-
 /* its vector: +-1 on the axes of u and v, +0 on the third */
 AVX2 static inline void gvec3_4d(__m128i h, __m256d g[3])
 {
@@ -376,6 +364,57 @@ AVX2 static inline void store_interleaved4d(double *out, const __m256d *g, int k
         for (int c = 0; c < k; ++c) out[k * j + c] = tmp[c][j];
 }
 
+/* Perlin's 3D gradient by the hash's low four bits without blends: each component doubled (+-2, or a zero)
+ * is a double whose low seven bytes are 0, so its top byte comes from a 16-entry byte table (vpshufb). A
+ * zero component is -0 on an offset in [0, 1) (never -0 itself) and +0 on an offset - 1 (negative), so
+ * its product with the offset is always -0, which adds nothing to a sum, signed zeros included: the dot
+ * product by fused multiply-adds is the one rounding of the scalar code's +-u +-v, doubled (exact), its
+ * zero's sign as the scalar code's; halving is exact. */
+static const signed char EDGE3[3][16] = {{1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0, 1, 0, -1, 0},
+                                         {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, -1, 1, -1},
+                                         {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 0, 1, 0, -1}};
+
+typedef struct {
+    __m256i t[3][2]; /* by axis, then the offset (0: in [0, 1), a zero -0; 1: minus 1, a zero +0) */
+} edges2_4d;
+
+AVX2 static inline edges2_4d edges2_4d_load(void)
+{
+    edges2_4d e;
+    for (int a = 0; a < 3; ++a)
+        for (int up = 0; up < 2; ++up) {
+            uint8_t b[16];
+            for (int h = 0; h < 16; ++h) b[h] = EDGE3[a][h] > 0 ? 0x40 : EDGE3[a][h] < 0 ? 0xC0 : up ? 0x00 : 0x80;
+            e.t[a][up] = _mm256_broadcastsi128_si256(_mm_loadu_si128((const __m128i *)b));
+        }
+    return e;
+}
+
+/* a pair's two hashes (bytes 0 and 1 of each lane of q) as the low four bits of bytes 0 and 7 of 64-bit lanes */
+AVX2 static inline __m256i pair_index4d(__m128i q)
+{
+    const __m256i to07 = _mm256_set_epi64x(0x0980808080808008ll, 0x0180808080808000ll, 0x0980808080808008ll,
+                                           0x0180808080808000ll);
+    return _mm256_and_si256(_mm256_shuffle_epi8(_mm256_cvtepu32_epi64(q), to07), _mm256_set1_epi8(15));
+}
+
+/* byte k (0 or 7) of each 64-bit lane of t as the top byte of a double, the rest 0 */
+AVX2 static inline __m256d top_byte4d(__m256i t, const int k)
+{
+    return _mm256_castsi256_pd(k ? _mm256_and_si256(t, _mm256_set1_epi64x((long long)0xFF00000000000000ull)) : _mm256_slli_epi64(t, 56));
+}
+
+/* the corner of the hash in byte k (0: z, 7: z + 1) of the index i, on the x offset up_x (0: x, 1: x - 1)
+ * and y offset up_y */
+AVX2 static inline __m256d corner3_4d(const edges2_4d *e, __m256i i, const int k, const int up_x, const int up_y,
+                                      __m256d x, __m256d y, __m256d z)
+{
+    __m256d acc = _mm256_mul_pd(top_byte4d(_mm256_shuffle_epi8(e->t[2][k ? 1 : 0], i), k), z);
+    acc = _mm256_fmadd_pd(top_byte4d(_mm256_shuffle_epi8(e->t[1][up_y], i), k), y, acc);
+    acc = _mm256_fmadd_pd(top_byte4d(_mm256_shuffle_epi8(e->t[0][up_x], i), k), x, acc);
+    return _mm256_mul_pd(acc, _mm256_set1_pd(0.5));
+}
+
 /* One half (4 points) of a 3D group: the corner hashes qA, qB, qA1, qB1 (at z in the low byte, at z + 1 in
  * the next) */
 AVX2 static inline __attribute__((always_inline)) void half3_avx2(__m128i qA, __m128i qB, __m128i qA1, __m128i qB1,
@@ -387,10 +426,12 @@ AVX2 static inline __attribute__((always_inline)) void half3_avx2(__m128i qA, __
     __m256d u = fade4d(x), v = fade4d(y), w = fade4d(z);
     __m128i hA1 = _mm_srli_epi32(qA, 8), hB1 = _mm_srli_epi32(qB, 8), hA11 = _mm_srli_epi32(qA1, 8),
             hB11 = _mm_srli_epi32(qB1, 8);
-    __m256d c000 = grad3_4d(qA, x, y, z), c100 = grad3_4d(qB, x1, y, z);
-    __m256d c010 = grad3_4d(qA1, x, y1, z), c110 = grad3_4d(qB1, x1, y1, z);
-    __m256d c001 = grad3_4d(hA1, x, y, z1), c101 = grad3_4d(hB1, x1, y, z1);
-    __m256d c011 = grad3_4d(hA11, x, y1, z1), c111 = grad3_4d(hB11, x1, y1, z1);
+    const edges2_4d E = edges2_4d_load();
+    __m256i iA = pair_index4d(qA), iB = pair_index4d(qB), iA1 = pair_index4d(qA1), iB1 = pair_index4d(qB1);
+    __m256d c000 = corner3_4d(&E, iA, 0, 0, 0, x, y, z), c100 = corner3_4d(&E, iB, 0, 1, 0, x1, y, z);
+    __m256d c010 = corner3_4d(&E, iA1, 0, 0, 1, x, y1, z), c110 = corner3_4d(&E, iB1, 0, 1, 1, x1, y1, z);
+    __m256d c001 = corner3_4d(&E, iA, 7, 0, 0, x, y, z1), c101 = corner3_4d(&E, iB, 7, 1, 0, x1, y, z1);
+    __m256d c011 = corner3_4d(&E, iA1, 7, 0, 1, x, y1, z1), c111 = corner3_4d(&E, iB1, 7, 1, 1, x1, y1, z1);
     if (value)
         _mm256_storeu_pd(value, lerp4d(w, lerp4d(v, lerp4d(u, c000, c100), lerp4d(u, c010, c110)),
                                        lerp4d(v, lerp4d(u, c001, c101), lerp4d(u, c011, c111))));
