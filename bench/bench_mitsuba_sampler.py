@@ -4,7 +4,9 @@ Cornell box (mi.cornell_box(), its path integrator) or, with --scene, a pbrt-v4 
 it is absent; --size is then the film's width, its height from the scene's aspect):
 
 1. Equal spp: RMSE against a reference (Mitsuba's independent sampler at --ref-spp, cached in --out)
-   of every sampler at each spp, root of the MSE averaged over --seeds renders, and the render time
+   of every sampler at each spp, root of the MSE averaged over --seeds renders (linear RGB clamped to
+   [0, 1], what a display shows, as bench_pt_scenes.py measures: a visible light's pixels would otherwise
+   weigh more than the rest of the image), and the render time
    (scene loaded once per sampler; the JIT variant's kernels compiled by an untimed render first; the
    time includes evaluating the image and, for udm1's table presets, filling the table). The renders
    alternate: per (spp, seed) every sampler in turn, so the machine's drift falls on all alike.
@@ -176,7 +178,7 @@ def run_variant(source: Scene, variant: str, size: int, spps, seeds: int, ref_sp
         for seed in range(seeds):
             for name, scene in scenes.items():
                 img, t = render(mi, scene, spp, seed, threads[name])
-                mse[name].append(float(np.mean((img - ref) ** 2)))
+                mse[name].append(float(np.mean((np.clip(img, 0, 1) - np.clip(ref, 0, 1)) ** 2)))
                 secs[name].append(t)
             print(f"[{variant}] {spp} spp, seed {seed + 1}/{seeds} done", flush=True)
         for name in scenes:
