@@ -21,7 +21,8 @@
 
 #include <stdint.h>
 
-static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
+/* udm1_permute's mask of l > 0: l - 1 with every bit below its top bit set */
+static inline uint32_t udm1_permute_mask(uint32_t l)
 {
     uint32_t w = l - 1;
     w |= w >> 1;
@@ -29,6 +30,12 @@ static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
     w |= w >> 4;
     w |= w >> 8;
     w |= w >> 16;
+    return w;
+}
+
+/* udm1_permute before its final rotation by p: the cycle walk of i's hash below l (w its mask) */
+static inline uint32_t udm1_permute_walk(uint32_t i, uint32_t l, uint32_t w, uint32_t p)
+{
     do {
         i ^= p;
         i *= 0xe170893du;
@@ -49,7 +56,12 @@ static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
         i &= w;
         i ^= i >> 5;
     } while (i >= l);
-    return (uint32_t)(((uint64_t)i + p) % l);
+    return i;
+}
+
+static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
+{
+    return (uint32_t)(((uint64_t)udm1_permute_walk(i, l, udm1_permute_mask(l), p) + p) % l);
 }
 
 static inline uint64_t udm1_reverse64(uint64_t x)
