@@ -19,9 +19,10 @@
  * is found once (Horner's rule from the last digit, each step Y_k = floor((d_k 2^64 + Y_{k+1}) / b):
  * floor(x / b) = floor(floor(x) / b) for an integer b), and each value is then
  * floor((H 2^64 + Y_s) / b^s), H the integer of its s leading digits: the same floor of the same
- * rational R 2^64 / b^K. A fill splits at the digits of its last index, a stream (udm1/stream.h) at two
- * fixed positions (radical_inverse.h). The divisions by b and b^s are multiplications by their
- * reciprocals (core/divisor.h).
+ * rational R 2^64 / b^K. A fill splits at the digits of its last index (and with PERMUTE, where the
+ * base is small against its count, writes the s positions' permutations out as a table), a stream
+ * (udm1/stream.h) at two fixed positions (radical_inverse.h). The divisions by b and b^s are
+ * multiplications by their reciprocals (core/divisor.h).
  */
 #include "samplers/radical_inverse.h"
 #include "seq/scramble.h"
@@ -147,6 +148,9 @@ static void owen_fill(const udm1_radix *rx, uint64_t r, uint64_t first, size_t c
     for (; i < count; ++i) out[i * stride] = udm1_radical_inverse(first + i, rx, UDM1_MODE_OWEN, r) + add;
 }
 
+/* The largest permutation table of a PERMUTE fill: s positions x b digits (b at most half the fill's count) */
+enum { PERMUTATION_TABLE = 2048 };
+
 void udm1_radical_fill(const udm1_radix *rx, uint32_t mode, uint64_t r, uint64_t first, size_t count,
                        uint64_t add, uint64_t *out, size_t stride)
 {
@@ -164,6 +168,20 @@ void udm1_radical_fill(const udm1_radix *rx, uint32_t mode, uint64_t r, uint64_t
     }
     udm1_divisor power = udm1_divisor_make(p);
     uint64_t tail = mode == UDM1_MODE_PERMUTE ? tail_at(rx, r, s, rx->digits, 0) : 0;
+    uint32_t b = rx->base;
+    if (mode == UDM1_MODE_PERMUTE && s * b <= PERMUTATION_TABLE && 2 * (size_t)b <= count) {
+        /* the s positions' permutations written out once, looked up by every value */
+        const udm1_u128 none = udm1_u128_make(0, 0);
+        uint32_t table[PERMUTATION_TABLE];
+        for (uint32_t k = 0; k < s; ++k)
+            for (uint32_t d = 0; d < b; ++d) table[k * b + d] = permute_digit(rx, d, digit_key(r, k, none, 0));
+        for (size_t i = 0; i < count; ++i) {
+            uint64_t n = first + i, h = 0;
+            for (uint32_t k = 0; k < s; ++k) h = h * b + table[k * b + next_digit(&n, rx)];
+            out[i * stride] = udm1_divide_by(&power, h, tail) + add;
+        }
+        return;
+    }
     for (size_t i = 0; i < count; ++i) out[i * stride] = head_value(first + i, rx, s, &power, mode, r, tail) + add;
 }
 
