@@ -60,7 +60,11 @@ static inline uint32_t digit_key(uint64_t r, uint32_t k, udm1_u128 prefix, int n
 /* udm1_permute(d, b, key), its final remainder by multiplication */
 static inline uint32_t permute_digit(const udm1_radix *rx, uint32_t d, uint32_t key)
 {
-    uint64_t i = udm1_permute_walk(d, rx->base, rx->mask, key);
+    /* the walk's first two steps both taken, the one that lands below b kept without a branch (a walk of
+     * one step or two is the common case: a branch on which would be mispredicted often) */
+    uint32_t h1 = udm1_permute_step(d, rx->mask, key), h2 = udm1_permute_step(h1, rx->mask, key);
+    uint64_t i = h1 < rx->base ? h1 : h2;
+    if (i >= rx->base) i = udm1_permute_walk((uint32_t)i, rx->base, rx->mask, key);
     i += udm1_mod32(key, rx->base, rx->magic); /* (i + key) mod b, i < b */
     return (uint32_t)(i >= rx->base ? i - rx->base : i);
 }
