@@ -55,9 +55,10 @@ HEADER_TESTS="test_header_c99 test_header_cxx test_header_c99_no128_vector test_
 # The part of ./run.sh test run beside the Python tests under the sanitizers (with one build and test job),
 # its output into the file $1:
 #  - build-portable/: the library and its value tests without unsigned __int128 (UDM1_PORTABLE_INT128, as
-#    MSVC builds it): golden values, the 128-bit arithmetic, fills against per-sample values (a sampled
-#    eighth of the matrix), streams and domains (the inline code too), API errors, the headers compiled
-#    without __int128, and 10^7 random draws against the __int128 build's (test_draw_digest);
+#    MSVC builds it): golden values, the 128-bit arithmetic and the radical inverses' divisions built on it,
+#    fills against per-sample values (a sampled eighth of the matrix), streams and domains (the inline code
+#    too), API errors, the headers compiled without __int128, and 10^7 random draws against the __int128
+#    build's (test_draw_digest);
 #  - build-arm64/: the library cross-built for 64-bit Arm and its quick subset under qemu-user (label
 #    quick: golden values, fills, streams, NEON noise and cellular against the scalar references, API
 #    errors, the NEON kernels in use, random draws against the host build's) and the headers as C99 and
@@ -65,11 +66,11 @@ HEADER_TESTS="test_header_c99 test_header_cxx test_header_c99_no128_vector test_
 platform_checks() {
     local log="$1" JOBS=1 # (one job: the sanitized tests run beside it)
     {
-        build_targets build-portable "test_golden test_golden_static test_u128 test_fill test_stream test_stream_scalar
-            test_api_errors test_draw_digest $HEADER_TESTS" -DCMAKE_BUILD_TYPE=Release -DUDM1_PORTABLE_INT128=ON \
+        build_targets build-portable "test_golden test_golden_static test_u128 test_radical_inverse test_fill test_stream
+            test_stream_scalar test_api_errors test_draw_digest $HEADER_TESTS" -DCMAKE_BUILD_TYPE=Release -DUDM1_PORTABLE_INT128=ON \
             -DUDM1_BUILD_TOOLS=OFF -DUDM1_DIGEST_REFERENCE="$DIGEST_REFERENCE" &&
         UDM1_TEST_SAMPLE=8 ctest --test-dir build-portable -j "$JOBS" --output-on-failure \
-            -R '^c[.](golden|golden_static|u128|fill|stream|stream_inline_scalar|api_errors|draw_digest_reference|draw_digest|header_.*)$' &&
+            -R '^c[.](golden|golden_static|u128|radical_inverse|fill|stream|stream_inline_scalar|api_errors|draw_digest_reference|draw_digest|header_.*)$' &&
         build_targets build-arm64 "test_golden test_api_errors test_fill test_stream test_noise_eval test_cellular
             test_isa test_draw_digest $HEADER_TESTS" "${ARM64[@]}" &&
         ctest --test-dir build-arm64 -j "$JOBS" --output-on-failure -L '^quick$' &&

@@ -130,11 +130,23 @@ static bool fill_pixel(const udm1_seq *seq, const udm1app::PixelOrder &order, in
     return true;
 }
 
-udm1_seq *make_sampler(const Options &opt)
+// The sampler's dimensions: the directions' pair (and with --jitter the pixel's before it)
+static uint32_t sampler_dims(const Options &opt)
 {
     if (opt.jitter && opt.direction_dim)
         throw std::runtime_error("--direction-dims is for renders without --jitter (which takes dims 0..3)");
-    return udm1app::create_render_sampler(opt.sampler, opt.jitter ? 4 : opt.direction_dim + 2, false, opt.spp, opt.seed, opt.randomize, "AO");
+    return opt.jitter ? 4 : opt.direction_dim + 2;
+}
+
+udm1_seq *make_sampler(const Options &opt)
+{
+    return udm1app::create_render_sampler(opt.sampler, sampler_dims(opt), false, opt.spp, opt.seed, opt.randomize, "AO");
+}
+
+// make_sampler's sampler, shared by the renders of one image's sample ranges (udm1app::shared_render_sampler)
+static std::shared_ptr<const udm1_seq> shared_sampler(const Options &opt)
+{
+    return udm1app::shared_render_sampler(opt.sampler, sampler_dims(opt), false, opt.spp, opt.seed, opt.randomize, "AO");
 }
 
 double ao_at(const udm1scene::EmbreeScene &rt, Vec3 p, Vec3 n, const udm1_seq *seq, uint64_t stream, uint32_t spp,
@@ -162,8 +174,8 @@ Image render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, co
     udm1app::check_pixel_bounds(bounds, view.width, view.height);
     const udm1app::PixelOrder order = udm1app::make_pixel_order(opt.sampler, opt.randomize, opt.spp, opt.seed,
                                                                 view.width, view.height);
-    udm1_seq *seq = make_sampler(opt);
-    std::unique_ptr<udm1_seq, void (*)(udm1_seq *)> seq_owner(seq, udm1_seq_destroy);  // freed on every path
+    const std::shared_ptr<const udm1_seq> seq_owner = shared_sampler(opt);  // (shared by the renders of its sample ranges)
+    const udm1_seq *seq = seq_owner.get();
     Image img;
     img.width = bounds[2] - bounds[0];
     img.height = bounds[3] - bounds[1];

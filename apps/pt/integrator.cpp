@@ -99,9 +99,7 @@ FilmResponse::FilmResponse(const udm1scene::Scene &scene)
 Sequence make_sequence(const Options &opt, uint32_t dims)
 {
     // at least 2 dimensions, at most the preset's own (the domains pad the rest)
-    return Sequence(udm1app::create_render_sampler(opt.sampler, dims, true, opt.spp, opt.seed,
-                                                   opt.randomize, "udm1-pt"),
-                    udm1_seq_destroy);
+    return udm1app::shared_render_sampler(opt.sampler, dims, true, opt.spp, opt.seed, opt.randomize, "udm1-pt");
 }
 
 Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &rt, const Options &opt, Stats *stats)
@@ -134,8 +132,8 @@ Accumulator render(const udm1scene::Scene &scene, const udm1scene::EmbreeScene &
     bounds[0] += ox, bounds[2] += ox, bounds[1] += oy, bounds[3] += oy;
     const udm1app::PixelOrder order = udm1app::make_pixel_order(opt.sampler, opt.randomize, opt.spp, opt.seed,
                                                                 view.width, view.height);
-    Sequence seq_owner = make_sequence(opt, path_dims(max_depth));  // freed on every path
-    udm1_seq *seq = seq_owner.get();
+    Sequence seq_owner = make_sequence(opt, path_dims(max_depth));  // (shared by the renders of its sample ranges)
+    const udm1_seq *seq = seq_owner.get();
     const FilmResponse film(scene);
     Accumulator acc;
     acc.reset(view.width, view.height, bounds[0], bounds[1], bounds[2] - bounds[0], bounds[3] - bounds[1],

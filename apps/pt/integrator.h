@@ -190,7 +190,7 @@ struct Stats {
 // The sampler of a render: opt's preset, seed and randomization, min(dims, the preset's maximum)
 // dimensions (at least 2), K = spp for point sets. Throws std::runtime_error (unknown sampler, bad
 // parameters).
-using Sequence = std::unique_ptr<udm1_seq, void (*)(udm1_seq *)>;
+using Sequence = std::shared_ptr<const udm1_seq>;
 Sequence make_sequence(const Options &opt, uint32_t dims);
 
 // Throws std::runtime_error with a one-line message (unknown sampler, bad range, material, a forced

@@ -49,7 +49,8 @@ static void cursor_raw(const udm1_seq *s, uint64_t stream, uint64_t index, uint3
 static void test_stream_equals_cursor(void)
 {
     static const uint64_t streams[] = {5, ((uint64_t)7 << 32) | 3};
-    static const uint64_t seqs[] = {0, 1, 999, 0xFFFFFFFFull, 0x100000000ull, (1ull << 40) + 3, UINT64_MAX};
+    /* (2186, 2187 and 100000: about and past a radical inverse's first split in base 3, radical_inverse.h) */
+    static const uint64_t seqs[] = {0, 1, 999, 2186, 2187, 100000, 0xFFFFFFFFull, 0x100000000ull, (1ull << 40) + 3, UINT64_MAX};
     static const uint32_t firsts[] = {0, 3}, counts[] = {1, 9, 20};
     int inline_seen = 0, library_seen = 0;
     for (size_t p = 0; p < udm1_preset_count(); ++p) {

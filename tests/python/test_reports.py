@@ -8,6 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -20,6 +21,27 @@ def run_report(script, out, *extra):
     cmd = [sys.executable, str(ROOT / "tools" / "report" / script), "--out", str(out), "--quick", *extra]
     return subprocess.run(cmd, capture_output=True, text=True, timeout=600,
                           env={**os.environ, "PYTHONPATH": str(ROOT / "python")})
+
+
+@pytest.mark.skipif(not AO or not PT, reason="UDM1_AO_TOOL and UDM1_PT_TOOL (the renderers) are not set")
+def test_screen_report_reads_uncompressed_images_in_place(tmp_path):
+    # the screen report reads its 256 prefixes per render uncompressed (--exr-compression none) without
+    # OpenEXR's library: the same values as Mitsuba's reader; any other file goes to Mitsuba's
+    sys.path.insert(0, str(ROOT / "tools" / "report"))
+    import screen_report
+    for tool, size in ((AO, "40x30"), (PT, "24x20")):
+        for z in ("none", "zip"):
+            path = tmp_path / f"{Path(tool).name}-{z}.exr"
+            subprocess.run([tool, "--size", size, "--sampler", "wr", "--spp", "5", "--exr-compression", z, "-o",
+                            str(path)], check=True, capture_output=True)
+            theirs = np.array(screen_report.mitsuba().Bitmap(str(path)))
+            ours = screen_report.uncompressed_rgb(path.read_bytes())
+            if z == "zip":
+                assert ours is None
+            else:
+                assert ours is not None and np.array_equal(ours, theirs[..., :3]), path
+            assert np.array_equal(screen_report.read_exr(path), theirs.astype(np.float64)[..., :3].mean(axis=2))
+            assert screen_report.uncompressed_rgb(path.read_bytes()[:-4]) is None  # a truncated file: not read here
 
 
 def links(html: str) -> list[str]:

@@ -12,7 +12,7 @@ import subprocess
 
 import numpy as np
 import pytest
-from cli_checks import fails_cleanly
+from cli_checks import exr_compression, fails_cleanly
 
 TOOL = os.environ.get("UDM1_AO_TOOL", "")
 pytestmark = pytest.mark.skipif(not TOOL, reason="UDM1_AO_TOOL (the udm1-ao binary) is not set")
@@ -367,10 +367,16 @@ def test_screen_is_progressive_checkpoints_are_prefixes(tmp_path):
     common = ["--sampler", "wr", "--size", "24x20", "--randomize"]
     r = ok(*common, "screen", "--spp", "16", "--checkpoints", "1,3,16", "-o", str(tmp_path / "ck.exr"))
     assert "wrote 3 checkpoints" in r.stdout
+    # the same images uncompressed (--exr-compression none: what the screen report reads, quicker)
+    ok(*common, "screen", "--spp", "16", "--checkpoints", "1,3,16", "--exr-compression", "none", "-o",
+       str(tmp_path / "raw.exr"))
     for k in (1, 3, 16):
         ok(*common, "screen", "--spp", str(k), "-o", str(tmp_path / f"s{k}.exr"))
-        r = ok("compare", str(tmp_path / f"ck.{k}.exr"), str(tmp_path / f"s{k}.exr"), "--exact")
-        assert "identical" in r.stdout and "mse 0 " in r.stdout, (k, r.stdout)
+        for name in (f"ck.{k}.exr", f"raw.{k}.exr"):
+            r = ok("compare", str(tmp_path / name), str(tmp_path / f"s{k}.exr"), "--exact")
+            assert "identical" in r.stdout and "mse 0 " in r.stdout, (name, r.stdout)
+        assert (exr_compression(tmp_path / f"ck.{k}.exr"), exr_compression(tmp_path / f"raw.{k}.exr")) == ("zip", "none")
+        assert exr_compression(tmp_path / f"s{k}.exr") == "zip"
     ok(*common, "screen-fixed", "--spp", "16", "--checkpoints", "3", "-o", str(tmp_path / "fx.exr"))
     ok(*common, "screen-fixed", "--spp", "3", "-o", str(tmp_path / "f3.exr"))
     r = ok("compare", str(tmp_path / "fx.3.exr"), str(tmp_path / "f3.exr"), "--exact")
@@ -378,7 +384,8 @@ def test_screen_is_progressive_checkpoints_are_prefixes(tmp_path):
     for args, words in ((["--checkpoints", "3,2", "-o", "x.exr"], "not ascending"),
                         (["--checkpoints", "17", "-o", "x.exr"], "--checkpoints"),
                         (["--checkpoints", "4", "--spp-first", "2", "-o", "x.exr"], "--checkpoints"),
-                        (["--checkpoints", "4", "--png", "x.png"], "-o NAME.exr")):
+                        (["--checkpoints", "4", "--png", "x.png"], "-o NAME.exr"),
+                        (["--checkpoints", "4", "--exr-compression", "gzip", "-o", "x.exr"], "--exr-compression 'gzip'")):
         r = run(*common, "screen", "--spp", "16", *args, cwd=tmp_path)
         assert r.returncode != 0 and words in r.stderr and len(r.stderr.strip().splitlines()) == 1, (args, r.stderr)
         assert not list(tmp_path.glob("x.*")), args

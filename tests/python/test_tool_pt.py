@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 import pytest
-from cli_checks import fails_cleanly
+from cli_checks import exr_compression, fails_cleanly
 from pt_tool import read_exr
 from tabulated_bsdf_files import write_test_files
 
@@ -895,7 +895,10 @@ def test_screen_is_progressive_checkpoints_are_prefixes(tmp_path):
     # are a k-sample render, bit for bit (scalar and wavefront loops)
     common = ["--sampler", "wmmr", "--size", "20x16", "--randomize", "screen"]
     ok(*common, "--spp", "8", "--checkpoints", "2,5", "-o", str(tmp_path / "ck.exr"))
+    ok(*common, "--spp", "8", "--checkpoints", "2,5", "--exr-compression", "none", "-o", str(tmp_path / "raw.exr"))
     for k in (2, 5):
-        ok(*common, "--spp", str(k), "-o", str(tmp_path / f"s{k}.exr"))
-        r = ok("compare", str(tmp_path / f"ck.{k}.exr"), str(tmp_path / f"s{k}.exr"), "--exact")
-        assert "identical" in r.stdout and "mse 0 " in r.stdout, (k, r.stdout)
+        ok(*common, "--spp", str(k), "--exr-compression", "none", "-o", str(tmp_path / f"s{k}.exr"))
+        for name in (f"ck.{k}.exr", f"raw.{k}.exr"):
+            r = ok("compare", str(tmp_path / name), str(tmp_path / f"s{k}.exr"), "--exact")
+            assert "identical" in r.stdout and "mse 0 " in r.stdout, (name, r.stdout)
+        assert [exr_compression(tmp_path / f) for f in (f"ck.{k}.exr", f"raw.{k}.exr", f"s{k}.exr")] == ["zip", "none", "none"]

@@ -61,8 +61,56 @@ def mitsuba():
     return mi
 
 
+def uncompressed_rgb(data: bytes) -> np.ndarray | None:
+    """The R, G, B float channels of an uncompressed single-part scan-line OpenEXR file (what the renderers
+    write with --exr-compression none), as (height, width, 3) float32; None for any other file. Read in
+    place: a header of attributes (name, type, size, value), a table of line offsets, then per line its y,
+    its byte count and each channel's row in name order."""
+    if data[:4] != b"\x76\x2f\x31\x01" or data[4] != 2 or data[5:8] != b"\0\0\0":  # version 2, one scan-line part
+        return None
+    at, attrs = 8, {}
+    while data[at] != 0:
+        name_end = data.index(b"\0", at)
+        type_end = data.index(b"\0", name_end + 1)
+        size = int.from_bytes(data[type_end + 1:type_end + 5], "little")
+        attrs[data[at:name_end].decode()] = data[type_end + 5:type_end + 5 + size]
+        at = type_end + 5 + size
+    if attrs.get("compression") != b"\0" or "channels" not in attrs or "dataWindow" not in attrs:
+        return None
+    names, types, c = [], [], attrs["channels"]
+    while c[:1] != b"\0":  # name, pixel type (int32), pLinear, reserved, x and y sampling
+        end = c.index(b"\0")
+        names.append(c[:end].decode())
+        types.append(int.from_bytes(c[end + 1:end + 5], "little"))
+        if c[end + 9:end + 17] != b"\1\0\0\0\1\0\0\0":
+            return None  # subsampled
+        c = c[end + 17:]
+    x0, y0, x1, y1 = np.frombuffer(attrs["dataWindow"], dtype="<i4")
+    w, h = int(x1 - x0 + 1), int(y1 - y0 + 1)
+    if not {"R", "G", "B"} <= set(names) or any(t not in (0, 2) for t in types):  # 32-bit uint or float only
+        return None
+    start = int.from_bytes(data[at + 1:at + 9], "little")  # the first line's offset
+    line = 8 + 4 * w * len(names)
+    if attrs.get("lineOrder", b"\0") != b"\0" or start + h * line > len(data):
+        return None
+    rows = np.frombuffer(data, dtype=np.uint8, count=h * line, offset=start).reshape(h, line)
+    if not np.array_equal(rows[:, :4].copy().view("<i4").ravel(), np.arange(y0, y1 + 1)):
+        return None  # (not one line after the other)
+    out = np.empty((h, w, 3), dtype=np.float32)
+    for k, name in enumerate("RGB"):
+        i = names.index(name)
+        if types[i] != 2:
+            return None
+        out[..., k] = rows[:, 8 + 4 * w * i:8 + 4 * w * (i + 1)].copy().view("<f4")
+    return out
+
+
 def read_exr(path: Path) -> np.ndarray:
-    a = np.array(mitsuba().Bitmap(str(path)), dtype=np.float64)
+    """An image as the mean of its R, G, B (what the renderers' sums show); uncompressed files read in place."""
+    a = uncompressed_rgb(path.read_bytes())
+    if a is None:
+        a = np.array(mitsuba().Bitmap(str(path)))
+    a = np.asarray(a, dtype=np.float64)
     return a[..., :3].mean(axis=2) if a.ndim == 3 else a
 
 
@@ -127,10 +175,11 @@ def display(img: np.ndarray) -> np.ndarray:
 
 
 def render_prefixes(tool, common, sampler, randomize, spp_max, seed, folder, truth, errors, scheme):
-    """Every prefix 1 .. spp_max of one progressive render (--checkpoints every)."""
+    """Every prefix 1 .. spp_max of one progressive render (--checkpoints every), uncompressed: read once each,
+    quicker to write and read than zip-compressed."""
     stem = folder / f"ck-{scheme}-{seed}.exr"
     run(tool, *common, "--sampler", sampler, "--randomize", randomize, "--spp", str(spp_max), "--seed", str(seed),
-        "--checkpoints", "every", "-o", str(stem))
+        "--checkpoints", "every", "--exr-compression", "none", "-o", str(stem))
     for k in range(1, spp_max + 1):
         path = stem.with_name(f"{stem.stem}.{k}.exr")
         errors.add(scheme, k, display(read_exr(path)) - truth)
@@ -141,7 +190,7 @@ def render_each(tool, common, sampler, randomize, spps, seed, folder, truth, err
     for k in spps:
         path = folder / f"each-{scheme}-{k}-{seed}.exr"
         run(tool, *common, "--sampler", sampler, "--randomize", randomize, "--spp", str(k), "--seed", str(seed),
-            "-o", str(path))
+            "--exr-compression", "none", "-o", str(path))
         errors.add(scheme, k, display(read_exr(path)) - truth)
         path.unlink()
 

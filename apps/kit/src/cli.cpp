@@ -45,6 +45,13 @@ uint32_t parse_randomize(const std::string &text)
     throw Error("--randomize '" + quote_raw(text) + "' is not one of none, default, shift, permute, owen, screen, screen-fixed");
 }
 
+bool parse_exr_compression(const std::string &text)
+{
+    if (text == "zip") return true;
+    if (text == "none") return false;
+    throw Error("--exr-compression '" + quote_raw(text) + "' is not one of zip, none");
+}
+
 std::vector<std::string> parse_list(const std::string &text, const std::string &flag)
 {
     std::vector<std::string> parts;

@@ -73,7 +73,7 @@ std::vector<unsigned char> encode_exr(const ExrImage &image, const std::string &
         Imf::Header header(Imath::Box2i(Imath::V2i(0, 0), Imath::V2i(image.full_width - 1, image.full_height - 1)),
                            Imath::Box2i(Imath::V2i(image.x0, image.y0),
                                         Imath::V2i(image.x0 + image.width - 1, image.y0 + image.height - 1)));
-        header.compression() = Imf::ZIP_COMPRESSION;
+        header.compression() = image.zip ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
         for (const ExrChannel &c : image.channels) header.channels().insert(c.name, Imf::Channel(c.uint ? Imf::UINT : Imf::FLOAT));
         for (const auto &kv : image.attributes) header.insert(kv.first, Imf::StringAttribute(kv.second));
         MemoryStream stream(path);

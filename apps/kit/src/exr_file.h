@@ -24,13 +24,14 @@ struct ExrImage {
     std::vector<uint32_t> pixels;
     std::map<std::string, std::string> attributes;  // string attributes
     int bits = 32;  // read: 16 where every colour channel in the file is half
+    bool zip = true;  // written with zip-compressed scan lines, else uncompressed (larger, quicker to write and read)
 };
 
 // Whether the file begins as an OpenEXR file does (its magic number). Throws Error "cannot read 'path': ..." if it
 // is not a regular file or cannot be opened.
 bool is_exr_file(const std::string &path);
 
-// The file's bytes: zip-compressed scan lines, no time stamp. Throws Error naming `path` (used only for the
+// The file's bytes: zip-compressed scan lines (uncompressed where image.zip is false), no time stamp. Throws Error naming `path` (used only for the
 // message).
 std::vector<unsigned char> encode_exr(const ExrImage &image, const std::string &path);
 

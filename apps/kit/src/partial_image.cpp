@@ -53,7 +53,7 @@ std::vector<float> PartialImage::rgb() const
     return out;
 }
 
-void write_partial(AtomicFile &file, const PartialImage &p)
+void write_partial(AtomicFile &file, const PartialImage &p, bool zip)
 {
     const std::string &path = file.path();
     if (image_extension(path) != "exr")
@@ -89,14 +89,15 @@ void write_partial(AtomicFile &file, const PartialImage &p)
             px[3 + 2 * c] = (uint32_t)(v >> 32), px[4 + 2 * c] = (uint32_t)v;
         }
     }
+    exr.zip = zip;
     std::vector<unsigned char> bytes = encode_exr(exr, path);
     file.write(bytes.data(), bytes.size());
 }
 
-void write_partial(const std::string &path, const PartialImage &p)
+void write_partial(const std::string &path, const PartialImage &p, bool zip)
 {
     AtomicFile file(path);
-    write_partial(file, p);
+    write_partial(file, p, zip);
     file.commit();
 }
 

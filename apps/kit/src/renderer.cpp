@@ -67,6 +67,7 @@ RenderSettings parse(Renderer &r, int argc, char **argv)
         else if (a == "--seed") s.seed = parse_u64(value(a), a, 0, UINT64_MAX);
         else if (a == "--frame") s.frame = parse_u64(value(a), a, 0, UINT32_MAX);
         else if (a == "--checkpoints") only("render", a), s.checkpoints = value(a);
+        else if (a == "--exr-compression") s.exr_zip = parse_exr_compression(value(a));
         else if (a == "--randomize") s.randomize = parse_randomize(value(a));
         else if (a == "--size") {
             parse_size(value(a), a, 16384, MAX_RENDER_PIXELS, &s.width, &s.height);
@@ -165,7 +166,7 @@ int run_merge(const Renderer &r, const RenderSettings &s)
     std::vector<AtomicFile> files = open_outputs({s.output, s.png});
     PartialImage p = merge_partials(s.positional);
     if (!r.owns(p)) throw Error("'" + s.positional[0] + "' is not an " + r.defaults().tool + " image", 2);
-    write_partial(files[0], p);
+    write_partial(files[0], p, s.exr_zip);
     if (!s.png.empty()) write_display(r, files[1], p);
     commit_all(files);
     std::printf("merged %zu image(s): samples [%llu, %llu) of %llu, pixels [%d, %d) x [%d, %d)\n", s.positional.size(),
@@ -298,7 +299,7 @@ int run_checkpoints(Renderer &r, const RenderSettings &s, const std::string &mad
         }
         total.made_by = made_by;
         files.emplace_back(checkpoint_path(s.output, k));
-        write_partial(files.back(), total);
+        write_partial(files.back(), total, s.exr_zip);
         files.back().finish();
         if (isatty(2))
             std::fprintf(stderr, "\r%s: %llu of %llu spp", r.defaults().tool, (unsigned long long)k,
@@ -341,7 +342,7 @@ int run_render(Renderer &r, RenderSettings s)
     PartialImage image = r.render(s, &stats);
     image.made_by = made_by;
     if (!s.output.empty()) {
-        if (is_exr_path(s.output)) write_partial(files[0], image);  // exact sums: ranges and tiles merge
+        if (is_exr_path(s.output)) write_partial(files[0], image, s.exr_zip);  // exact sums: ranges and tiles merge
         else write_display(r, files[0], image);
     }
     if (!s.png.empty()) write_display(r, files.back(), image);

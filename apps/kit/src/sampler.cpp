@@ -5,6 +5,7 @@
 #include "udm1app/pixel_order.h"
 
 #include <algorithm>
+#include <mutex>
 #include <stdexcept>
 
 namespace udm1app {
@@ -34,6 +35,23 @@ udm1_seq *create_render_sampler(const std::string &name, uint32_t dims, bool cli
     udm1_seq *seq = nullptr;
     if (udm1_seq_create_desc(&desc, &seq) != UDM1_OK) throw std::runtime_error(udm1_last_error());
     return seq;
+}
+
+std::shared_ptr<const udm1_seq> shared_render_sampler(const std::string &name, uint32_t dims, bool clip, uint32_t spp,
+                                                      uint64_t seed, uint32_t randomize, const std::string &who)
+{
+    static std::mutex mutex;
+    static std::string last_key;
+    static std::shared_ptr<const udm1_seq> last;
+    const std::string key = name + '\n' + std::to_string(dims) + ' ' + std::to_string(clip) + ' ' + std::to_string(spp) +
+                            ' ' + std::to_string(seed) + ' ' + std::to_string(randomize);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!last || key != last_key) {
+        last.reset(create_render_sampler(name, dims, clip, spp, seed, randomize, who),
+                   [](const udm1_seq *seq) { udm1_seq_destroy(const_cast<udm1_seq *>(seq)); });
+        last_key = key;
+    }
+    return last;
 }
 
 }  // namespace udm1app

@@ -1,28 +1,61 @@
 /* halton.c - the Halton sequence: dimension j is the radical inverse of the
  * index in the j-th prime base (2, 3, 5, ...), exact (radical_inverse.c). */
+#include "samplers/radical_inverse.h"
 #include "samplers/samplers.h"
 #include "seq/scramble.h"
 
 #include <stdlib.h>
 
-typedef struct halton { uint64_t primes[1]; } halton; /* dims entries */
+typedef struct halton { udm1_radix radix[1]; } halton; /* dims entries */
 
 static uint64_t halton_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
     const halton *h = seq->data;
     uint64_t r = udm1_word(seq, skey, dim);
-    return udm1_radical_inverse(index, (uint32_t)h->primes[dim], seq->mode, r) + seq->offset[dim];
+    return udm1_radical_inverse(index, &h->radix[dim], seq->mode, r) + seq->offset[dim];
+}
+
+static void halton_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, size_t count, uint32_t dim0, uint32_t nd,
+                        uint64_t *raw)
+{
+    const halton *h = seq->data;
+    for (uint32_t j = 0; j < nd; ++j) {
+        uint32_t dim = dim0 + j;
+        udm1_radical_fill(&h->radix[dim], seq->mode, udm1_word(seq, skey, dim), first, count, seq->offset[dim],
+                          raw + j, nd);
+    }
+}
+
+static int halton_pin(const udm1_seq_t *seq, uint64_t skey, uint32_t dim, uint64_t *w0, uint64_t *w1)
+{
+    const halton *h = seq->data;
+    if (seq->mode != UDM1_MODE_PERMUTE) return 0;
+    udm1_radical_pin(&h->radix[dim], seq->mode, udm1_word(seq, skey, dim), w0, w1);
+    return 1;
+}
+
+static uint64_t halton_pinned(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim, uint64_t w0,
+                              uint64_t w1)
+{
+    const halton *h = seq->data;
+    uint64_t r = udm1_word(seq, skey, dim);
+    return udm1_radical_pinned(index, &h->radix[dim], seq->mode, r, w0, w1) + seq->offset[dim];
 }
 
 udm1_status udm1_init_halton(udm1_seq_t *seq)
 {
-    halton *h = malloc(sizeof(uint64_t) * seq->dims);
-    if (!h || !udm1_first_primes(seq->dims, h->primes)) {
+    halton *h = malloc(sizeof(udm1_radix) * seq->dims);
+    uint64_t *primes = malloc(sizeof(uint64_t) * seq->dims);
+    if (!h || !primes || !udm1_first_primes(seq->dims, primes)) {
         free(h);
+        free(primes);
         return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", seq->dims);
     }
+    for (uint32_t j = 0; j < seq->dims; ++j) udm1_radix_init(&h->radix[j], (uint32_t)primes[j]);
+    free(primes);
     seq->data = h;
     return UDM1_OK;
 }
 
-const udm1_kind udm1_halton_kind = {.name = "halton", .value = halton_value};
+const udm1_kind udm1_halton_kind = {
+    .name = "halton", .value = halton_value, .fill = halton_fill, .pin = halton_pin, .pinned = halton_pinned};

@@ -37,8 +37,4 @@ UDM1_HIDDEN extern const udm1_kind udm1_grps_kind;
 UDM1_HIDDEN extern const udm1_kind udm1_pmj02_kind;
 UDM1_HIDDEN extern const udm1_kind udm1_lattice_seq_kind;
 
-/* Base-b radical inverse of n as 0.64 (floor), exact; digits permuted per mode
- * (r is the dimension's random word). Used by Halton and Hammersley (radical_inverse.c). */
-UDM1_HIDDEN uint64_t udm1_radical_inverse(uint64_t n, uint32_t base, uint32_t mode, uint64_t r);
-
 #endif /* UDM1_SAMPLERS_H */

@@ -21,7 +21,8 @@
 
 #include <stdint.h>
 
-static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
+/* udm1_permute's mask of l > 0: l - 1 with every bit below its top bit set */
+static inline uint32_t udm1_permute_mask(uint32_t l)
 {
     uint32_t w = l - 1;
     w |= w >> 1;
@@ -29,27 +30,44 @@ static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
     w |= w >> 4;
     w |= w >> 8;
     w |= w >> 16;
-    do {
-        i ^= p;
-        i *= 0xe170893du;
-        i ^= p >> 16;
-        i ^= (i & w) >> 4;
-        i ^= p >> 8;
-        i *= 0x0929eb3fu;
-        i ^= p >> 23;
-        i ^= (i & w) >> 1;
-        i *= 1u | p >> 27;
-        i *= 0x6935fa69u;
-        i ^= (i & w) >> 11;
-        i *= 0x74dcb303u;
-        i ^= (i & w) >> 2;
-        i *= 0x9e501cc3u;
-        i ^= (i & w) >> 2;
-        i *= 0xc860a3dfu;
-        i &= w;
-        i ^= i >> 5;
-    } while (i >= l);
-    return (uint32_t)(((uint64_t)i + p) % l);
+    return w;
+}
+
+/* One step of udm1_permute's cycle walk: a bijection of [0, w] (w its mask) */
+static inline uint32_t udm1_permute_step(uint32_t i, uint32_t w, uint32_t p)
+{
+    i ^= p;
+    i *= 0xe170893du;
+    i ^= p >> 16;
+    i ^= (i & w) >> 4;
+    i ^= p >> 8;
+    i *= 0x0929eb3fu;
+    i ^= p >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1u | p >> 27;
+    i *= 0x6935fa69u;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303u;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3u;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3dfu;
+    i &= w;
+    i ^= i >> 5;
+    return i;
+}
+
+/* udm1_permute before its final rotation by p: the cycle walk of i's hash below l (w its mask) */
+static inline uint32_t udm1_permute_walk(uint32_t i, uint32_t l, uint32_t w, uint32_t p)
+{
+    do i = udm1_permute_step(i, w, p);
+    while (i >= l);
+    return i;
+}
+
+static inline uint32_t udm1_permute(uint32_t i, uint32_t l, uint32_t p)
+{
+    return (uint32_t)(((uint64_t)udm1_permute_walk(i, l, udm1_permute_mask(l), p) + p) % l);
 }
 
 static inline uint64_t udm1_reverse64(uint64_t x)

@@ -34,6 +34,9 @@ constexpr uint32_t RANDOMIZE_SCREEN_FIXED = 0x100;
 // from "screen-fixed".
 uint32_t parse_randomize(const std::string &text);
 
+// --exr-compression: true (zip-compressed) from "zip", false (uncompressed) from "none".
+bool parse_exr_compression(const std::string &text);
+
 // "a,b,c" as its items; an empty item is an Error naming `flag`.
 std::vector<std::string> parse_list(const std::string &text, const std::string &flag);
 

@@ -40,10 +40,11 @@ struct PartialImage {
     bool whole() const { return x0 == 0 && y0 == 0 && width == full_width && height == full_height; }
 };
 
-// Write atomically (no partial file on failure); throws Error naming the path.
-void write_partial(const std::string &path, const PartialImage &p);
+// Write atomically (no partial file on failure); throws Error naming the path. zip: compressed (OpenEXR's zip),
+// else uncompressed.
+void write_partial(const std::string &path, const PartialImage &p, bool zip = true);
 // Write into `file`, left for the caller to commit with the run's other outputs.
-void write_partial(AtomicFile &file, const PartialImage &p);
+void write_partial(AtomicFile &file, const PartialImage &p, bool zip = true);
 // Read; throws Error naming the path (unreadable, or not such an image).
 PartialImage read_partial(const std::string &path);
 // Add parts of one render: the same description and spp; sorted by range, every pixel of the

@@ -38,6 +38,7 @@ struct RenderSettings {
     int bounds[4] = {0, 0, 0, 0};              // all zero: every pixel
     int width = 0, height = 0;                 // 0: the renderer's default for the scene
     bool size_given = false, sampler_given = false, spp_given = false, exact = false;
+    bool exr_zip = true;                       // --exr-compression: the images with exact sums zip-compressed
 
     bool part() const { return first || count || bounds[2]; }  // a sample range or a tile
 };

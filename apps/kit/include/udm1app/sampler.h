@@ -4,6 +4,7 @@
 #include <udm1/seq.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 namespace udm1app {
@@ -15,5 +16,11 @@ namespace udm1app {
 // Release with udm1_seq_destroy.
 udm1_seq *create_render_sampler(const std::string &name, uint32_t dims, bool clip, uint32_t spp, uint64_t seed,
                                 uint32_t randomize, const std::string &who);
+
+// The same sampler, shared: the last one made is kept and given again to a call with the same arguments, so
+// that the renders of one image's sample ranges in one process (--checkpoints: each prefix's new samples) set
+// it up once (a screen-randomized one searches its screen generators). Thread-safe.
+std::shared_ptr<const udm1_seq> shared_render_sampler(const std::string &name, uint32_t dims, bool clip, uint32_t spp,
+                                                      uint64_t seed, uint32_t randomize, const std::string &who);
 
 }  // namespace udm1app
