@@ -157,7 +157,7 @@ def test_main_report(tmp_path):
     assert "[1/11 sampler-times]" in r.stderr and "[11/11 noise]" in r.stderr  # progress on the terminal
     # with the time elapsed and an estimate of the time left, in the step and in all, for each of two steps running
     # side by side
-    for step in ("7/11 screen", "8/11 samplers"):
+    for step in ("7/11 screen", "8/11 tolerance"):
         assert re.search(rf"^\[report\] \[{step}\] \d+ s elapsed; (about \d+ s left in this step, .* in all|past its "
                          "estimate)", r.stderr, re.M), r.stderr[-3000:]
     report = check_page(out)

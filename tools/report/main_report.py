@@ -170,16 +170,19 @@ def plan(args, out: Path) -> list[Step]:
         Step("fastnoise", "FastNoiseSIMD built from its sdist for the noise step (once per build folder)",
              [[py, str(ROOT / "bench" / "bench_noise.py"), "--build-only", "--levels", noise_levels]],
              ["fastnoise_build.txt"], stdout={0: "fastnoise_build.txt"})]
-    untimed = fastnoise + [
+    # the longest first, two at a time: the screen step beside the tolerance step, then FastNoiseSIMD's build (whose
+    # compile leaves a core partly idle), the sampler and sequence steps
+    untimed = [
         Step("screen", "Beyond the paper: screen-space decorrelation of Weyl sequences (udm1-ao, udm1-pt)",
              [screen], ["screen.json"], "screen.html"),
+        Step("tolerance", "Integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's families",
+             [[py, str(ROOT / "bench" / "bench_integrate.py"), "--out", str(out / "tolerance"), *tolerance_args]],
+             ["tolerance/results.json"]),
+    ] + fastnoise + [
         Step("samplers", "Integration error against N and against time, every sampler",
              [[py, str(HERE / "sampler_report.py"), "--bench", tools["bench_samplers"], *o, "--reps", reps, *ns,
                "--times", str(out / "sampler_times.csv"), *q]],
              ["samplers.json"], "samplers.html", needs=("sampler-times",)),
-        Step("tolerance", "Integration to a tolerance: udm1.integrate against QMCPy and scipy on Genz's families",
-             [[py, str(ROOT / "bench" / "bench_integrate.py"), "--out", str(out / "tolerance"), *tolerance_args]],
-             ["tolerance/results.json"]),
         Step("sequences", "Sequences: points, discrepancy, constant-set check, exactness",
              [[py, str(HERE / "sequence_report.py"), *o, "--seeds", seeds, *q] + (["--full"] if args.full else [])],
              ["sequences.json"], "sequences.html"),
