@@ -86,6 +86,8 @@ report | --*)
     udm1_bootstrap_fastnoisesimd "$ROOT" || udm1_log "pyfastnoisesimd could not be installed: the noise speeds are measured against FastNoise Lite"
     build build -DCMAKE_BUILD_TYPE=Release
     export PYTHONPATH="$ROOT/python" UDM1_LIBRARY="$ROOT/build/libudm1/libudm1.so.1"
+    udm1_log "the Mitsuba 3 sampler plugin (python -m udm1.mitsuba build; up to date in a second once built)"
+    "$PY" -m udm1.mitsuba build || udm1_log "the Mitsuba plugin could not be built: the report's Mitsuba step uses the Python sampler"
     udm1_log "writing report/: the best sampler per application, then every detail (tools/report/main_report.py; its"
     udm1_log "time: BENCHMARKS.md, \"The main report\"; finished steps are reused on the next run; --full for the shared scenes)"
     "$PY" tools/report/main_report.py --build "$ROOT/build" --out "$ROOT/report" "$@"
