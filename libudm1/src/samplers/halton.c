@@ -26,19 +26,18 @@ static void halton_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first, si
     }
 }
 
-static int halton_pin(const udm1_seq_t *seq, uint64_t skey, uint32_t dim, uint64_t *w0, uint64_t *w1)
+static int halton_pin(const udm1_seq_t *seq, uint64_t skey, uint32_t dim, uint64_t *r, uint64_t *w0, uint64_t *w1)
 {
     const halton *h = seq->data;
     if (seq->mode != UDM1_MODE_PERMUTE) return 0;
-    udm1_radical_pin(&h->radix[dim], seq->mode, udm1_word(seq, skey, dim), w0, w1);
+    *r = udm1_word(seq, skey, dim);
+    udm1_radical_pin(&h->radix[dim], seq->mode, *r, w0, w1);
     return 1;
 }
 
-static uint64_t halton_pinned(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim, uint64_t w0,
-                              uint64_t w1)
+static uint64_t halton_pinned(const udm1_seq_t *seq, uint64_t index, uint32_t dim, uint64_t r, uint64_t w0, uint64_t w1)
 {
     const halton *h = seq->data;
-    uint64_t r = udm1_word(seq, skey, dim);
     return udm1_radical_pinned(index, &h->radix[dim], seq->mode, r, w0, w1) + seq->offset[dim];
 }
 

@@ -41,21 +41,21 @@ static void hammersley_fill(const udm1_seq_t *seq, uint64_t skey, uint64_t first
     }
 }
 
-static int hammersley_pin(const udm1_seq_t *seq, uint64_t skey, uint32_t dim, uint64_t *w0, uint64_t *w1)
+static int hammersley_pin(const udm1_seq_t *seq, uint64_t skey, uint32_t dim, uint64_t *r, uint64_t *w0, uint64_t *w1)
 {
     const hammersley *h = seq->data;
     if (seq->mode != UDM1_MODE_PERMUTE) return 0;
+    *r = udm1_word(seq, skey, dim);
     *w0 = *w1 = 0;
-    if (dim > 0) udm1_radical_pin(&h->radix[dim - 1], seq->mode, udm1_word(seq, skey, dim), w0, w1);
+    if (dim > 0) udm1_radical_pin(&h->radix[dim - 1], seq->mode, *r, w0, w1);
     return 1;
 }
 
-static uint64_t hammersley_pinned(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim, uint64_t w0,
+static uint64_t hammersley_pinned(const udm1_seq_t *seq, uint64_t index, uint32_t dim, uint64_t r, uint64_t w0,
                                   uint64_t w1)
 {
-    if (dim == 0) return hammersley_value(seq, skey, index, 0);
+    if (dim == 0) return udm1_randomize_base2(seq->mode, n_over_k(index, seq->point_count) + seq->offset[0], r);
     const hammersley *h = seq->data;
-    uint64_t r = udm1_word(seq, skey, dim);
     return udm1_radical_pinned(index, &h->radix[dim - 1], seq->mode, r, w0, w1) + seq->offset[dim];
 }
 

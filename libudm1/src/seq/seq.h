@@ -11,8 +11,9 @@
  *                the value before randomization (fills of many points find a stream's words once)
  *   base2_point  optional, with base2: base2 of dimensions dim0 .. dim0 + m - 1 of one point at once
  *   pin, pinned  optional: words per (stream key, dimension) that make its values cheaper to find, and
- *                the value from them (udm1_stream_init keeps two per dimension for its draws); pin
- *                returns 0 where they would not help (then only value is used)
+ *                the value from them (udm1_stream_init keeps three per dimension for its draws: the
+ *                dimension's randomization word and two of the kind's); pin returns 0 where they would
+ *                not help (then only value is used)
  *   seek, step   optional, for generators whose values follow one another (the PRNGs: value (n, j) is
  *                output n D + j): seek gives the state at (index, dim), step the value there and the
  *                state advanced to the next dimension, so a cursor draws one step at a time instead of
@@ -49,9 +50,11 @@ typedef void (*udm1_fill_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_
 /* Values of dimensions dim0 .. dim0 + m - 1 (all < dims) of one point into raw[0 .. m). */
 typedef void (*udm1_point_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim0, uint32_t m,
                               uint64_t *raw);
-/* A stream's two words of dimension dim < dims (0: none that help), and the value of index from them. */
-typedef int (*udm1_pin_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint32_t dim, uint64_t *w0, uint64_t *w1);
-typedef uint64_t (*udm1_pinned_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim, uint64_t w0,
+/* A stream's words of dimension dim < dims (0: none that help): r its randomization word (udm1_word), w0 and
+ * w1 the kind's; and the value of index from them. */
+typedef int (*udm1_pin_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint32_t dim, uint64_t *r, uint64_t *w0,
+                           uint64_t *w1);
+typedef uint64_t (*udm1_pinned_fn)(const udm1_seq_t *seq, uint64_t index, uint32_t dim, uint64_t r, uint64_t w0,
                                    uint64_t w1);
 /* The generator's state at (index, dim < dims). */
 typedef uint64_t (*udm1_seek_fn)(const udm1_seq_t *seq, uint64_t stream_key, uint64_t index, uint32_t dim);

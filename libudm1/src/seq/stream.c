@@ -1,8 +1,8 @@
 /* stream.c - udm1_stream (udm1/stream.h): a stream's per-dimension words for the inline draws, and the
  * library's own draw for every case they do not cover. */
 
-/* udm1_stream.flags, private: offset[] holds the randomization words of a base-2 kind; or offset[] and
- * a_hi[] the words of a kind's pin (seq/seq.h) */
+/* udm1_stream.flags, private: offset[] holds the randomization words of a base-2 kind; or a_lo[], offset[]
+ * and a_hi[] the words of a kind's pin (seq/seq.h) */
 #define STREAM_WORDS 0x100u
 #define STREAM_PINNED 0x200u
 #include "samplers/samplers.h"
@@ -75,11 +75,13 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
     } else if (seq->kind->pin) { /* words per dimension for the library's draws */
         uint64_t key = seq->mode == UDM1_MODE_SCREEN ? stream : s.key; /* (the key the draws use) */
         int pinned = 1;
-        for (uint32_t j = 0; pinned && j < own; ++j) pinned = seq->kind->pin(seq, key, first + j, &s.offset[j], &s.a_hi[j]);
+        for (uint32_t j = 0; pinned && j < own; ++j)
+            pinned = seq->kind->pin(seq, key, first + j, &s.a_lo[j], &s.offset[j], &s.a_hi[j]);
         if (pinned && own) {
             s.flags = STREAM_PINNED;
             s.held = own;
         } else {
+            memset(s.a_lo, 0, sizeof s.a_lo);
             memset(s.offset, 0, sizeof s.offset);
             memset(s.a_hi, 0, sizeof s.a_hi);
         }
@@ -139,12 +141,13 @@ udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t ind
         }
         return UDM1_OK;
     }
-    uint64_t key = seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key; /* udm1_seq_stream_key, without the hash */
     if ((st->flags & STREAM_PINNED) && dim < st->held && n <= st->held - dim) {
         for (uint32_t j = 0; j < n; ++j)
-            raw[j] = seq->kind->pinned(seq, key, index, st->first + dim + j, st->offset[dim + j], st->a_hi[dim + j]);
+            raw[j] = seq->kind->pinned(seq, index, st->first + dim + j, st->a_lo[dim + j], st->offset[dim + j],
+                                       st->a_hi[dim + j]);
         return UDM1_OK;
     }
+    uint64_t key = seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key; /* udm1_seq_stream_key, without the hash */
     udm1_cursor c;
     udm1_cursor_init(&c, seq, st->stream, index, (uint32_t)d0, key);
     udm1_cursor_raw(&c, n, raw);
