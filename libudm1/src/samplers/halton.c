@@ -3,10 +3,26 @@
 #include "samplers/radical_inverse.h"
 #include "samplers/samplers.h"
 #include "seq/scramble.h"
+#include "weyl/generators.h"
 
 #include <stdlib.h>
 
 typedef struct halton { udm1_radix radix[1]; } halton; /* dims entries */
+
+udm1_radix *udm1_radix_table(uint32_t count)
+{
+    size_t n = count ? count : 1;
+    udm1_radix *rx = malloc(sizeof(udm1_radix) * n);
+    uint64_t *primes = malloc(sizeof(uint64_t) * n);
+    if (rx && primes && udm1_first_primes(count, primes)) {
+        for (uint32_t j = 0; j < count; ++j) udm1_radix_init(&rx[j], (uint32_t)primes[j]);
+        free(primes);
+        return rx;
+    }
+    free(rx);
+    free(primes);
+    return NULL;
+}
 
 static uint64_t halton_value(const udm1_seq_t *seq, uint64_t skey, uint64_t index, uint32_t dim)
 {
@@ -43,15 +59,8 @@ static uint64_t halton_pinned(const udm1_seq_t *seq, uint64_t index, uint32_t di
 
 udm1_status udm1_init_halton(udm1_seq_t *seq)
 {
-    halton *h = malloc(sizeof(udm1_radix) * seq->dims);
-    uint64_t *primes = malloc(sizeof(uint64_t) * seq->dims);
-    if (!h || !primes || !udm1_first_primes(seq->dims, primes)) {
-        free(h);
-        free(primes);
-        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", seq->dims);
-    }
-    for (uint32_t j = 0; j < seq->dims; ++j) udm1_radix_init(&h->radix[j], (uint32_t)primes[j]);
-    free(primes);
+    halton *h = (halton *)udm1_radix_table(seq->dims);
+    if (!h) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", seq->dims);
     seq->data = h;
     return UDM1_OK;
 }

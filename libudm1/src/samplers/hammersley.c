@@ -61,15 +61,8 @@ static uint64_t hammersley_pinned(const udm1_seq_t *seq, uint64_t index, uint32_
 
 udm1_status udm1_init_hammersley(udm1_seq_t *seq)
 {
-    hammersley *h = malloc(sizeof(udm1_radix) * seq->dims);
-    uint64_t *primes = malloc(sizeof(uint64_t) * seq->dims);
-    if (!h || !primes || !udm1_first_primes(seq->dims, primes)) {
-        free(h);
-        free(primes);
-        return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", seq->dims);
-    }
-    for (uint32_t j = 0; j + 1 < seq->dims; ++j) udm1_radix_init(&h->radix[j], (uint32_t)primes[j]);
-    free(primes);
+    hammersley *h = (hammersley *)udm1_radix_table(seq->dims - 1);
+    if (!h) return udm1_fail(UDM1_ERROR_OUT_OF_MEMORY, "udm1_seq_create: out of memory for %u primes", seq->dims);
     seq->data = h;
     return UDM1_OK;
 }

@@ -24,6 +24,10 @@ typedef struct udm1_radix {
 
 UDM1_HIDDEN void udm1_radix_init(udm1_radix *rx, uint32_t base);
 
+/* The constants of the first count primes' bases (2, 3, 5, ...), allocated (free()); NULL when out of memory
+ * (halton.c). */
+UDM1_HIDDEN udm1_radix *udm1_radix_table(uint32_t count);
+
 /* The radical inverse of n as 0.64 (floor), exact; its digits permuted per mode, r the dimension's random
  * word. */
 UDM1_HIDDEN uint64_t udm1_radical_inverse(uint64_t n, const udm1_radix *rx, uint32_t mode, uint64_t r);
