@@ -9,6 +9,11 @@ this command: the minimum over the rounds is the least disturbed run of each bui
 
 OLD and NEW are udm1-pt executables (for two library builds, a wrapper script that sets
 LD_LIBRARY_PATH). Each round renders with OLD, then NEW, into a temporary folder.
+
+--instructions renders once with each under valgrind's callgrind instead and prints the instructions executed,
+by binary (udm1-pt's own code, Embree, the rest, and the dynamic loader's start-up apart): a count that a loaded
+machine does not disturb, for changes of a few per cent that the clock cannot resolve there (give a small
+render: callgrind runs some 50 times slower).
 """
 
 from __future__ import annotations
@@ -40,6 +45,28 @@ def render(binary: str, args: list[str], out: str) -> float:
     return float(m.group(1))
 
 
+def instructions(binary: str, args: list[str], tmp: str, name: str) -> dict[str, int]:
+    """Instructions executed by one render under callgrind, summed by the binary they belong to."""
+    out = os.path.join(tmp, f"{name}.callgrind")
+    r = subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", binary, *args, "-o",
+                        os.path.join(tmp, f"{name}.exr")], capture_output=True, text=True)
+    if r.returncode != 0:
+        lines = r.stderr.strip().splitlines()
+        fail(f"{binary} under callgrind failed (exit {r.returncode}): {lines[-1] if lines else 'no message'}")
+    ann = subprocess.run(["callgrind_annotate", "--threshold=100", out], capture_output=True, text=True, check=True)
+    by: dict[str, int] = {"udm1-pt": 0, "embree": 0, "loader": 0, "rest": 0}
+    line_re = re.compile(r"^\s*([0-9,]+) \(\s*[0-9.]+%\)\s+\S.*\[(.+)\]\s*$")
+    for line in ann.stdout.splitlines():
+        m = line_re.match(line)
+        if not m:
+            continue
+        n, obj = int(m.group(1).replace(",", "")), os.path.basename(m.group(2))
+        key = ("udm1-pt" if obj == os.path.basename(binary) else "embree" if "embree" in obj
+               else "loader" if obj.startswith("ld-linux") else "rest")
+        by[key] += n
+    return by
+
+
 def main() -> None:
     argv = sys.argv[1:]
     pt_args = argv[argv.index("--") + 1:] if "--" in argv else []
@@ -49,6 +76,7 @@ def main() -> None:
     p.add_argument("new")
     p.add_argument("--rounds", type=int, default=6)
     p.add_argument("--compare", help="the udm1-pt that compares the images (default: NEW)")
+    p.add_argument("--instructions", action="store_true", help="count instructions under callgrind instead of timing")
     a = p.parse_args(own)
     if not 1 <= a.rounds <= 100:
         fail(f"--rounds {a.rounds}: give 1 to 100")
@@ -58,6 +86,15 @@ def main() -> None:
             fail(f"{b}: not an executable file")
     if "-o" in pt_args or "--png" in pt_args:
         fail("the udm1-pt options must not name an output (-o, --png): ab_pt writes its own")
+    if a.instructions:
+        with tempfile.TemporaryDirectory(prefix="ab_pt_") as tmp:
+            counts = {k: instructions(b, pt_args, tmp, k) for k, b in (("old", a.old), ("new", a.new))}
+        print(f"udm1-pt {' '.join(pt_args)}: instructions executed (callgrind), millions")
+        print("| binary | old | new | new / old |\n|---|---|---|---|")
+        for key in ("udm1-pt", "embree", "rest", "loader"):
+            o, n = counts["old"][key], counts["new"][key]
+            print(f"| {key} | {o / 1e6:.1f} | {n / 1e6:.1f} | {n / o if o else float('nan'):.3f} |")
+        return
     times: dict[str, list[float]] = {"old": [], "new": []}
     with tempfile.TemporaryDirectory(prefix="ab_pt_") as tmp:
         images = {k: os.path.join(tmp, f"{k}.exr") for k in times}

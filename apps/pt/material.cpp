@@ -281,10 +281,9 @@ void conductor_index(const udm1scene::Scene &scene, const udm1scene::ParamSet &p
 
 }  // namespace
 
-udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns)
+udm1scene::Frame oriented_frame(const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns)
 {
     udm1scene::Frame f(ns);
-    if (!b.oriented()) return f;  // (the same BSDF in any frame about ns)
     Vec3 dpdu, dpdv;
     udm1scene::surface_derivatives(shape, h, ns, &dpdu, &dpdv);
     Vec3 x = dpdu - ns * udm1scene::dot(dpdu, ns);

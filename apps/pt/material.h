@@ -79,7 +79,11 @@ private:
 // BSDF that a turn about ns changes (Bsdf::oriented: anisotropic microfacets, tabulated BSDFs), the frame pbrt-v4
 // gives every BSDF: x along dp/du (udm1scene::surface_derivatives) made perpendicular to ns, y = ns x x (around ns
 // alone where dp/du is along ns).
-udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns);
+udm1scene::Frame oriented_frame(const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns);
+inline udm1scene::Frame shading_frame(const Bsdf &b, const udm1scene::Shape &shape, const udm1scene::Hit &h, Vec3 ns)
+{
+    return b.oriented() ? oriented_frame(shape, h, ns) : udm1scene::Frame(ns);  // (isotropic: the same BSDF in any frame about ns)
+}
 
 // pbrt-v4's default material, that of a shape with no Material or NamedMaterial before it (area
 // lights' shapes often have none: their back reflects): diffuse, reflectance 0.5.

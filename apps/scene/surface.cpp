@@ -22,9 +22,8 @@ void hit_uv(const Shape &s, const Hit &h, double *u, double *v)
     *v = b0 * s.UV[2 * i[0] + 1] + h.u * s.UV[2 * i[1] + 1] + h.v * s.UV[2 * i[2] + 1];
 }
 
-Vec3 shading_normal(const Shape &s, const Hit &h)
+Vec3 interpolated_normal(const Shape &s, const Hit &h)
 {
-    if (s.N.empty()) return h.ng;
     if (s.kind == Shape::Bilinear) {
         Vec3 n = world_normal(h, patch_shading_normal(s, h.prim, h.u, h.v));
         double len = length(n);

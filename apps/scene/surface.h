@@ -16,7 +16,8 @@ namespace udm1scene {
 void hit_uv(const Shape &shape, const Hit &h, double *u, double *v);
 
 // The unit shading normal: vertex normals interpolated where the mesh has them, else the geometric one.
-Vec3 shading_normal(const Shape &shape, const Hit &h);
+Vec3 interpolated_normal(const Shape &shape, const Hit &h);
+inline Vec3 shading_normal(const Shape &shape, const Hit &h) { return shape.N.empty() ? h.ng : interpolated_normal(shape, h); }
 
 // dp/du and dp/dv of the texture coordinates at the hit (pbrt-v4's: a triangle's from its uv, or a frame
 // around n where the uv are degenerate; a patch's with respect to its texture coordinates; a quadric's).
