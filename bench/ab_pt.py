@@ -21,6 +21,7 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import shutil
 import statistics
 import subprocess
 import sys
@@ -87,6 +88,9 @@ def main() -> None:
     if "-o" in pt_args or "--png" in pt_args:
         fail("the udm1-pt options must not name an output (-o, --png): ab_pt writes its own")
     if a.instructions:
+        for tool in ("valgrind", "callgrind_annotate"):
+            if not shutil.which(tool):
+                fail(f"--instructions needs {tool} (Debian package valgrind), which is not on PATH")
         with tempfile.TemporaryDirectory(prefix="ab_pt_") as tmp:
             counts = {k: instructions(b, pt_args, tmp, k) for k, b in (("old", a.old), ("new", a.new))}
         print(f"udm1-pt {' '.join(pt_args)}: instructions executed (callgrind), millions")
