@@ -411,20 +411,38 @@ AVX2 static inline __m128i mod4(__m256d f, uint32_t period)
     return _mm256_cvttpd_epi32(m);
 }
 
-/* The words cell4[...] of the 3^dims cells around 8 points (c = (dx + 1) + 3 (dy + 1) + 9 (dz + 1)) */
-AVX2 static inline void cells8(const udm1_noise *n, uint32_t dims, const __m256i ib[3][3], __m256i W[27])
+/* perm[base + d] for d = -1, 0, 1 of 8 points into h[0..2] (h[j] at stride `step`), base + ib[j] the three
+ * indices: on an axis without a period ib[j] = (m - 1 + j) mod 256, so one load of the table `triple` at
+ * base + ib[0] holds all three (its indices are mod 256 as perm's); on a periodic axis they wrap at the
+ * period, one load each. */
+AVX2 static inline void step8(const udm1_noise *n, __m256i base, const __m256i ib[3], int periodic, __m256i *h,
+                              int step)
+{
+    const __m256i m255 = _mm256_set1_epi32(255);
+    if (periodic) {
+        for (int j = 0; j < 3; ++j)
+            h[j * step] = _mm256_and_si256(_mm256_i32gather_epi32((const int *)n->cell4, _mm256_add_epi32(base, ib[j]), 4), m255);
+        return;
+    }
+    __m256i t = _mm256_i32gather_epi32((const int *)n->triple, _mm256_add_epi32(base, ib[0]), 4);
+    h[0] = _mm256_and_si256(t, m255);
+    h[step] = _mm256_and_si256(_mm256_srli_epi32(t, 8), m255);
+    h[2 * step] = _mm256_srli_epi32(t, 16);
+}
+
+/* The words cell4[...] of the 3^dims cells around 8 points (c = (dx + 1) + 3 (dy + 1) + 9 (dz + 1)); period[a]
+ * the axes' periods (0: none) */
+AVX2 static inline void cells8(const udm1_noise *n, uint32_t dims, const uint32_t period[3], const __m256i ib[3][3],
+                               __m256i W[27])
 {
     const int *c4 = (const int *)n->cell4;
-    const __m256i m255 = _mm256_set1_epi32(255);
-    __m256i a[3];
-    for (int j = 0; j < 3; ++j) a[j] = _mm256_and_si256(_mm256_i32gather_epi32(c4, ib[0][j], 4), m255);
+    __m256i a[3], b[9];
+    step8(n, _mm256_setzero_si256(), ib[0], period[0] != 0, a, 1);
     if (dims == 2) {
         for (int c = 0; c < 9; ++c) W[c] = _mm256_i32gather_epi32(c4, _mm256_add_epi32(a[c % 3], ib[1][c / 3]), 4);
         return;
     }
-    __m256i b[9];
-    for (int j = 0; j < 9; ++j)
-        b[j] = _mm256_and_si256(_mm256_i32gather_epi32(c4, _mm256_add_epi32(a[j % 3], ib[1][j / 3]), 4), m255);
+    for (int j = 0; j < 3; ++j) step8(n, a[j], ib[1], period[1] != 0, &b[j], 3); /* b[dx + 3 dy] */
     for (int c = 0; c < 27; ++c) W[c] = _mm256_i32gather_epi32(c4, _mm256_add_epi32(b[c % 9], ib[2][c / 9]), 4);
 }
 
@@ -516,7 +534,7 @@ AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise 
         }
         if (!ok) break; /* a periodic coordinate past 2^31: the scalar code */
         __m256i W[27];
-        cells8(n, dims, (const __m256i(*)[3])ib, W);
+        cells8(n, dims, u.period, (const __m256i(*)[3])ib, W);
         __m256 F0 = inf, F1 = inf, F2 = inf;
         __m256i near = _mm256_set1_epi32(256);
         for (uint32_t c = 0; c < cells; ++c) {
@@ -614,7 +632,7 @@ AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise 
         }
         if (!ok) break; /* a periodic coordinate past 2^31: the scalar code */
         __m256i W[27];
-        cells8(n, dims, (const __m256i(*)[3])ib, W);
+        cells8(n, dims, u.period, (const __m256i(*)[3])ib, W);
         unsigned redo = 0;
         for (int hf = 0; hf < 2; ++hf) {
             __m256d K[3][3];

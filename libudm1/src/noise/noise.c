@@ -202,6 +202,7 @@ udm1_status udm1_noise_create(const udm1_noise_desc *caller_desc, udm1_noise **o
     for (int i = 0; i < 512; ++i)
         n->cell4[i] = (uint32_t)p[i] | (uint32_t)n->feature[0][p[i]] << 8 | (uint32_t)n->feature[1][p[i]] << 16 |
                       (uint32_t)n->feature[2][p[i]] << 24;
+    for (int i = 0; i < 512; ++i) n->triple[i] = p[i & 255] | p[(i + 1) & 255] << 8 | p[(i + 2) & 255] << 16;
     for (int x = 0; x < 256; ++x) {
         const uint8_t *a = p + p[x], *b = p + p[(x + 1) & 255]; /* the columns of x and x + 1 */
         for (int y = 0; y < 256; ++y) {
