@@ -159,6 +159,45 @@ static void against_brute_force(const char *table, uint32_t px, uint32_t py, uin
     udm1_noise_destroy(n);
 }
 
+/* The vector kernels load a column's cells (x, y fixed; z - 1, z, z + 1) from consecutive table entries: the
+ * largest index they read is the column hash 255 at z's cell 0 (the cells 255, 0, 1 of z). Points in every
+ * column whose hash is 255 (for each x one y: perm[perm[x] + y] = 255), at z cells 0, 255 and 1, in the
+ * vector groups and the tail, against the brute force. */
+static void column_wrap(const char *table)
+{
+    udm1_noise *n = make(table, 0, 0, 0);
+    tables T = tables_of(n, 0, 0, 0);
+    int inv255 = 0;
+    for (int i = 0; i < 256; ++i)
+        if (T.perm[i] == 255) inv255 = i;
+    enum { M = 16 * 3 + 5 };
+    static double pts[4 * M], out[M], ref[M][5];
+    static float ptsf[4 * M], outf[M], reff[M][5];
+    for (int i = 0; i < M; ++i) {
+        int x = (17 * (i / 3)) & 255, y = (inv255 - T.perm[x]) & 255, z = (int[]){0, 255, 1}[i % 3];
+        pts[4 * i] = x + 0.375 - (i & 1 ? 256.0 : 0.0), pts[4 * i + 1] = y + 0.625, pts[4 * i + 2] = z + 0.5;
+        for (int a = 0; a < 3; ++a) ptsf[4 * i + a] = (float)pts[4 * i + a];
+    }
+    for (uint32_t output = UDM1_CELLULAR_F1; output <= UDM1_CELLULAR_F3; output += UDM1_CELLULAR_F3 - UDM1_CELLULAR_F1) {
+        udm1_cellular_params p;
+        udm1_cellular_params_init(&p);
+        p.output = output, p.jitter = 1.0;
+        const double *axes[3] = {pts, pts + 1, pts + 2};
+        const float *axesf[3] = {ptsf, ptsf + 1, ptsf + 2};
+        CHECK_STATUS(udm1_cellular_eval(n, &p, 3, axes, 4, M, out), UDM1_OK);
+        CHECK_STATUS(udm1_cellular_eval_f32(n, &p, 3, axesf, 4, M, outf), UDM1_OK);
+        for (int i = 0; i < M; ++i) {
+            brute_f64(&T, 3, pts + 4 * i, (int)p.metric, p.jitter, p.exponent, ref[i]);
+            brute_f32(&T, 3, ptsf + 4 * i, (int)p.metric, p.jitter, p.exponent, reff[i]);
+            CHECKF(memcmp(&ref[i][output], &out[i], sizeof out[i]) == 0, "%s column wrap point %d: %.17g, brute force %.17g",
+                   table ? table : "perlin", i, out[i], ref[i][output]);
+            CHECKF(memcmp(&reff[i][output], &outf[i], sizeof outf[i]) == 0, "%s f32 column wrap point %d: %.9g, brute force %.9g",
+                   table ? table : "perlin", i, outf[i], reff[i][output]);
+        }
+    }
+    udm1_noise_destroy(n);
+}
+
 static void layouts_and_identities(void)
 {
     udm1_noise *n = make("wr", 0, 0, 0);
@@ -298,6 +337,8 @@ int main(void)
     against_brute_force("rd", 0, 0, 0, 3e12); /* past 2^31: a double's index from its floor mod 256 */
     against_brute_force("golden", 5, 7, 300, 0);
     against_brute_force("sobol-owen", 2, 1, 3, 0);
+    column_wrap(NULL);
+    column_wrap("rd");
     layouts_and_identities();
     periodic();
     bad_input();

@@ -443,7 +443,23 @@ AVX2 static inline void cells8(const udm1_noise *n, uint32_t dims, const uint32_
         return;
     }
     for (int j = 0; j < 3; ++j) step8(n, a[j], ib[1], period[1] != 0, &b[j], 3); /* b[dx + 3 dy] */
-    for (int c = 0; c < 27; ++c) W[c] = _mm256_i32gather_epi32(c4, _mm256_add_epi32(b[c % 9], ib[2][c / 9]), 4);
+    if (period[2]) {
+        for (int c = 0; c < 27; ++c) W[c] = _mm256_i32gather_epi32(c4, _mm256_add_epi32(b[c % 9], ib[2][c / 9]), 4);
+        return;
+    }
+    /* z without a period: a column's three cells are cell4[i], cell4[i + 1], cell4[i + 2] at i = b + ib[2][0]; the
+     * first two by 64-bit loads (4 lanes a gather), the third by a 32-bit one: 16 elements loaded, not 24 */
+    const __m256i evens = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
+    for (int c = 0; c < 9; ++c) {
+        __m256i i = _mm256_add_epi32(b[c], ib[2][0]);
+        __m256i g0 = _mm256_i32gather_epi64((const long long *)c4, _mm256_castsi256_si128(i), 4);
+        __m256i g1 = _mm256_i32gather_epi64((const long long *)c4, _mm256_extracti128_si256(i, 1), 4);
+        /* g0: lanes 0-3's (cell4[i], cell4[i + 1]) as 32-bit pairs; each split into its words, then joined */
+        __m256i s0 = _mm256_permutevar8x32_epi32(g0, evens), s1 = _mm256_permutevar8x32_epi32(g1, evens);
+        W[c] = _mm256_permute2x128_si256(s0, s1, 0x20);
+        W[c + 9] = _mm256_permute2x128_si256(s0, s1, 0x31);
+        W[c + 18] = _mm256_i32gather_epi32(c4, _mm256_add_epi32(i, _mm256_set1_epi32(2)), 4);
+    }
 }
 
 /* the offset on axis a (0..2) of the cells' feature points in W, as 8 ints */

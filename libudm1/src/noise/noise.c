@@ -199,9 +199,11 @@ udm1_status udm1_noise_create(const udm1_noise_desc *caller_desc, udm1_noise **o
     memcpy(n->perm + 256, n->perm, 256);
     const uint8_t *p = n->perm;
     for (int i = 0; i < 512; ++i) n->pair[i] = p[i] | (i < 511 ? p[i + 1] << 8 : 0);
-    for (int i = 0; i < 512; ++i)
-        n->cell4[i] = (uint32_t)p[i] | (uint32_t)n->feature[0][p[i]] << 8 | (uint32_t)n->feature[1][p[i]] << 16 |
-                      (uint32_t)n->feature[2][p[i]] << 24;
+    for (int i = 0; i < 514; ++i) {
+        uint8_t h = p[i & 255];
+        n->cell4[i] = (uint32_t)h | (uint32_t)n->feature[0][h] << 8 | (uint32_t)n->feature[1][h] << 16 |
+                      (uint32_t)n->feature[2][h] << 24;
+    }
     for (int i = 0; i < 512; ++i) n->triple[i] = p[i & 255] | p[(i + 1) & 255] << 8 | p[(i + 2) & 255] << 16;
     for (int x = 0; x < 256; ++x) {
         const uint8_t *a = p + p[x], *b = p + p[(x + 1) & 255]; /* the columns of x and x + 1 */

@@ -26,8 +26,9 @@ struct udm1_noise {
     udm1_pick pick2[256];     /* ... 2D */
     double wave_source[UDM1_NOISE_WAVES][3];
     uint8_t feature[3][256];  /* the cellular noise's feature point offsets by axis, b: (b + 1/2) / 256 (udm1/cellular.h) */
-    uint32_t cell4[512];      /* perm[k] | feature[0..2][perm[k]] << 8, 16, 24: a cell's hash and its feature
-                               * point's offsets in one load (the AVX2 cellular kernels) */
+    uint32_t cell4[514];      /* perm[k] | feature[0..2][perm[k]] << 8, 16, 24 (k mod 256): a cell's hash and its
+                               * feature point's offsets in one load (the AVX2 cellular kernels; two entries past
+                               * 511 for their loads of three neighbours) */
     int32_t triple[512];      /* perm[k] | perm[k + 1] << 8 | perm[k + 2] << 16 (indices mod 256): the hashes of
                                * three neighbouring cells along an axis in one load (the AVX2 cellular kernels) */
 };
