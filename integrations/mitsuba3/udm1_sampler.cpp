@@ -245,6 +245,7 @@ public:
             m_stream_id = seed;
             m_filled = 0;
             m_index = 0;
+            m_fast = 0;
         } else {
             uint64_t render_seed = dr::width(seed) ? (uint64_t) dr::slice(seed, 0) : 0;
             Base::seed(seed, wavefront_size);
@@ -264,6 +265,8 @@ public:
         Base::advance();
         if constexpr (!Jit) {
             m_index += 1;
+            if (m_fast && (m_point_count == 0 || m_index < m_point_count)) m_m += 1;  // (the same blocks)
+            else update_fast();
         } else {
             m_pass += 1;
             release();
@@ -288,7 +291,7 @@ public:
         if constexpr (!Jit) {
             float v[2];
             uint32_t j = m_dimension_index;
-            if (j % kBlock == kBlock - 1) {  // (across two blocks)
+            if (j + 2 > m_fast && j % kBlock == kBlock - 1) {  // (across two blocks, not both filled)
                 draw(j, 1, v);
                 draw(j + 1, 1, v + 1);
             } else {
@@ -357,21 +360,30 @@ private:
     /// below UDM1_STREAM_DIMS (a Weyl value inline here: the contract's arithmetic on the stream's words,
     /// udm1/stream.h), or past them (the library's draw: the sequence's value or its padding).
     void draw(uint32_t j, uint32_t n, float *out) {
-        uint32_t b = j / kBlock;
-        if (b < kBlocks && (m_filled & (1u << b))) {
-            const udm1_stream &st = m_streams[b];
-            uint32_t dim = j - st.first;
-            uint64_t m = m_index + st.index_base;
-            if ((st.flags & UDM1_STREAM_INLINE) && dim + n <= st.held && m <= 0xFFFFFFFFu &&
-                (st.point_count == 0 || m_index < st.point_count)) {
-                for (uint32_t k = 0; k < n; ++k) {
-                    const Weyl &w = m_weyl[j + k];
-                    out[k] = udm1_raw_to_f32(udm1_weyl_value32(w.a_hi, w.a_lo, w.offset, (uint32_t) m));
-                }
-                return;
+        if (j + n <= m_fast) {  // (j < 2^32 - 2: j + n does not wrap)
+            for (uint32_t k = 0; k < n; ++k) {
+                const Weyl &w = m_weyl[j + k];
+                out[k] = udm1_raw_to_f32(udm1_weyl_value(w.a_hi, w.a_lo, w.offset, m_m));  // (two 64-bit products)
             }
+            return;
         }
         draw_library(j, n, out);
+    }
+
+    /// m_fast: how many of the sample's first dimensions draw inline (m_weyl at the index m_m): the filled blocks
+    /// from the first on, while their sequence is a Weyl one held there and the index inside a point set. After
+    /// seed(), a fill and advance().
+    void update_fast() {
+        m_fast = 0;
+        for (uint32_t b = 0; b < kBlocks && (m_filled & (1u << b)); ++b) {
+            const udm1_stream &st = m_streams[b];
+            uint64_t m = m_index + st.index_base;
+            if (!(st.flags & UDM1_STREAM_INLINE) || (st.point_count && m_index >= st.point_count) || (b && m != m_m))
+                return;
+            m_m = m, m_point_count = st.point_count;
+            m_fast = b * kBlock + st.held;
+            if (st.held < kBlock) return;
+        }
     }
 
     /// draw() past its inline case: the block filled at its first draw, then udm1_stream_draw_f32 (inline for
@@ -380,8 +392,10 @@ private:
         uint32_t b = j / kBlock < kBlocks ? j / kBlock : 0;  // (past the blocks: the library's draw from block 0)
         udm1_stream &st = m_streams[b];
         if (!(m_filled & (1u << b))) {
-            fill_block(b);
-            if (j / kBlock < kBlocks && (st.flags & UDM1_STREAM_INLINE)) {
+            for (uint32_t e = 0; e <= b; ++e)  // (the blocks before it too: the inline draws run from the first)
+                if (!(m_filled & (1u << e))) fill_block(e);
+            update_fast();
+            if (j + n <= m_fast) {
                 draw(j, n, out);
                 return;
             }
@@ -628,6 +642,8 @@ private:
     static constexpr uint32_t kBlock = 16, kBlocks = UDM1_STREAM_DIMS / kBlock;
     udm1_stream m_streams[kBlocks]{};  // dimensions [16 b, 16 b + 16) of the pixel's stream, filled when drawn
     uint32_t m_filled = 0;             // which of them are
+    uint32_t m_fast = 0;               // the dimensions drawn inline and their index (update_fast)
+    uint64_t m_m = 0, m_point_count = 0;
     struct Weyl { uint64_t a_hi, a_lo, offset; };
     Weyl m_weyl[UDM1_STREAM_DIMS];     // a Weyl sequence's: A_j and the pixel's O_j, dimension by dimension
     uint64_t m_stream_id = 0, m_index = 0;
