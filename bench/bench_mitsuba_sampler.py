@@ -35,13 +35,16 @@ date in a second); where it cannot be built and is not, udm1.mitsuba's Python sa
     python bench/bench_mitsuba_sampler.py --scene veach-mis [--size 192 --scalar-size 96]
     python bench/bench_mitsuba_sampler.py --speed [--speed-spps 4,16,64,256,1024] [--repeats 3]
 
-4. --instructions: the sampler's own work in scalar_rgb counted instead of timed (for differences the clock of a
-   shared machine cannot resolve): one render on one thread of a --instructions-size Cornell box at
-   --instructions-spp, per sampler, under valgrind's callgrind; the instructions executed in the sampler's
+4. --instructions: the sampler's own work counted instead of timed (for differences the clock of a shared
+   machine cannot resolve): one render on one thread of a --instructions-size Cornell box at --instructions-spp,
+   per sampler, under valgrind's callgrind, in millions of instructions executed. scalar_rgb: in the sampler's
    plugin (udm1.so, the library's stream set-up it links included; independent.so and the PCG32 sampler's
-   functions in libmitsuba), and in the whole render (Mitsuba, Embree, the integrator), in millions.
+   functions in libmitsuba) and in the whole render (Mitsuba, Embree, the integrator). llvm_ad_rgb
+   (--instructions-variant): in the kernels Dr.Jit compiled (code valgrind finds in no file; their compilation
+   is LLVM's and not counted) and in Embree; valgrind runs them at AVX2 at most.
 
-    python bench/bench_mitsuba_sampler.py --instructions [--instructions-size 32] [--instructions-spp 16]
+    python bench/bench_mitsuba_sampler.py --instructions [--instructions-variant scalar_rgb] [--instructions-size 32]
+                                          [--instructions-spp 16]
 """
 
 from __future__ import annotations
@@ -301,34 +304,40 @@ def print_result(res: dict):
 
 def render_one(variant: str, sampler: str, size: int, spp: int) -> None:
     """--render-one (the process --instructions runs under callgrind): one render on one thread."""
+    if variant.startswith("llvm"):
+        os.environ.setdefault("DRJIT_LIBLLVM_PATH", LLVM_PATH)
     import drjit as dr
     import mitsuba as mi
     mi.set_variant(variant)
     use_native(mi)
     film = (size, size)
     rows = dict([("independent", {"type": "independent"})] + udm1_samplers(film, False))
-    scene = Scene("cornell-box", "", Path(".")).load(mi, rows[sampler], film, spp)
     dr.set_thread_count(1)
+    scene = Scene("cornell-box", "", Path(".")).load(mi, rows[sampler], film, spp)
     print(float(np.array(mi.render(scene, spp=spp)).sum()))
 
 
-def run_instructions(size: int, spp: int, out: Path) -> dict:
+def run_instructions(variant: str, size: int, spp: int, out: Path) -> dict:
     """--instructions (see the docstring): per sampler, the instructions of its plugin and of the render."""
     import re
     import shutil
     import subprocess
     if not shutil.which("valgrind") or not shutil.which("callgrind_annotate"):
         return {"skipped": "valgrind is not installed (Debian package valgrind)"}
+    if variant.startswith("llvm") and not Path(LLVM_PATH).exists():
+        return {"skipped": f"{LLVM_PATH} is missing"}
     import mitsuba as mi
-    mi.set_variant("scalar_rgb")
+    mi.set_variant(variant)
     if not use_native(mi):
         return {"skipped": "the native plugin is not built"}
+    jit = not variant.startswith("scalar")
     line_re = re.compile(r"^\s*([0-9,]+) \(\s*[0-9.]+%\)\s+(\S*?):?(\S.*?)\s+\[(.+)\]\s*$")
     rows = []
     for name in ["independent"] + [n for n, _ in udm1_samplers((size, size), False)]:
-        cg = out / f"callgrind-{name.replace(' ', '-')}.out"
+        cg = out / f"callgrind-{variant}-{name.replace(' ', '-')}.out"
         r = subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={cg}", sys.executable, __file__,
-                            "--render-one", name, "--instructions-size", str(size), "--instructions-spp", str(spp)],
+                            "--render-one", name, "--instructions-variant", variant,
+                            "--instructions-size", str(size), "--instructions-spp", str(spp)],
                            capture_output=True, text=True)
         if r.returncode != 0:
             raise SystemExit(f"bench_mitsuba_sampler: {name} under callgrind failed: {r.stderr.strip().splitlines()[-1]}")
@@ -339,6 +348,10 @@ def run_instructions(size: int, spp: int, out: Path) -> dict:
             if not m:
                 continue
             n, fn, obj = int(m.group(1).replace(",", "")), m.group(3), os.path.basename(m.group(4))
+            if jit:  # the compiled kernels (in no file) hold the sampler's arithmetic
+                sampler += n if obj == "???" else 0
+                render_total += n if obj == "???" or obj.startswith("libembree") else 0
+                continue
             mine = obj in ("udm1.so", "independent.so") or (obj == "libmitsuba.so" and "PCG32Sampler" in fn)
             sampler += n if mine else 0
             if mine or obj in ("libmitsuba.so", "libembree3.so", "path.so") or obj.endswith("plugins") or \
@@ -346,7 +359,7 @@ def run_instructions(size: int, spp: int, out: Path) -> dict:
                 render_total += n
         rows.append({"sampler": name, "sampler_minstr": sampler / 1e6, "render_minstr": render_total / 1e6})
         print(f"[instructions] {name}: sampler {sampler / 1e6:.1f} M, render {render_total / 1e6:.1f} M", flush=True)
-    return {"variant": "scalar_rgb", "size": size, "spp": spp, "rows": rows}
+    return {"variant": variant, "size": size, "spp": spp, "rows": rows}
 
 
 def main(argv=None) -> int:
@@ -369,12 +382,13 @@ def main(argv=None) -> int:
                     help="variant:threads pairs (0: Mitsuba's default, every core)")
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--instructions", action="store_true", help="count the samplers' instructions (scalar_rgb, callgrind)")
+    ap.add_argument("--instructions-variant", default="scalar_rgb")
     ap.add_argument("--instructions-size", type=int, default=32)
     ap.add_argument("--instructions-spp", type=int, default=16)
     ap.add_argument("--render-one", help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.render_one:
-        render_one("scalar_rgb", args.render_one, args.instructions_size, args.instructions_spp)
+        render_one(args.instructions_variant, args.render_one, args.instructions_size, args.instructions_spp)
         return 0
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
@@ -388,18 +402,20 @@ def main(argv=None) -> int:
         (out / f"{name}{suffix}.json").write_text(json.dumps([{"skipped": str(exc)}]))
         return 0
     if args.instructions:
-        res = run_instructions(args.instructions_size, args.instructions_spp, out)
+        res = run_instructions(args.instructions_variant, args.instructions_size, args.instructions_spp, out)
         if "skipped" in res:
             print(f"bench_mitsuba_sampler: {res['skipped']}: skipped", file=sys.stderr)
         else:
             base = res["rows"][0]
-            print(f"\nscalar_rgb, Cornell box {res['size']} x {res['size']}, {res['spp']} spp, one thread: instructions "
+            print(f"\n{res['variant']}, Cornell box {res['size']} x {res['size']}, {res['spp']} spp, one thread: instructions "
                   "executed (callgrind), millions")
-            print("| sampler | in the sampler | in the render | render over the independent sampler's |\n|---|---|---|---|")
+            first = "in the compiled kernels" if res["variant"] != "scalar_rgb" else "in the sampler"
+            second = "kernels and Embree" if res["variant"] != "scalar_rgb" else "in the render"
+            print(f"| sampler | {first} | {second} | that over the independent sampler's |\n|---|---|---|---|")
             for r in res["rows"]:
                 print(f"| {r['sampler']} | {r['sampler_minstr']:.1f} | {r['render_minstr']:.1f} | "
                       f"{r['render_minstr'] / base['render_minstr']:.3f} |")
-        (out / "instructions.json").write_text(json.dumps(res, indent=1))
+        (out / f"instructions-{args.instructions_variant}.json").write_text(json.dumps(res, indent=1))
         return 0
     if args.speed:
         for run in args.speed_runs.split(","):

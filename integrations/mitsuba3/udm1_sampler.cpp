@@ -481,6 +481,12 @@ private:
             m_base = dr::load<UInt64>(base.data(), d);
             auto morton = [](const UInt64 &s) { return jspread<UInt64>(s) | (jspread<UInt64>(s >> 32) << 1); };
             m_idx = screen ? sample + morton(stream) * dr::opaque<UInt64>((uint64_t) spp) : sample;
+            // whether every index is below 2^32 (a pixel's samples always are; in screen mode the pixel's Morton
+            // code times spp, bounded by the film's side rounded up to a power of two): the Weyl value then takes
+            // 32 x 32-bit products (udm1_weyl_value32), the same bits as the 64-bit ones
+            uint64_t side = 1;
+            while (side < std::max(m_o.film_width, m_o.film_height)) side <<= 1;
+            m_idx32 = !screen || (side <= 65536 && (side * side) <= (0xFFFFFFFFull + 1) / std::max<uint64_t>(spp, 1));
         } else if (!inline_tables(sample, pixel, lanes / per_pass, d)) {
             fill_table(stream, sample, lanes, d);
         }
@@ -605,7 +611,15 @@ private:
         if (m_mode == UDM1_RANDOMIZE_SHIFT || m_mode == UDM1_RANDOMIZE_PERMUTE || m_mode == UDM1_RANDOMIZE_OWEN)
             word = jmix64<UInt64>(m_key + kj);  // udm1_shift(T, K_j)
         if (m_mode == UDM1_RANDOMIZE_SHIFT) base = base + word;
-        UInt64 raw = base + m_idx * ahi + dr::mul_hi(m_idx, alo);
+        UInt64 raw;
+        if (m_idx32) {  // (udm1_weyl_value32: the index's high half known to be 0, the four products 32 x 32-bit)
+            const uint64_t lo32 = 0xFFFFFFFFull;
+            UInt64 n = m_idx & lo32;
+            UInt64 h0 = n * (ahi & lo32), h1 = n * (ahi >> 32), l0 = n * (alo & lo32), l1 = n * (alo >> 32);
+            raw = base + h0 + (h1 << 32) + ((l1 + (l0 >> 32)) >> 32);
+        } else {
+            raw = base + m_idx * ahi + dr::mul_hi(m_idx, alo);
+        }
         if (m_mode == UDM1_RANDOMIZE_PERMUTE) {
             raw = raw ^ word;
         } else if (m_mode == UDM1_RANDOMIZE_OWEN) {  // udm1_owen64 (udm1/stream.h's Sobol form)
@@ -654,6 +668,7 @@ private:
     UInt64 m_S, m_key, m_n, m_idx, m_pkey, m_ahi, m_alo, m_base;
     UInt32 m_d, m_lanes, m_lane;
     Float m_table;
+    bool m_idx32 = false;  // every Weyl index below 2^32 (setup)
     uint32_t m_inline = 0, m_table_mode = 0;  // inline tables: 1 Sobol, 2 pmj02 (else 0)
     UInt64 m_words, m_table64;
     UInt32 m_table32, m_word_at, m_g, m_K;
