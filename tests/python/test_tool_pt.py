@@ -709,6 +709,19 @@ def test_ab_tool_alternates_two_builds(tmp_path):
     r = subprocess.run([*ab, TOOL, str(other), "--rounds", "1", "--", "--size", "8x8", "--spp", "2"],
                        capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert r.returncode == 0 and re.search(r"images: different: \d+ of \d+ values", r.stdout), (r.stdout, r.stderr)
+    # --instructions: the same build twice executes about the same instructions in its own code and Embree's
+    # (callgrind, where valgrind is installed; its set-up and progress lines vary by a fraction of a per cent);
+    # without valgrind on PATH, one line naming it (valgrind cannot run a sanitized build)
+    if shutil.which("valgrind") and shutil.which("callgrind_annotate") and os.environ.get("UDM1_SANITIZED") != "1":
+        r = subprocess.run([*ab, TOOL, TOOL, "--instructions", "--", "--size", "4x4", "--spp", "1", "--threads", "1"],
+                           capture_output=True, text=True, timeout=600, cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+        for binary in ("udm1-pt", "embree"):
+            row = re.search(rf"^\| {binary} \| ([0-9.]+) \| ([0-9.]+) \| ([0-9.]+) \|$", r.stdout, re.M)
+            assert row and float(row.group(1)) > 0 and abs(float(row.group(3)) - 1) < 0.05, r.stdout
+    r = subprocess.run([*ab, TOOL, TOOL, "--instructions", "--", "--size", "4x4"], capture_output=True, text=True,
+                       timeout=60, cwd=tmp_path, env=dict(os.environ, PATH="/nonexistent"))
+    assert r.returncode == 2 and "needs valgrind" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
     for args, words in (([str(tmp_path / "missing"), TOOL, "--"], "not an executable file"),
                         ([TOOL, TOOL, "--", "-o", "x.exr"], "must not name an output"),
                         ([TOOL, TOOL, "--rounds", "0"], "--rounds 0"),
