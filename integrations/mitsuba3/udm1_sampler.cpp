@@ -519,6 +519,11 @@ private:
         UInt32 index = UInt32(sample);  // (below 2^32: a Sobol index; below K: a pmj02 one)
         if (sobol) {
             m_g = index ^ (index >> 1);  // the Gray code
+            // the Gray code's bytes that can be non-zero: every index is below the sample count (a byte of 0
+            // selects no direction number: its table entry is 0)
+            uint32_t bits = 0;
+            for (uint64_t top = (uint64_t) m_sample_count - 1; top; top >>= 1) ++bits;
+            m_gray_bytes = std::max(1u, (bits + 7) / 8);
             if (mode == 2)
                 m_table32 = dr::load<UInt32>((const uint32_t *) st.table, (size_t) d * 4 * 256);
             else
@@ -540,13 +545,14 @@ private:
             UInt32 at = jj * 1024u;
             UInt32 i0 = at + (m_g & 255u), i1 = at + 256u + ((m_g >> 8) & 255u), i2 = at + 512u + ((m_g >> 16) & 255u),
                    i3 = at + 768u + (m_g >> 24);
+            const UInt32 *at_byte[4] = {&i0, &i1, &i2, &i3};
             if (m_table_mode == 2) {  // reversed top halves, Owen-scrambled by the word's low half
-                UInt32 rev = dr::gather<UInt32>(m_table32, i0) ^ dr::gather<UInt32>(m_table32, i1) ^
-                             dr::gather<UInt32>(m_table32, i2) ^ dr::gather<UInt32>(m_table32, i3);
+                UInt32 rev = dr::gather<UInt32>(m_table32, i0);
+                for (uint32_t b = 1; b < m_gray_bytes; ++b) rev = rev ^ dr::gather<UInt32>(m_table32, *at_byte[b]);
                 top = udm1mi::jreverse32<UInt32>(udm1mi::jowen_hash32<UInt32>(rev, UInt32(word & 0xFFFFFFFFull)));
             } else {
-                UInt64 v = dr::gather<UInt64>(m_table64, i0) ^ dr::gather<UInt64>(m_table64, i1) ^
-                           dr::gather<UInt64>(m_table64, i2) ^ dr::gather<UInt64>(m_table64, i3);
+                UInt64 v = dr::gather<UInt64>(m_table64, i0);
+                for (uint32_t b = 1; b < m_gray_bytes; ++b) v = v ^ dr::gather<UInt64>(m_table64, *at_byte[b]);
                 if (m_table_mode == 1) v = v ^ word;
                 top = UInt32(v >> 32);
             }
@@ -669,6 +675,7 @@ private:
     UInt32 m_d, m_lanes, m_lane;
     Float m_table;
     bool m_idx32 = false;  // every Weyl index below 2^32 (setup)
+    uint32_t m_gray_bytes = 4;  // the Sobol Gray code's bytes that can be non-zero (inline_tables)
     uint32_t m_inline = 0, m_table_mode = 0;  // inline tables: 1 Sobol, 2 pmj02 (else 0)
     UInt64 m_words, m_table64;
     UInt32 m_table32, m_word_at, m_g, m_K;

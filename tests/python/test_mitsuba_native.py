@@ -128,6 +128,43 @@ def test_llvm_values_are_the_library_s(plugin):
     assert not bad, "\n".join(bad)
 
 
+@pytest.mark.parametrize("spp", [1024, 65536 + 512])
+def test_llvm_values_at_high_sample_indices(plugin, spp):
+    """The vector variant's Sobol draws read as many bytes of the Gray code as the sample count needs: passes
+    whose indices reach past 2^8 (and 2^16) are the library's too, for each Sobol randomization (and pmj02)."""
+    variant("llvm_ad_rgb")
+    per_pass = 512
+    lane = np.arange(W * H * per_pass)
+    pixel = lane // per_pass
+    bad = []
+    for preset in ("sobol", "sobol-owen", "pmj02"):
+        for randomize in randomizations(preset):
+            if randomize == "screen":
+                continue
+            rng = rng_of("llvm-high", preset, randomize)
+            d, seed = min(5, info_of(preset).max_dimensions), int(rng.integers(0, 2**63))
+            props = {"preset": preset, "randomize": randomize, "sample_count": spp, "dimensions": d, "seed": seed,
+                     "film_width": W, "film_height": H}
+            seq = reference(preset, randomize, d, seed, spp)
+            if isinstance(seq, Exception):
+                assert_refused(props, preset, randomize)
+                continue
+            s = mi.load_dict({"type": "udm1", **props})
+            render_seed = int(rng.integers(0, 2**32))
+            s.seed(render_seed, W * H * per_pass)
+            streams = lane_streams(randomize, render_seed, pixel, W)
+            last = spp // per_pass - 1  # the first pass and the last (the largest indices)
+            for p in range(last + 1):
+                if p in (0, last):
+                    got = draw(s, DRAWS)
+                    dr.eval(got)
+                    got, want, where = pass_mismatches(got, seq, streams, p * per_pass + lane % per_pass, DRAWS)
+                    if where.size:
+                        bad.append(f"{preset}/{randomize} pass {p}: (lane, dim) {where[:3].tolist()}")
+                s.advance()
+    assert not bad, "\n".join(bad)
+
+
 def test_scalar_values_are_the_library_s(plugin):
     variant("scalar_rgb")
     bad = []
