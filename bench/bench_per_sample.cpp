@@ -12,8 +12,8 @@
 //    and its domains as udm1-pt draws them (a vertex the next block, its 2D a child) or dimensions by
 //    index.
 // Prints one line per (protocol, sampler, way): nanoseconds per dimension drawn, and the matched
-// OpenQMC sampler's time over it. Built and run by bench/bench_per_sample.py with -O3 -march=native
-// and with plain -O3; without OpenQMC (UDM1_NO_OPENQMC) it times udm1 alone.
+// OpenQMC sampler's time over it. Built and run by bench/bench_per_sample.py with -O3 -march=native,
+// -O3 -march=x86-64-v3 and plain -O3; without OpenQMC (UDM1_NO_OPENQMC) it times udm1 alone.
 //
 //   bench_per_sample [--rounds R] [--samples S] [--dims D] [--width W] [--spp N] [--vertices V] [--sampler NAME]
 #include <udm1/udm1.h>
@@ -176,8 +176,10 @@ struct Udm1 {
     // Candidates for the domains' per-draw cost, in every build (the header's portable and vector helpers):
     // the keys and first four shifts (O_j = o_j + mix64(key + K_j)) of the domains a caller derives the same
     // way in every sample, computed once (as a stream fill would) instead of per draw. A chain of `depth`
-    // children of key 0 from the root (OpenQMC's protocol), or per block of the root chain its child of key
-    // 0 (the renderer's). The values are the shipped domains' (checked once by check_cached).
+    // children of key 0 from the root (OpenQMC's protocol: what a stream of 64 dimensions has no room to
+    // hold), or per block of the root chain its child of key 0 (the renderer's; the shipped stream holds
+    // those, udm1/stream.h's UDM1_STREAM_CHILDREN). The values are the shipped domains' (checked once by
+    // check_cached).
     struct Cached {
         uint64_t key[64];
         uint64_t off[64][4];

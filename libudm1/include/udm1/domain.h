@@ -48,6 +48,12 @@
  *    every domain neighbouring pixels take consecutive segments of one shifted sequence: the error stays
  *    blue noise in every dimension, and each pixel stays unbiased over seeds.
  *
+ * Cost: a child's draw hashes its four dimensions' words (and a child() its key) unless its stream holds
+ * them: udm1_stream_init fills, with the stream, the children of keys 0 and 1 of each block of four
+ * dimensions on the root's chain - child(next(root, b), 0 or 1), a vertex's decorrelated extras, the same
+ * in every sample of the pixel - where they fit (udm1/stream.h, UDM1_STREAM_CHILDREN); their draws are the
+ * same values, without the hashes.
+ *
  * Which to use: next() along a path keeps a Kronecker sequence's joint structure across the path's
  * decisions (measurably lower error for the Weyl sets than independent domains); child() for what has
  * no place in the chain (optional decisions, splits, other subsystems), so that adding or removing one
@@ -110,7 +116,8 @@ UDM1_DRAW_ udm1_domain udm1_domain_next(udm1_domain d, uint32_t k)
 
 /* The child of key `key`: its key is mix64(K + (key + 1) G), K its parent's key (the stream's own for
  * the root's chain: a hash of the seed and the stream, in screen mode of the seed alone) plus its
- * parent's dimension offset, and never 0 (0 becomes G); its dimensions start again at 0. */
+ * parent's dimension offset, and never 0 (0 becomes G); its dimensions start again at 0. A child the
+ * stream holds takes that key from the stream, and its slot as the hint `reserved`. */
 UDM1_DRAW_ udm1_domain udm1_domain_child(udm1_domain parent, uint64_t key)
 {
     const udm1_stream *st = parent.stream;

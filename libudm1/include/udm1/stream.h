@@ -97,8 +97,8 @@
  * c)), in slot s = c B + b, in entries past `held` of the arrays below: the child's key in dim_key[63 - s],
  * the words mix64(key + K_j) of its dimensions 0..3 in the four entries a_hi[60 - 4 s ..] for s < R =
  * (64 - held) / 4, else a_lo[60 - 4 (s - R) ..]. The library fills them with the stream for the three
- * inline kinds where they fit (C B <= 2 R; C is 1 today: the child of key 0 of each block), and the draws
- * of those children compute nothing that they hold. */
+ * inline kinds, C = min(2, 2 R / B) (keys 0 and 1 where they fit), and the draws of those children compute
+ * nothing that they hold. */
 #define UDM1_STREAM_INLINE 1u
 #define UDM1_STREAM_PMJ02 2u
 #define UDM1_STREAM_SOBOL 4u

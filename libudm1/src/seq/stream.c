@@ -12,16 +12,16 @@
 
 #include <string.h>
 
-/* The child domain of key 0 of each block of four dimensions held on the root's chain (udm1-pt's per
- * vertex), where they fit in the entries past `held` (udm1/stream.h, UDM1_STREAM_CHILDREN): their keys and
- * their dimensions' words, so that their draws hash nothing. Keys and words as udm1/domain.h derives them.
- * One key per block: the cache costs five hashes per block and stream, what one draw of the child costs
- * without it (a second key would cost as much again in every stream of a renderer that never draws it). */
+/* The child domains of keys 0 and 1 of each block of four dimensions held on the root's chain (a vertex's
+ * decorrelated extras: udm1-pt's lobe and roulette, its first medium piece; the README's example), where
+ * they fit in the entries past `held` (udm1/stream.h, UDM1_STREAM_CHILDREN): their keys and their
+ * dimensions' words, so that their draws hash nothing. Keys and words as udm1/domain.h derives them. Each
+ * costs five hashes per stream, what one draw of it costs without the cache. */
 static void stream_children(udm1_stream *s)
 {
     if (!(s->flags & (UDM1_STREAM_INLINE | UDM1_STREAM_PMJ02 | UDM1_STREAM_SOBOL)) || s->held == 0) return;
     uint32_t blocks = (s->held + 3) / 4, room = (UDM1_STREAM_DIMS - s->held) / 4;
-    uint32_t kinds = 2 * room / blocks < 1 ? 2 * room / blocks : 1;
+    uint32_t kinds = 2 * room / blocks < 2 ? 2 * room / blocks : 2;
     const uint64_t K0 = s->dim_key[0], K1 = s->dim_key[1], K2 = s->dim_key[2], K3 = s->dim_key[3];
     for (uint32_t c = 0; c < kinds; ++c)
         for (uint32_t b = 0; b < blocks; ++b) {
