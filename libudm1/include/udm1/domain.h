@@ -269,15 +269,25 @@ UDM1_DRAW_ void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_
         for (uint32_t j = 0; j < 4; ++j) o[j] = st->base[dim + j] + (words ? words[j] : udm1_mix64(key + st->dim_key[dim + j]));
         udm1_weyl4_32(st->a_hi + dim, st->a_lo + dim, o, low, r);
 #elif defined(UDM1_X86_)
-        uint64_t r[4], o[4] = {0, 0, 0, 0}; /* the shifts one by one, the values in two SSE2 vectors, as above */
-        for (uint32_t j = 0; j < n; ++j) o[j] = st->base[dim + j] + (words ? words[j] : udm1_mix64(key + st->dim_key[dim + j]));
-        __m128i N = _mm_set1_epi64x((long long)low), v[2];
+        /* the values in two SSE2 vectors, as above; the shifts from the words held, or hashed one by one and
+         * put in the registers (a wide load of values just stored one by one would wait for them) */
+        uint64_t r[4];
+        __m128i N = _mm_set1_epi64x((long long)low), v[2], O[2];
+        if (words) {
+            for (int k = 0; k < 2; ++k)
+                O[k] = _mm_add_epi64(_mm_loadu_si128((const __m128i *)(words + 2 * k)),
+                                     _mm_loadu_si128((const __m128i *)(st->base + dim + 2 * k)));
+        } else {
+            uint64_t o[4] = {0, 0, 0, 0};
+            for (uint32_t j = 0; j < n; ++j) o[j] = st->base[dim + j] + udm1_mix64(key + st->dim_key[dim + j]);
+            O[0] = _mm_set_epi64x((long long)o[1], (long long)o[0]), O[1] = _mm_set_epi64x((long long)o[3], (long long)o[2]);
+        }
         for (int k = 0; k < 2; ++k) {
             __m128i H = _mm_loadu_si128((const __m128i *)(st->a_hi + dim + 2 * k)), L = _mm_loadu_si128((const __m128i *)(st->a_lo + dim + 2 * k));
             __m128i h0 = _mm_mul_epu32(N, H), h1 = _mm_mul_epu32(N, _mm_srli_epi64(H, 32));
             __m128i l0 = _mm_mul_epu32(N, L), l1 = _mm_mul_epu32(N, _mm_srli_epi64(L, 32));
             __m128i carry = _mm_srli_epi64(_mm_add_epi64(l1, _mm_srli_epi64(l0, 32)), 32);
-            v[k] = _mm_add_epi64(_mm_add_epi64(_mm_loadu_si128((const __m128i *)(o + 2 * k)), _mm_add_epi64(h0, _mm_slli_epi64(h1, 32))), carry);
+            v[k] = _mm_add_epi64(_mm_add_epi64(O[k], _mm_add_epi64(h0, _mm_slli_epi64(h1, 32))), carry);
         }
         if (out_kind == 1) { /* the top 24 bits of each lane, as floats, in the register */
             __m128i top = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(_mm_srli_epi64(v[0], 40)),
