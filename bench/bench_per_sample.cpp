@@ -12,10 +12,10 @@
 //    and its domains as udm1-pt draws them (a vertex the next block, its 2D a child) or dimensions by
 //    index.
 // Prints one line per (protocol, sampler, way): nanoseconds per dimension drawn, and the matched
-// OpenQMC sampler's time over it. Built and run by bench/bench_per_sample.py with -O3 -march=native
-// and with plain -O3; without OpenQMC (UDM1_NO_OPENQMC) it times udm1 alone.
+// OpenQMC sampler's time over it. Built and run by bench/bench_per_sample.py with -O3 -march=native,
+// -O3 -march=x86-64-v3 and plain -O3; without OpenQMC (UDM1_NO_OPENQMC) it times udm1 alone.
 //
-//   bench_per_sample [--rounds R] [--samples S] [--dims D] [--width W] [--spp N] [--vertices V]
+//   bench_per_sample [--rounds R] [--samples S] [--dims D] [--width W] [--spp N] [--vertices V] [--sampler NAME]
 #include <udm1/udm1.h>
 
 #if !defined(UDM1_NO_OPENQMC)
@@ -173,6 +173,117 @@ struct Udm1 {
         }
     }
 #endif
+    // Candidates for the domains' per-draw cost, in every build (the header's portable and vector helpers):
+    // the keys and first four shifts (O_j = o_j + mix64(key + K_j)) of the domains a caller derives the same
+    // way in every sample, computed once (as a stream fill would) instead of per draw. A chain of `depth`
+    // children of key 0 from the root (OpenQMC's protocol: what a stream of 64 dimensions has no room to
+    // hold), or per block of the root chain its child of key 0 (the renderer's; the shipped stream holds
+    // those, udm1/stream.h's UDM1_STREAM_CHILDREN). The values are the shipped domains' (checked once by
+    // check_cached).
+    struct Cached {
+        uint64_t key[64];
+        uint64_t off[64][4];
+    };
+    static void fill_chain(const udm1_stream &st, int depth, Cached &c)
+    {
+        udm1_domain d = udm1_domain_root(&st, 0);
+        for (int t = 0; t < depth && t < 64; ++t) {
+            d = udm1_domain_child(d, 0);
+            c.key[t] = d.key;
+            for (int j = 0; j < 4; ++j) c.off[t][j] = st.base[j] + udm1_mix64(d.key + st.dim_key[j]);
+        }
+    }
+    static void fill_blocks(const udm1_stream &st, int blocks, Cached &c)
+    {
+        for (int b = 0; b < blocks && b < 64; ++b) {
+            udm1_domain d = udm1_domain_child(udm1_domain_next(udm1_domain_root(&st, 0), (uint32_t)b), 0);
+            c.key[b] = d.key;
+            for (int j = 0; j < 4; ++j) c.off[b][j] = st.base[j] + udm1_mix64(d.key + st.dim_key[j]);
+        }
+    }
+    // The index scramble's final bit reversal by a byte table (variant 3).
+    static uint32_t reverse_bytes(uint32_t x)
+    {
+        static const struct T {
+            unsigned char r[256];
+            T() { for (int b = 0; b < 256; ++b) r[b] = (unsigned char)(udm1_reverse32((uint32_t)b) >> 24); }
+        } t;
+        return (uint32_t)t.r[x & 255] << 24 | (uint32_t)t.r[(x >> 8) & 255] << 16 | (uint32_t)t.r[(x >> 16) & 255] << 8 |
+               t.r[x >> 24];
+    }
+    // One cached child draw of 4 floats at sample index i (rev = reverse32(i)); variant 1: the index scramble
+    // as the header writes it; 2: reverse32(i) once per sample; 3: also the final reversal by a byte table;
+    // 4: no index scramble (a cost, not a design).
+    static inline void cached_draw(int variant, const udm1_stream &st, const Cached &c, int t, uint32_t i, uint32_t rev,
+                                   float s[4])
+    {
+        uint64_t key = c.key[t];
+        uint32_t low = variant == 1 ? udm1_owen_index32(i, (uint32_t)(key >> 32))
+                       : variant == 2 ? udm1_reverse32(udm1_owen_hash32(rev, (uint32_t)(key >> 32)))
+                       : variant == 3 ? reverse_bytes(udm1_owen_hash32(rev, (uint32_t)(key >> 32)))
+                                      : i;
+        uint64_t r[4];
+        udm1_weyl4_32(st.a_hi, st.a_lo, c.off[t], low, r);
+        for (int j = 0; j < 4; ++j) s[j] = udm1_raw_to_f32(r[j]);
+    }
+    void domain_cached(int variant, int samples, int ndims, const udm1_stream &st, const Cached &c) const
+    {
+        for (int i = 0; i < samples; ++i) {
+            uint32_t rev = udm1_reverse32((uint32_t)i);
+            for (int j = 0; j < ndims; j += 4) {
+                float s[4] = {0, 0, 0, 0};
+                cached_draw(variant, st, c, (j / 4) & 63, (uint32_t)i, rev, s);
+                save(s);
+            }
+        }
+    }
+    // renderer-shaped with the vertices' children cached per pixel (the cache filled with the stream, timed)
+    void renderer_cached(int variant, int width, int spp, int vertices) const
+    {
+        for (int y = 0; y < width; ++y)
+            for (int x = 0; x < width; ++x) {
+                udm1_stream st;
+                udm1_stream_init(&st, seq, ((uint64_t)y << 32) | (uint32_t)x, 0, 4 + 4 * (uint32_t)vertices);
+                Cached c;
+                fill_blocks(st, 1 + vertices, c);
+                for (int i = 0; i < spp; ++i) {
+                    float s[4] = {0, 0, 0, 0};
+                    udm1_stream_draw_f32(&st, (uint64_t)i, 0, 2, s);
+                    save(s);
+                    uint32_t rev = udm1_reverse32((uint32_t)i);
+                    for (int v = 0; v < vertices; ++v) {
+                        udm1_stream_draw_f32(&st, (uint64_t)i, 4 + 4 * (uint32_t)v, 4, s);
+                        save(s);
+                        cached_draw(variant, st, c, 1 + v, (uint32_t)i, rev, s);
+                        save(s);
+                    }
+                }
+            }
+    }
+    // The candidates' values against the shipped domains' (variants 1-3; the first 64 children, some samples).
+    bool check_cached(const udm1_stream &st) const
+    {
+        Cached chain, blocks;
+        fill_chain(st, 64, chain);
+        fill_blocks(st, 16, blocks);
+        for (uint32_t i : {0u, 1u, 2u, 3u, 5u, 1000u, 32767u, 0x80000001u})
+            for (int variant = 1; variant <= 3; ++variant) {
+                udm1_domain d = udm1_domain_root(&st, i);
+                for (int t = 0; t < 64; ++t) {
+                    d = udm1_domain_child(d, 0);
+                    float a[4], b[4];
+                    udm1_domain_draw_f32(d, 4, a);
+                    cached_draw(variant, st, chain, t, i, udm1_reverse32(i), b);
+                    if (std::memcmp(a, b, sizeof a) != 0) return false;
+                    if (t < 16) {
+                        udm1_domain_draw_f32(udm1_domain_child(udm1_domain_next(udm1_domain_root(&st, i), (uint32_t)t), 0), 4, a);
+                        cached_draw(variant, st, blocks, t, i, udm1_reverse32(i), b);
+                        if (std::memcmp(a, b, sizeof a) != 0) return false;
+                    }
+                }
+            }
+        return true;
+    }
     // the same dimensions by index through streams of 64 dimensions (filled once, outside the timing)
     void streams(int samples, int ndims, const std::vector<udm1_stream> &st) const
     {
@@ -341,6 +452,25 @@ int main(int argc, char **argv)
                             [=] { u->domain_variant(v, S, D, *st0); }});
     }
 #endif
+    // the domains' per-draw costs, cached (wr; Udm1::domain_cached, Udm1::renderer_cached), in every build
+    {
+        Udm1 *u = seqs[0];
+        const udm1_stream *st0 = &streams[0][0];
+        if (!u->check_cached(*st0)) {
+            std::fprintf(stderr, "bench_per_sample: a cached domain candidate draws other values than the domains\n");
+            return 1;
+        }
+        static Udm1::Cached chain;
+        Udm1::fill_chain(*st0, 64, chain);
+        int S = o.samples, D = o.dims, W = o.width, N = o.spp, V = o.vertices;
+        static const char *names[] = {"", "d:cached", "d:cachrev", "d:cachtab", "c:cachnoix"};
+        for (int v = 1; v <= 4; ++v) {
+            rows.push_back({"openqmc", "wr", names[v], "lattice", (double)S * D, 1e30, 0,
+                            [=] { u->domain_cached(v, S, D, *st0, chain); }});
+            rows.push_back({"renderer", "wr", names[v], "lattice", renderer_values, 1e30, 0,
+                            [=] { u->renderer_cached(v, W, N, V); }});
+        }
+    }
     // screen-space randomization against OpenQMC's blue-noise variants (wr)
     {
         udm1_seq_desc desc;
@@ -357,6 +487,18 @@ int main(int argc, char **argv)
         rows.push_back({"renderer", "wr screen", "domains", "latticebn", renderer_values, 1e30, 0,
                         [=] { u->renderer_domains(W, N, V); }});
     }
+    for (int i = 1; i + 1 < argc; ++i)  // --sampler NAME: that udm1 sampler's rows and their anchors only
+        if (std::strcmp(argv[i], "--sampler") == 0) {
+            std::string keep = argv[i + 1], anchor_of;
+            for (const Row &row : rows)
+                if (row.sampler == keep) anchor_of += " " + row.anchor + " ";
+            rows.erase(std::remove_if(rows.begin(), rows.end(),
+                                      [&](const Row &row) {
+                                          return row.way == "OpenQMC" ? anchor_of.find(" " + row.sampler + " ") == std::string::npos
+                                                                      : row.sampler != keep;
+                                      }),
+                       rows.end());
+        }
     for (int r = 0; r < o.rounds; ++r)  // every row once per round, anchors among them
         for (Row &row : rows) {
             double t0 = now();

@@ -158,7 +158,11 @@ def test_stream_values_and_padding_equal_the_reference():
     alphas = [ref.round128(f) for f in ref.preset_fracs("wr", d)]
     st = Stream()
     assert lib.udm1_stream_init(ctypes.byref(st), seq.handle, 42, 1, 5) == 0
-    assert st.held == 2 and st.flags == 1  # dimensions 1, 2 inline; 3..5 padded
+    # dimensions 1, 2 inline (UDM1_STREAM_INLINE); 3..5 padded; the children of keys 0 and 1 of its one
+    # block held (UDM1_STREAM_CHILDREN: two keys per block), key 0's in slot 0
+    assert st.held == 2 and st.flags == 1 | 2 * 8
+    key = child_key(st.key, 0)
+    assert st.dim_key[63] == key and list(st.a_hi[60:64]) == [ref.mix64(key + st.dim_key[j]) for j in range(4)]
     raw = (ctypes.c_uint64 * 5)()
     for index in (0, 3, 1 << 33):
         assert lib.udm1_stream_fill_raw(ctypes.byref(st), index, 0, 5, raw) == 0

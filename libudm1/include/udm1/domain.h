@@ -48,6 +48,12 @@
  *    every domain neighbouring pixels take consecutive segments of one shifted sequence: the error stays
  *    blue noise in every dimension, and each pixel stays unbiased over seeds.
  *
+ * Cost: a child's draw hashes its four dimensions' words (and a child() its key) unless its stream holds
+ * them: udm1_stream_init fills, with the stream, the children of keys 0 and 1 of each block of four
+ * dimensions on the root's chain - child(next(root, b), 0 or 1), a vertex's decorrelated extras, the same
+ * in every sample of the pixel - where they fit (udm1/stream.h, UDM1_STREAM_CHILDREN); their draws are the
+ * same values, without the hashes.
+ *
  * Which to use: next() along a path keeps a Kronecker sequence's joint structure across the path's
  * decisions (measurably lower error for the Weyl sets than independent domains); child() for what has
  * no place in the chain (optional decisions, splits, other subsystems), so that adding or removing one
@@ -69,14 +75,15 @@ typedef struct udm1_domain {
     uint64_t key;      /* 0 for the root's chain; else derived from its parent's key and its own (below) */
     uint64_t index;    /* the sample index */
     uint32_t dim;      /* its first dimension, from the stream's first: 4 per next() */
-    uint32_t reserved; /* 0 */
+    uint32_t reserved; /* 0, or a child's slot + 1 in its stream's cache (udm1/stream.h, UDM1_STREAM_CHILDREN): a
+                          hint, used only where that slot holds the domain's key */
 } udm1_domain;
 
 /* The golden-ratio increment and the 64-bit finalizer (Stafford's Mix13) of the library's hashing: the
  * per-stream shifts of udm1/seq.h, the padding and the domains' keys. Part of the ABI. */
 #define UDM1_GOLDEN_GAMMA 0x9E3779B97F4A7C15ull
 
-static inline uint64_t udm1_mix64(uint64_t z)
+UDM1_DRAW_ uint64_t udm1_mix64(uint64_t z)
 {
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
@@ -85,13 +92,13 @@ static inline uint64_t udm1_mix64(uint64_t z)
 
 /* A nested uniform scramble of a 32-bit index: it maps each aligned block of 2^k indices onto an
  * aligned block of 2^k. */
-static inline uint32_t udm1_owen_index32(uint32_t x, uint32_t seed)
+UDM1_DRAW_ uint32_t udm1_owen_index32(uint32_t x, uint32_t seed)
 {
     return udm1_reverse32(udm1_owen_hash32(udm1_reverse32(x), seed));
 }
 
 /* The root domain of a stream's sample `index`. */
-static inline udm1_domain udm1_domain_root(const udm1_stream *st, uint64_t index)
+UDM1_DRAW_ udm1_domain udm1_domain_root(const udm1_stream *st, uint64_t index)
 {
     udm1_domain d;
     d.stream = st, d.key = 0, d.index = index, d.dim = 0, d.reserved = 0;
@@ -100,7 +107,7 @@ static inline udm1_domain udm1_domain_root(const udm1_stream *st, uint64_t index
 
 /* The k-th block of four dimensions after d's: same key and index, dim + 4 k (a dim past 2^32 - 1 is
  * kept at the limit: its draws are refused, NaN). */
-static inline udm1_domain udm1_domain_next(udm1_domain d, uint32_t k)
+UDM1_DRAW_ udm1_domain udm1_domain_next(udm1_domain d, uint32_t k)
 {
     uint64_t dim = (uint64_t)d.dim + 4u * (uint64_t)k;
     d.dim = dim < 0xFFFFFFFFu ? (uint32_t)dim : 0xFFFFFFFFu;
@@ -109,18 +116,31 @@ static inline udm1_domain udm1_domain_next(udm1_domain d, uint32_t k)
 
 /* The child of key `key`: its key is mix64(K + (key + 1) G), K its parent's key (the stream's own for
  * the root's chain: a hash of the seed and the stream, in screen mode of the seed alone) plus its
- * parent's dimension offset, and never 0 (0 becomes G); its dimensions start again at 0. */
-static inline udm1_domain udm1_domain_child(udm1_domain parent, uint64_t key)
+ * parent's dimension offset, and never 0 (0 becomes G); its dimensions start again at 0. A child the
+ * stream holds takes that key from the stream, and its slot as the hint `reserved`. */
+UDM1_DRAW_ udm1_domain udm1_domain_child(udm1_domain parent, uint64_t key)
 {
+    const udm1_stream *st = parent.stream;
+    if (!parent.key && st && parent.dim % 4u == 0) { /* a child the stream holds: its key from the stream */
+        uint32_t kinds = (st->flags / UDM1_STREAM_CHILDREN) & 3u, blocks = (st->held + 3u) / 4u, b = parent.dim / 4u;
+        if (key < kinds && b < blocks) {
+            uint32_t s = (uint32_t)key * blocks + b;
+            parent.key = st->dim_key[63 - s];
+            parent.dim = 0;
+            parent.reserved = s + 1u;
+            return parent;
+        }
+    }
     uint64_t base = (parent.key ? parent.key : (parent.stream ? parent.stream->key : 0)) + parent.dim;
     uint64_t k = udm1_mix64(base + (key + 1u) * UDM1_GOLDEN_GAMMA);
     parent.key = k ? k : UDM1_GOLDEN_GAMMA;
     parent.dim = 0;
+    parent.reserved = 0;
     return parent;
 }
 
 /* Sub-sample i of n of the child of key (see the rules above): that child at index parent.index * n + i. */
-static inline udm1_domain udm1_domain_split(udm1_domain parent, uint64_t key, uint32_t n, uint32_t i)
+UDM1_DRAW_ udm1_domain udm1_domain_split(udm1_domain parent, uint64_t key, uint32_t n, uint32_t i)
 {
     udm1_domain d = udm1_domain_child(parent, key);
     d.index = parent.index * n + i;
@@ -128,7 +148,7 @@ static inline udm1_domain udm1_domain_split(udm1_domain parent, uint64_t key, ui
 }
 
 /* Sub-sample i of an open-ended number: child(child(parent, key), i). */
-static inline udm1_domain udm1_domain_chain(udm1_domain parent, uint64_t key, uint64_t i)
+UDM1_DRAW_ udm1_domain udm1_domain_chain(udm1_domain parent, uint64_t key, uint64_t i)
 {
     return udm1_domain_child(udm1_domain_child(parent, key), i);
 }
@@ -145,7 +165,7 @@ UDM1_API udm1_status udm1_domain_fill_f32(const udm1_domain *d, uint32_t n, floa
 /* udm1_mix64(add + in[j]) of four values at once, where the compiler targets AVX2 (64-bit products from
  * 32-bit ones, or AVX-512's own): the same values. */
 #if defined(UDM1_AVX2_)
-static inline __m256i udm1_mul64x4_(__m256i a, uint64_t c)
+UDM1_DRAW_ __m256i udm1_mul64x4_(__m256i a, uint64_t c)
 {
 #if defined(__AVX512DQ__) && defined(__AVX512VL__)
     return _mm256_mullo_epi64(a, _mm256_set1_epi64x((long long)c));
@@ -156,7 +176,7 @@ static inline __m256i udm1_mul64x4_(__m256i a, uint64_t c)
 #endif
 }
 
-static inline __m256i udm1_mix64x4_(uint64_t add, const uint64_t *in)
+UDM1_DRAW_ __m256i udm1_mix64x4_(uint64_t add, const uint64_t *in)
 {
     __m256i z = _mm256_add_epi64(_mm256_set1_epi64x((long long)add), _mm256_loadu_si256((const __m256i *)in));
     z = udm1_mul64x4_(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), 0xBF58476D1CE4E5B9ull);
@@ -165,7 +185,7 @@ static inline __m256i udm1_mix64x4_(uint64_t add, const uint64_t *in)
 }
 #endif
 
-static inline void udm1_mix64x4(uint64_t add, const uint64_t *in, uint64_t *out)
+UDM1_DRAW_ void udm1_mix64x4(uint64_t add, const uint64_t *in, uint64_t *out)
 {
 #if defined(UDM1_AVX2_)
     _mm256_storeu_si256((__m256i *)out, udm1_mix64x4_(add, in));
@@ -175,7 +195,7 @@ static inline void udm1_mix64x4(uint64_t add, const uint64_t *in, uint64_t *out)
 }
 
 /* Store one of a domain's values as a raw value (out_kind 0), a float (1) or a double (2). */
-static inline void udm1_put_(int out_kind, void *out, uint32_t j, uint64_t r)
+UDM1_DRAW_ void udm1_put_(int out_kind, void *out, uint32_t j, uint64_t r)
 {
     if (out_kind == 1) ((float *)out)[j] = udm1_raw_to_f32(r);
     else if (out_kind == 2) ((double *)out)[j] = udm1_raw_to_f64(r);
@@ -183,48 +203,112 @@ static inline void udm1_put_(int out_kind, void *out, uint32_t j, uint64_t r)
 }
 
 /* Whether a child domain's n dimensions are drawn inline: a Weyl sequence, no point set, dims held. */
-static inline int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
+UDM1_DRAW_ int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
 {
     const udm1_stream *st = d->stream;
     return st && d->key && (st->flags & UDM1_STREAM_INLINE) && n - 1u < 4u && n <= st->held &&
            d->dim <= st->held - n && st->point_count == 0;
 }
 
+/* The words mix64(key + K_j), j < 4, of a child domain's dimensions 0..3 where its stream holds them (its
+ * hint names a slot that holds its key, udm1/stream.h), else NULL: the draw hashes them. */
+UDM1_DRAW_ const uint64_t *udm1_domain_words_(const udm1_domain *d)
+{
+    const udm1_stream *st = d->stream;
+    uint32_t s = d->reserved - 1u, r = (64u - st->held) / 4u;
+    if (d->reserved == 0 || d->dim != 0 || s >= ((st->flags / UDM1_STREAM_CHILDREN) & 3u) * ((st->held + 3u) / 4u) ||
+        st->dim_key[63 - s] != d->key)
+        return NULL;
+    return s < r ? st->a_hi + 60 - 4 * s : st->a_lo + 60 - 4 * (s - r);
+}
+
 /* A child domain's values of dimensions dim .. dim + n - 1 (inline case): its index scrambled, its own
  * shifts. Where the compiler targets AVX2 the four shifts and values stay in one register from the key to
  * the conversion (a wide load of values just stored one by one would wait for them). */
-static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_t index, uint32_t dim, uint32_t n,
-                                       int out_kind, void *out)
+UDM1_DRAW_ void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_t index, uint32_t dim, uint32_t n,
+                                       const uint64_t *words, int out_kind, void *out)
 {
     uint32_t low = udm1_owen_index32((uint32_t)index, (uint32_t)(key >> 32));
     if (index <= 0xFFFFFFFFu && st->index_base == 0 && dim <= UDM1_STREAM_DIMS - 4) { /* (four lanes in the arrays) */
 #if defined(UDM1_AVX2_)
-        __m256i O = _mm256_add_epi64(udm1_mix64x4_(key, st->dim_key + dim),
+        __m256i O = _mm256_add_epi64(words ? _mm256_loadu_si256((const __m256i *)words) : udm1_mix64x4_(key, st->dim_key + dim),
                                      _mm256_loadu_si256((const __m256i *)(st->base + dim)));
-        __m256i N = _mm256_set1_epi64x((long long)low);
+        /* the index scramble's final bit reversal in the register that multiplies (byte shuffles, or GFNI's
+         * bit matrix where enabled): the same value, without a trip through a general register */
+        __m128i x = _mm_cvtsi32_si128((int)udm1_owen_hash32(udm1_reverse32((uint32_t)index), (uint32_t)(key >> 32)));
+#if defined(__GFNI__)
+        x = _mm_shuffle_epi8(_mm_gf2p8affine_epi64_epi8(x, _mm_set1_epi64x(0x8040201008040201ll), 0),
+                             _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12));
+#else
+        x = udm1_reverse32x4_(x);
+#endif
+        __m256i N = _mm256_broadcastq_epi64(x);
         __m256i H = _mm256_loadu_si256((const __m256i *)(st->a_hi + dim));
         __m256i L = _mm256_loadu_si256((const __m256i *)(st->a_lo + dim));
         __m256i h0 = _mm256_mul_epu32(N, H), h1 = _mm256_mul_epu32(N, _mm256_srli_epi64(H, 32));
         __m256i l0 = _mm256_mul_epu32(N, L), l1 = _mm256_mul_epu32(N, _mm256_srli_epi64(L, 32));
         __m256i carry = _mm256_srli_epi64(_mm256_add_epi64(l1, _mm256_srli_epi64(l0, 32)), 32);
         __m256i v = _mm256_add_epi64(_mm256_add_epi64(O, _mm256_add_epi64(h0, _mm256_slli_epi64(h1, 32))), carry);
-        if (out_kind == 1 && n == 4) { /* the top 24 bits of each lane, as floats, in the register */
+        if (out_kind == 1) { /* the top 24 bits of each lane, as floats, in the register */
             __m256i top = _mm256_srli_epi64(v, 40);
             __m128i lo32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(top, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6)));
-            _mm_storeu_ps((float *)out, _mm_mul_ps(_mm_cvtepi32_ps(lo32), _mm_set1_ps(1.0f / 16777216.0f)));
+            __m128 f = _mm_mul_ps(_mm_cvtepi32_ps(lo32), _mm_set1_ps(1.0f / 16777216.0f));
+            if (n == 4) {
+                _mm_storeu_ps((float *)out, f);
+            } else {
+                float f4[4];
+                _mm_storeu_ps(f4, f);
+                for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f4[j];
+            }
             return;
         }
         uint64_t r[4];
         _mm256_storeu_si256((__m256i *)r, v);
 #elif defined(UDM1_NEON_)
         uint64_t r[4], o[4]; /* the shifts one by one (NEON has no 64-bit product), the values in two vectors */
-        for (uint32_t j = 0; j < 4; ++j) o[j] = st->base[dim + j] + udm1_mix64(key + st->dim_key[dim + j]);
+        for (uint32_t j = 0; j < 4; ++j) o[j] = st->base[dim + j] + (words ? words[j] : udm1_mix64(key + st->dim_key[dim + j]));
         udm1_weyl4_32(st->a_hi + dim, st->a_lo + dim, o, low, r);
+#elif defined(UDM1_X86_)
+        /* the values in two SSE2 vectors, as above; the shifts from the words held, or hashed one by one and
+         * put in the registers (a wide load of values just stored one by one would wait for them) */
+        uint64_t r[4];
+        __m128i N = _mm_set1_epi64x((long long)low), v[2], O[2];
+        if (words) {
+            for (int k = 0; k < 2; ++k)
+                O[k] = _mm_add_epi64(_mm_loadu_si128((const __m128i *)(words + 2 * k)),
+                                     _mm_loadu_si128((const __m128i *)(st->base + dim + 2 * k)));
+        } else {
+            uint64_t o[4] = {0, 0, 0, 0};
+            for (uint32_t j = 0; j < n; ++j) o[j] = st->base[dim + j] + udm1_mix64(key + st->dim_key[dim + j]);
+            O[0] = _mm_set_epi64x((long long)o[1], (long long)o[0]), O[1] = _mm_set_epi64x((long long)o[3], (long long)o[2]);
+        }
+        for (int k = 0; k < 2; ++k) {
+            __m128i H = _mm_loadu_si128((const __m128i *)(st->a_hi + dim + 2 * k)), L = _mm_loadu_si128((const __m128i *)(st->a_lo + dim + 2 * k));
+            __m128i h0 = _mm_mul_epu32(N, H), h1 = _mm_mul_epu32(N, _mm_srli_epi64(H, 32));
+            __m128i l0 = _mm_mul_epu32(N, L), l1 = _mm_mul_epu32(N, _mm_srli_epi64(L, 32));
+            __m128i carry = _mm_srli_epi64(_mm_add_epi64(l1, _mm_srli_epi64(l0, 32)), 32);
+            v[k] = _mm_add_epi64(_mm_add_epi64(O[k], _mm_add_epi64(h0, _mm_slli_epi64(h1, 32))), carry);
+        }
+        if (out_kind == 1) { /* the top 24 bits of each lane, as floats, in the register */
+            __m128i top = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(_mm_srli_epi64(v[0], 40)),
+                                                          _mm_castsi128_ps(_mm_srli_epi64(v[1], 40)), 0x88));
+            __m128 f = _mm_mul_ps(_mm_cvtepi32_ps(top), _mm_set1_ps(1.0f / 16777216.0f));
+            if (n == 4) {
+                _mm_storeu_ps((float *)out, f);
+            } else {
+                float f4[4];
+                _mm_storeu_ps(f4, f);
+                for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f4[j];
+            }
+            return;
+        }
+        _mm_storeu_si128((__m128i *)r, v[0]);
+        _mm_storeu_si128((__m128i *)(r + 2), v[1]);
 #else
         uint64_t r[4];
         for (uint32_t j = 0; j < n; ++j)
-            r[j] = udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j], st->base[dim + j] + udm1_mix64(key + st->dim_key[dim + j]),
-                                     low);
+            r[j] = udm1_weyl_value32(st->a_hi[dim + j], st->a_lo[dim + j],
+                                     st->base[dim + j] + (words ? words[j] : udm1_mix64(key + st->dim_key[dim + j])), low);
 #endif
         for (uint32_t j = 0; j < n; ++j) udm1_put_(out_kind, out, j, r[j]);
         return;
@@ -236,7 +320,7 @@ static inline void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint
 }
 
 /* Whether the child domain d of a pmj02 stream draws n dimensions inline. */
-static inline int udm1_domain_pmj02_(const udm1_domain *d, uint32_t n)
+UDM1_DRAW_ int udm1_domain_pmj02_(const udm1_domain *d, uint32_t n)
 {
     const udm1_stream *st = d->stream;
     return st && d->key && (st->flags & UDM1_STREAM_PMJ02) && n - 1u < 4u && n <= st->held &&
@@ -245,7 +329,7 @@ static inline int udm1_domain_pmj02_(const udm1_domain *d, uint32_t n)
 
 /* A pmj02 child domain's values (out_kind as udm1_put_): its index permuted inside the K points, its own
  * words. */
-static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, int out_kind, void *out)
+UDM1_DRAW_ void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, int out_kind, void *out)
 {
     const udm1_stream *st = d->stream;
     uint64_t K = st->point_count, words[4];
@@ -254,12 +338,13 @@ static inline void udm1_domain_pmj02_values_(const udm1_domain *d, uint32_t n, i
         do m = udm1_owen_bits(m, (uint32_t)(d->key >> 32), st->table_bits);
         while (m >= K);
     }
-    if (st->table_mode == 1) udm1_mix64x4(d->key, st->dim_key + d->dim, words);
-    udm1_pmj02_values_(st, m, d->dim, n, words, st->table_mode == 1, out_kind, out);
+    const uint64_t *held = st->table_mode == 1 ? udm1_domain_words_(d) : NULL;
+    if (st->table_mode == 1 && !held) udm1_mix64x4(d->key, st->dim_key + d->dim, words);
+    udm1_pmj02_values_(st, m, d->dim, n, held ? held : words, st->table_mode == 1, out_kind, out);
 }
 
 /* Whether the child domain d of a Sobol stream draws n dimensions inline. */
-static inline int udm1_domain_sobol_(const udm1_domain *d, uint32_t n)
+UDM1_DRAW_ int udm1_domain_sobol_(const udm1_domain *d, uint32_t n)
 {
     const udm1_stream *st = d->stream;
     return st && d->key && (st->flags & UDM1_STREAM_SOBOL) && n - 1u < 4u && n <= st->held &&
@@ -267,12 +352,16 @@ static inline int udm1_domain_sobol_(const udm1_domain *d, uint32_t n)
 }
 
 /* A Sobol child domain's values (out_kind as udm1_put_): its index scrambled, its own words. */
-static inline void udm1_domain_sobol_values_(const udm1_domain *d, uint32_t n, int out_kind, void *out)
+UDM1_DRAW_ void udm1_domain_sobol_values_(const udm1_domain *d, uint32_t n, int out_kind, void *out)
 {
     const udm1_stream *st = d->stream;
     uint32_t m = udm1_owen_index32((uint32_t)d->index, (uint32_t)(d->key >> 32));
-    uint64_t words[4] = {0, 0, 0, 0};
-    if (st->table_mode) udm1_mix64x4(d->key, st->dim_key + d->dim, words);
+    uint64_t own[4] = {0, 0, 0, 0};
+    const uint64_t *words = st->table_mode ? udm1_domain_words_(d) : NULL;
+    if (!words) {
+        if (st->table_mode) udm1_mix64x4(d->key, st->dim_key + d->dim, own);
+        words = own;
+    }
     if (out_kind == 1 && st->table_mode == 2) udm1_sobol_owen_f32_(st, m ^ (m >> 1), d->dim, n, words, (float *)out);
     else
         for (uint32_t j = 0; j < n; ++j) udm1_put_(out_kind, out, j, udm1_sobol_value_(st, m, d->dim + j, words[j], out_kind != 1));
@@ -301,7 +390,7 @@ UDM1_DRAW_ void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
         return;
     }
     if (udm1_domain_inline_(&d, n)) {
-        udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, 0, raw);
+        udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, udm1_domain_words_(&d), 0, raw);
         return;
     }
     if (udm1_domain_pmj02_(&d, n)) {
@@ -318,7 +407,7 @@ UDM1_DRAW_ void udm1_domain_draw_raw(udm1_domain d, uint32_t n, uint64_t *raw)
 UDM1_DRAW_ void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
 {
     if (d.key && udm1_domain_inline_(&d, n)) {
-        udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, 1, out);
+        udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, udm1_domain_words_(&d), 1, out);
         return;
     }
     if (!d.key && d.stream && n - 1u < 4u) {
@@ -339,7 +428,7 @@ UDM1_DRAW_ void udm1_domain_draw_f32(udm1_domain d, uint32_t n, float *out)
 UDM1_DRAW_ void udm1_domain_draw_f64(udm1_domain d, uint32_t n, double *out)
 {
     if (d.key && udm1_domain_inline_(&d, n)) {
-        udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, 2, out);
+        udm1_domain_values_(d.stream, d.key, d.index, d.dim, n, udm1_domain_words_(&d), 2, out);
         return;
     }
     if (!d.key && d.stream && n - 1u < 4u) {

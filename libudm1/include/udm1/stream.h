@@ -35,10 +35,11 @@
 
 #include <math.h>
 
-/* The draws are forced inline where the compiler allows it: a call per draw would cost more than the
- * values (measured: a 4D Weyl draw 0.6 ns per dimension inline, 1.1 ns when the compiler chose a call);
- * their library calls are kept out of line (UDM1_COLD_), so that a domain passed by value stays in
- * registers. */
+/* The draws, the domains' derivations and every helper they call are forced inline where the compiler
+ * allows it: a call per draw would cost more than the values (measured: a 4D Weyl draw 0.6 ns per
+ * dimension inline, 1.1 ns when the compiler chose a call; GCC left a domain draw's helpers as calls in a
+ * renderer's loop, 1.7x its time); their library calls are kept out of line (UDM1_COLD_), so that a
+ * domain passed by value stays in registers. */
 #if defined(__GNUC__) || defined(__clang__)
 #define UDM1_DRAW_ static inline __attribute__((always_inline))
 #define UDM1_COLD_ static __attribute__((noinline, cold, unused))
@@ -89,10 +90,19 @@
  *                       below 2^32: `table` holds [dim][4][256] 64-bit words, the XOR of the direction
  *                       numbers 8k .. 8k + 7 selected by byte k of the Gray code; then the randomization
  *                       table_mode names with the word in offset
- * (table_mode: 0 none, 1 XOR with the word, 2 Owen scrambling keyed by the word, seq/scramble.h's) */
+ * (table_mode: 0 none, 1 XOR with the word, 2 Owen scrambling keyed by the word, seq/scramble.h's)
+ * Two more bits, C = (flags / UDM1_STREAM_CHILDREN) & 3, say that the stream holds the child domains a
+ * renderer derives in every sample (udm1/domain.h): for each of the B = ceil(held / 4) blocks b of four
+ * dimensions of the root's chain, the children of keys c < C (udm1_domain_child(udm1_domain_next(root, b),
+ * c)), in slot s = c B + b, in entries past `held` of the arrays below: the child's key in dim_key[63 - s],
+ * the words mix64(key + K_j) of its dimensions 0..3 in the four entries a_hi[60 - 4 s ..] for s < R =
+ * (64 - held) / 4, else a_lo[60 - 4 (s - R) ..]. The library fills them with the stream for the three
+ * inline kinds, C = min(2, 2 R / B) (keys 0 and 1 where they fit), and the draws of those children compute
+ * nothing that they hold. */
 #define UDM1_STREAM_INLINE 1u
 #define UDM1_STREAM_PMJ02 2u
 #define UDM1_STREAM_SOBOL 4u
+#define UDM1_STREAM_CHILDREN 8u
 
 #ifdef __cplusplus
 extern "C" {
@@ -144,7 +154,7 @@ UDM1_API udm1_status udm1_stream_fill_f32(const udm1_stream *st, uint64_t index,
 /* ---- inline arithmetic (the sequence contract of udm1/seq.h) -------------------------------------- */
 
 /* The top 64 bits of a * b. */
-static inline uint64_t udm1_mulhi64(uint64_t a, uint64_t b)
+UDM1_DRAW_ uint64_t udm1_mulhi64(uint64_t a, uint64_t b)
 {
 #if defined(UDM1_MULHI_INT128_)
     __extension__ typedef unsigned __int128 udm1_u128_;
@@ -159,14 +169,14 @@ static inline uint64_t udm1_mulhi64(uint64_t a, uint64_t b)
 }
 
 /* The raw value of a Weyl dimension: the top 64 bits of (o 2^64 + n (a_hi 2^64 + a_lo)) mod 2^128. */
-static inline uint64_t udm1_weyl_value(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint64_t n)
+UDM1_DRAW_ uint64_t udm1_weyl_value(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint64_t n)
 {
     return o + n * a_hi + udm1_mulhi64(n, a_lo);
 }
 
 /* The same for n < 2^32 with 32 x 32 -> 64-bit products only, which compilers vectorize (equal bit for
  * bit: with n < 2^32 neither partial sum below reaches 2^64). */
-static inline uint64_t udm1_weyl_value32(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint32_t n)
+UDM1_DRAW_ uint64_t udm1_weyl_value32(uint64_t a_hi, uint64_t a_lo, uint64_t o, uint32_t n)
 {
     uint64_t h0 = (uint64_t)n * (uint32_t)a_hi, h1 = (uint64_t)n * (uint32_t)(a_hi >> 32);
     uint64_t l0 = (uint64_t)n * (uint32_t)a_lo, l1 = (uint64_t)n * (uint32_t)(a_lo >> 32);
@@ -177,7 +187,7 @@ static inline uint64_t udm1_weyl_value32(uint64_t a_hi, uint64_t a_lo, uint64_t 
  * the 32 x 32 -> 64-bit vector multiply of SSE2 (x86-64's baseline) or AVX2, where the compiler targets
  * them; the same values bit for bit. */
 #if defined(UDM1_AVX2_)
-static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
 {
     __m256i N = _mm256_set1_epi64x((long long)n);
@@ -189,7 +199,7 @@ static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, con
     _mm256_storeu_si256((__m256i *)out, _mm256_add_epi64(r, carry));
 }
 #elif defined(UDM1_X86_)
-static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
 {
     __m128i N = _mm_set1_epi64x((long long)n);
@@ -203,7 +213,7 @@ static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, con
     }
 }
 #elif defined(UDM1_NEON_)
-static inline uint64x2_t udm1_weyl2_32_neon_(uint32x2_t N, const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o)
+UDM1_DRAW_ uint64x2_t udm1_weyl2_32_neon_(uint32x2_t N, const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o)
 {
     uint64x2_t H = vld1q_u64(a_hi), L = vld1q_u64(a_lo);
     uint64x2_t h0 = vmull_u32(N, vmovn_u64(H)), h1 = vmull_u32(N, vshrn_n_u64(H, 32));
@@ -212,7 +222,7 @@ static inline uint64x2_t udm1_weyl2_32_neon_(uint32x2_t N, const uint64_t *a_hi,
     return vaddq_u64(vaddq_u64(vld1q_u64(o), vaddq_u64(h0, vshlq_n_u64(h1, 32))), carry);
 }
 
-static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
 {
     uint32x2_t N = vdup_n_u32(n);
@@ -220,7 +230,7 @@ static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, con
     vst1q_u64(out + 2, udm1_weyl2_32_neon_(N, a_hi + 2, a_lo + 2, o + 2));
 }
 #else
-static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
 {
     for (int j = 0; j < 4; ++j) out[j] = udm1_weyl_value32(a_hi[j], a_lo[j], o[j], n);
@@ -229,7 +239,7 @@ static inline void udm1_weyl4_32(const uint64_t *a_hi, const uint64_t *a_lo, con
 
 /* Two dimensions at once for n < 2^32 (SSE2 on x86-64, NEON on AArch64), as udm1_weyl4_32. */
 #if defined(UDM1_X86_)
-static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
 {
     __m128i N = _mm_set1_epi64x((long long)n);
@@ -241,13 +251,13 @@ static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, con
     _mm_storeu_si128((__m128i *)out, _mm_add_epi64(r, carry));
 }
 #elif defined(UDM1_NEON_)
-static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
 {
     vst1q_u64(out, udm1_weyl2_32_neon_(vdup_n_u32(n), a_hi, a_lo, o));
 }
 #else
-static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                  uint64_t *out)
 {
     out[0] = udm1_weyl_value32(a_hi[0], a_lo[0], o[0], n);
@@ -256,7 +266,7 @@ static inline void udm1_weyl2_32(const uint64_t *a_hi, const uint64_t *a_lo, con
 #endif
 
 /* Dimensions 0..n-1 of (a_hi, a_lo, o) at n < 2^32: fours, then a two, then a one. */
-static inline void udm1_weyl_run32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
+UDM1_DRAW_ void udm1_weyl_run32(const uint64_t *a_hi, const uint64_t *a_lo, const uint64_t *o, uint32_t n,
                                    uint32_t count, uint64_t *out)
 {
     uint32_t j = 0;
@@ -266,13 +276,13 @@ static inline void udm1_weyl_run32(const uint64_t *a_hi, const uint64_t *a_lo, c
 }
 
 /* The documented conversions (udm1/seq.h): float = top 24 bits x 2^-24, double = top 53 bits x 2^-53. */
-static inline float udm1_raw_to_f32(uint64_t u) { return (float)(int32_t)(u >> 40) * (1.0f / 16777216.0f); }
-static inline double udm1_raw_to_f64(uint64_t u) { return (double)(int64_t)(u >> 11) * (1.0 / 9007199254740992.0); }
+UDM1_DRAW_ float udm1_raw_to_f32(uint64_t u) { return (float)(int32_t)(u >> 40) * (1.0f / 16777216.0f); }
+UDM1_DRAW_ double udm1_raw_to_f64(uint64_t u) { return (double)(int64_t)(u >> 11) * (1.0 / 9007199254740992.0); }
 
 /* The bits of x in reverse order; a hash of 32 bits in which each output bit depends only on the input
  * bits at or below it, each step a bijection modulo 2^k for every k (Burley 2020, with Vegdahl's
  * constants): applied to bit-reversed digits it is a nested uniform (Owen) scramble. */
-static inline uint32_t udm1_reverse32(uint32_t x)
+UDM1_DRAW_ uint32_t udm1_reverse32(uint32_t x)
 {
 #if defined(__clang__)
     return __builtin_bitreverse32(x);
@@ -289,7 +299,7 @@ static inline uint32_t udm1_reverse32(uint32_t x)
 #endif
 }
 
-static inline uint32_t udm1_owen_hash32(uint32_t x, uint32_t seed)
+UDM1_DRAW_ uint32_t udm1_owen_hash32(uint32_t x, uint32_t seed)
 {
     x ^= x * 0x3d20adeau;
     x += seed;
@@ -301,14 +311,14 @@ static inline uint32_t udm1_owen_hash32(uint32_t x, uint32_t seed)
 
 /* A nested uniform scramble of the k-bit value v (v < 2^k, 1 <= k <= 32): it maps each aligned block of
  * 2^j values onto an aligned block of 2^j. */
-static inline uint32_t udm1_owen_bits(uint32_t v, uint32_t seed, unsigned k)
+UDM1_DRAW_ uint32_t udm1_owen_bits(uint32_t v, uint32_t seed, unsigned k)
 {
     uint32_t mask = k >= 32 ? 0xFFFFFFFFu : (1u << k) - 1u;
     return udm1_reverse32(udm1_owen_hash32(udm1_reverse32(v) >> (32 - k), seed) & mask) >> (32 - k);
 }
 
 /* The raw pmj02 value (UDM1_STREAM_PMJ02) of dimension first + dim of point index < K, XORed with word. */
-static inline uint64_t udm1_pmj02_value_(const udm1_stream *st, uint64_t index, uint32_t dim, uint64_t word)
+UDM1_DRAW_ uint64_t udm1_pmj02_value_(const udm1_stream *st, uint64_t index, uint32_t dim, uint64_t word)
 {
     uint32_t d = st->first + dim;
     const uint32_t *xy = (const uint32_t *)st->table;
@@ -316,7 +326,7 @@ static inline uint64_t udm1_pmj02_value_(const udm1_stream *st, uint64_t index, 
 }
 
 /* The bit-reversed top 32 bits of Sobol dimension d (UDM1_STREAM_SOBOL, table_mode 2) at Gray code g. */
-static inline uint32_t udm1_sobol_rev_(const udm1_stream *st, uint32_t d, uint32_t g)
+UDM1_DRAW_ uint32_t udm1_sobol_rev_(const udm1_stream *st, uint32_t d, uint32_t g)
 {
     const uint32_t(*T)[256] = (const uint32_t(*)[256])st->table + 4 * (size_t)d;
     return T[0][g & 255u] ^ T[1][(g >> 8) & 255u] ^ T[2][(g >> 16) & 255u] ^ T[3][g >> 24];
@@ -325,7 +335,7 @@ static inline uint32_t udm1_sobol_rev_(const udm1_stream *st, uint32_t d, uint32
 /* The raw Sobol value (UDM1_STREAM_SOBOL) of dimension first + dim of point index < 2^32, randomized with
  * word: XOR (table_mode 1) or Owen scrambling (2: the top 32 bits scrambled, the low 32 a hash of them, or
  * left 0 with low_half 0 - a float reads only the top 24 bits). */
-static inline uint64_t udm1_sobol_value_(const udm1_stream *st, uint32_t index, uint32_t dim, uint64_t word, int low_half)
+UDM1_DRAW_ uint64_t udm1_sobol_value_(const udm1_stream *st, uint32_t index, uint32_t dim, uint64_t word, int low_half)
 {
     uint32_t g = index ^ (index >> 1), d = st->first + dim;
     if (st->table_mode != 2) {
@@ -349,7 +359,7 @@ static inline uint64_t udm1_sobol_value_(const udm1_stream *st, uint32_t index, 
  * slower than scalar code.) */
 #if defined(UDM1_X86_) && ((defined(__SSE4_1__) && defined(__SSSE3__)) || defined(__AVX__))
 #define UDM1_SOBOL_OWEN_SSE_ 1
-static inline __m128i udm1_reverse32x4_(__m128i x)
+UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
 {
     /* bytes swapped, then each byte's nibbles reversed (a 16-entry table) and exchanged */
     const __m128i m4 = _mm_set1_epi8(0x0F), nib = _mm_setr_epi8(0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15);
@@ -359,7 +369,7 @@ static inline __m128i udm1_reverse32x4_(__m128i x)
 }
 #endif
 
-static inline void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint32_t dim, uint32_t n,
+UDM1_DRAW_ void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint32_t dim, uint32_t n,
                                         const uint64_t *words, float *out)
 {
     uint32_t d = st->first + dim;
@@ -400,14 +410,14 @@ static inline void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint3
 }
 
 /* Whether dimensions [dim, dim + n) of point index are Sobol values drawn inline. */
-static inline int udm1_stream_sobol_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
+UDM1_DRAW_ int udm1_stream_sobol_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
 {
     return (st->flags & UDM1_STREAM_SOBOL) && n <= st->held && dim <= st->held - n && index <= 0xFFFFFFFFu;
 }
 
 /* ... of dimensions dim .. dim + n - 1, as raw values (out_kind 0), floats (1) or doubles (2), each
  * converted where it is made (a wide load of values just stored one by one would wait for them) */
-static inline void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
+UDM1_DRAW_ void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n,
                                       const uint64_t *words, int xor_words, int out_kind, void *out)
 {
 #if defined(UDM1_X86_)
@@ -446,14 +456,14 @@ static inline void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uin
 }
 
 /* Whether dimensions [dim, dim + n) of point index are drawn inline. */
-static inline int udm1_stream_inline_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
+UDM1_DRAW_ int udm1_stream_inline_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
 {
     return (st->flags & UDM1_STREAM_INLINE) && n <= st->held && dim <= st->held - n &&
            (st->point_count == 0 || index < st->point_count);
 }
 
 /* Whether dimensions [dim, dim + n) of point index are pmj02 values drawn inline. */
-static inline int udm1_stream_pmj02_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
+UDM1_DRAW_ int udm1_stream_pmj02_(const udm1_stream *st, uint64_t index, uint32_t dim, uint32_t n)
 {
     return (st->flags & UDM1_STREAM_PMJ02) && n <= st->held && dim <= st->held - n && index < st->point_count;
 }

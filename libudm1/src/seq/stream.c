@@ -12,6 +12,29 @@
 
 #include <string.h>
 
+/* The child domains of keys 0 and 1 of each block of four dimensions held on the root's chain (a vertex's
+ * decorrelated extras: udm1-pt's lobe and roulette, its first medium piece; the README's example), where
+ * they fit in the entries past `held` (udm1/stream.h, UDM1_STREAM_CHILDREN): their keys and their
+ * dimensions' words, so that their draws hash nothing. Keys and words as udm1/domain.h derives them. Each
+ * costs five hashes per stream, what one draw of it costs without the cache. */
+static void stream_children(udm1_stream *s)
+{
+    if (!(s->flags & (UDM1_STREAM_INLINE | UDM1_STREAM_PMJ02 | UDM1_STREAM_SOBOL)) || s->held == 0) return;
+    uint32_t blocks = (s->held + 3) / 4, room = (UDM1_STREAM_DIMS - s->held) / 4;
+    uint32_t kinds = 2 * room / blocks < 2 ? 2 * room / blocks : 2;
+    const uint64_t K0 = s->dim_key[0], K1 = s->dim_key[1], K2 = s->dim_key[2], K3 = s->dim_key[3];
+    for (uint32_t c = 0; c < kinds; ++c)
+        for (uint32_t b = 0; b < blocks; ++b) {
+            uint32_t slot = c * blocks + b;
+            uint64_t key = udm1_domain_child(udm1_domain_next(udm1_domain_root(s, 0), b), c).key;
+            uint64_t *words = slot < room ? s->a_hi + 60 - 4 * slot : s->a_lo + 60 - 4 * (slot - room);
+            words[0] = udm1_mix64(key + K0), words[1] = udm1_mix64(key + K1);
+            words[2] = udm1_mix64(key + K2), words[3] = udm1_mix64(key + K3);
+            s->dim_key[63 - slot] = key;
+        }
+    s->flags |= kinds * UDM1_STREAM_CHILDREN;
+}
+
 udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stream, uint32_t first, uint32_t count)
 {
     static const char fn[] = "udm1_stream_init";
@@ -22,75 +45,75 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
     if (first >= UDM1_DIMENSION_INDEX_LIMIT || count > UDM1_DIMENSION_INDEX_LIMIT - first)
         return udm1_fail(UDM1_ERROR_DIMENSION, "%s: first_dimension %u + count %u passes the dimension index limit",
                          fn, first, count);
-    udm1_stream s;
-    memset(&s, 0, sizeof s);
-    s.struct_size = (uint32_t)sizeof s;
-    s.seq = seq;
-    s.stream = stream;
+    udm1_stream *s = st; /* filled in place: every error is found above */
+    memset(s, 0, sizeof *s);
+    s->struct_size = (uint32_t)sizeof *s;
+    s->seq = seq;
+    s->stream = stream;
     /* the domains' root key: the stream's hashed key; in screen mode one key for every pixel, so that a
      * child domain of neighbouring pixels is consecutive segments of one sequence too (udm1/domain.h) */
-    s.key = udm1_stream_key(seq->seed_key, seq->mode == UDM1_MODE_SCREEN ? UINT64_MAX : stream);
-    s.point_count = seq->point_count;
-    s.first = first;
-    s.count = count;
-    s.dimensions = seq->dims;
+    s->key = udm1_stream_key(seq->seed_key, seq->mode == UDM1_MODE_SCREEN ? UINT64_MAX : stream);
+    s->point_count = seq->point_count;
+    s->first = first;
+    s->count = count;
+    s->dimensions = seq->dims;
     uint64_t skey = udm1_seq_stream_key(seq, stream);
     uint32_t own = first >= seq->dims ? 0 : seq->dims - first < count ? seq->dims - first : count;
     if (seq->kind == &udm1_weyl_kind) { /* modes none, shift, screen: the inline arithmetic */
-        s.flags = UDM1_STREAM_INLINE;
-        s.index_base = udm1_screen_index(seq, skey, 0);
-        s.held = own;
+        s->flags = UDM1_STREAM_INLINE;
+        s->index_base = udm1_screen_index(seq, skey, 0);
+        s->held = own;
         if (seq->mode == UDM1_MODE_SHIFT) /* the shifts mix64(T + K_j), four at a time */
-            udm1_mix64_many(seq->dim_key + first, skey, s.offset, own);
-        for (uint32_t j = 0; j < s.held; ++j) {
+            udm1_mix64_many(seq->dim_key + first, skey, s->offset, own);
+        for (uint32_t j = 0; j < s->held; ++j) {
             uint32_t dim = first + j;
-            s.a_hi[j] = seq->gen[dim].hi;
-            s.a_lo[j] = seq->gen[dim].lo;
-            s.offset[j] = seq->offset[dim] + (seq->mode == UDM1_MODE_SHIFT ? s.offset[j] : udm1_weyl_shift(seq, skey, dim));
+            s->a_hi[j] = seq->gen[dim].hi;
+            s->a_lo[j] = seq->gen[dim].lo;
+            s->offset[j] = seq->offset[dim] + (seq->mode == UDM1_MODE_SHIFT ? s->offset[j] : udm1_weyl_shift(seq, skey, dim));
         }
     } else if (seq->kind->base2 || seq->kind == &udm1_weyl_scrambled_kind) {
         /* a base-2 randomization on top of the kind's value: the stream's words found once */
-        s.flags = STREAM_WORDS;
-        s.held = own;
+        s->flags = STREAM_WORDS;
+        s->held = own;
         if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
-            for (uint32_t j = 0; j < s.held; ++j) s.offset[j] = 0;
+            for (uint32_t j = 0; j < s->held; ++j) s->offset[j] = 0;
         else /* udm1_word of every dimension held, four at a time */
-            udm1_mix64_many(seq->dim_key + first, skey, s.offset, own);
+            udm1_mix64_many(seq->dim_key + first, skey, s->offset, own);
         /* pmj02 and Sobol without base offsets, unrandomized or digitally shifted (Sobol also Owen-scrambled):
          * drawn inline from their tables */
         int zero = 1;
-        for (uint32_t j = 0; zero && j < s.held; ++j) zero = seq->offset[first + j] == 0;
+        for (uint32_t j = 0; zero && j < s->held; ++j) zero = seq->offset[first + j] == 0;
         uint32_t mode = seq->mode == UDM1_MODE_NONE ? 0 : seq->mode == UDM1_MODE_PERMUTE ? 1 : seq->mode == UDM1_MODE_OWEN ? 2 : 3;
         uint32_t byte_dims = 0;
         const void *sobol = udm1_sobol_stream_table(seq, mode == 2, &byte_dims);
-        if (zero && mode <= 1 && (s.table = udm1_pmj02_stream_table(seq, &s.table_bits)) != NULL) {
-            s.flags |= UDM1_STREAM_PMJ02;
-            s.table_mode = mode;
-        } else if (zero && mode <= 2 && sobol && first + s.held <= byte_dims) {
-            s.flags |= UDM1_STREAM_SOBOL;
-            s.table = sobol;
-            s.table_bits = byte_dims;
-            s.table_mode = mode;
+        if (zero && mode <= 1 && (s->table = udm1_pmj02_stream_table(seq, &s->table_bits)) != NULL) {
+            s->flags |= UDM1_STREAM_PMJ02;
+            s->table_mode = mode;
+        } else if (zero && mode <= 2 && sobol && first + s->held <= byte_dims) {
+            s->flags |= UDM1_STREAM_SOBOL;
+            s->table = sobol;
+            s->table_bits = byte_dims;
+            s->table_mode = mode;
         }
     } else if (seq->kind->pin) { /* words per dimension for the library's draws */
-        uint64_t key = seq->mode == UDM1_MODE_SCREEN ? stream : s.key; /* (the key the draws use) */
+        uint64_t key = seq->mode == UDM1_MODE_SCREEN ? stream : s->key; /* (the key the draws use) */
         int pinned = 1;
         for (uint32_t j = 0; pinned && j < own; ++j)
-            pinned = seq->kind->pin(seq, key, first + j, &s.a_lo[j], &s.offset[j], &s.a_hi[j]);
+            pinned = seq->kind->pin(seq, key, first + j, &s->a_lo[j], &s->offset[j], &s->a_hi[j]);
         if (pinned && own) {
-            s.flags = STREAM_PINNED;
-            s.held = own;
+            s->flags = STREAM_PINNED;
+            s->held = own;
         } else {
-            memset(s.a_lo, 0, sizeof s.a_lo);
-            memset(s.offset, 0, sizeof s.offset);
-            memset(s.a_hi, 0, sizeof s.a_hi);
+            memset(s->a_lo, 0, sizeof s->a_lo);
+            memset(s->offset, 0, sizeof s->offset);
+            memset(s->a_hi, 0, sizeof s->a_hi);
         }
     }
     for (uint32_t j = 0; j < own; ++j) { /* progressive screen mode: the pixel's shift is part of the base */
-        s.base[j] = seq->offset[first + j] + (seq->screen_gen ? udm1_screen_pixel_shift(seq, stream, first + j) : 0);
-        s.dim_key[j] = seq->dim_key[first + j];
+        s->base[j] = seq->offset[first + j] + (seq->screen_gen ? udm1_screen_pixel_shift(seq, stream, first + j) : 0);
+        s->dim_key[j] = seq->dim_key[first + j];
     }
-    *st = s;
+    stream_children(s);
     return UDM1_OK;
 }
 
