@@ -23,6 +23,32 @@ static inline int check_sampled(void)
     return calls++ % every == 0;
 }
 
+/* Whether this test was compiled for an instruction set (the ISA variants of tests/CMakeLists.txt: GFNI with
+ * AVX2, AVX-512 DQ and VL, AVX2) that the processor running it lacks: it prints a SKIP line and returns 1, and
+ * the test then exits with 77 (CTest's skip code). */
+static inline int check_built_isa_missing(void)
+{
+#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
+#if defined(__GFNI__)
+    if (!__builtin_cpu_supports("gfni") || !__builtin_cpu_supports("avx2")) {
+        printf("SKIP: built for GFNI and AVX2, which this processor lacks\n");
+        return 1;
+    }
+#elif defined(__AVX512DQ__) && defined(__AVX512VL__)
+    if (!__builtin_cpu_supports("avx512dq") || !__builtin_cpu_supports("avx512vl")) {
+        printf("SKIP: built for AVX-512 (DQ, VL), which this processor lacks\n");
+        return 1;
+    }
+#elif defined(__AVX2__)
+    if (!__builtin_cpu_supports("avx2")) {
+        printf("SKIP: built for AVX2, which this processor lacks\n");
+        return 1;
+    }
+#endif
+#endif
+    return 0;
+}
+
 #define CHECK(cond)                                                                   \
     do {                                                                              \
         if (!(cond)) {                                                                \

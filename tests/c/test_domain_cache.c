@@ -212,24 +212,7 @@ static void test_stale_hints(void)
 
 int main(void)
 {
-#if (defined(__GNUC__) || defined(__clang__)) && (defined(__x86_64__) || defined(__i386__))
-#if defined(__GFNI__)
-    if (!__builtin_cpu_supports("gfni") || !__builtin_cpu_supports("avx2")) {
-        printf("SKIP: built for GFNI and AVX2, which this processor lacks\n");
-        return 77;
-    }
-#elif defined(__AVX512DQ__) && defined(__AVX512VL__)
-    if (!__builtin_cpu_supports("avx512dq") || !__builtin_cpu_supports("avx512vl")) {
-        printf("SKIP: built for AVX-512 (DQ, VL), which this processor lacks\n");
-        return 77;
-    }
-#elif defined(__AVX2__)
-    if (!__builtin_cpu_supports("avx2")) {
-        printf("SKIP: built for AVX2, which this processor lacks\n");
-        return 77;
-    }
-#endif
-#endif
+    if (check_built_isa_missing()) return 77;
     test_slots();
     test_draws();
     test_stale_hints();

@@ -222,6 +222,20 @@ UDM1_DRAW_ const uint64_t *udm1_domain_words_(const udm1_domain *d)
     return s < r ? st->a_hi + 60 - 4 * s : st->a_lo + 60 - 4 * (s - r);
 }
 
+#if defined(UDM1_X86_)
+/* The first n (1..4) of four floats in a register into out (all four in one store where n is 4). */
+UDM1_DRAW_ void udm1_store_f32_(__m128 f, uint32_t n, float *out)
+{
+    if (n == 4) {
+        _mm_storeu_ps(out, f);
+        return;
+    }
+    float f4[4];
+    _mm_storeu_ps(f4, f);
+    for (uint32_t j = 0; j < n; ++j) out[j] = f4[j];
+}
+#endif
+
 /* A child domain's values of dimensions dim .. dim + n - 1 (inline case): its index scrambled, its own
  * shifts. Where the compiler targets AVX2 the four shifts and values stay in one register from the key to
  * the conversion (a wide load of values just stored one by one would wait for them). */
@@ -253,13 +267,7 @@ UDM1_DRAW_ void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_
             __m256i top = _mm256_srli_epi64(v, 40);
             __m128i lo32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(top, _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6)));
             __m128 f = _mm_mul_ps(_mm_cvtepi32_ps(lo32), _mm_set1_ps(1.0f / 16777216.0f));
-            if (n == 4) {
-                _mm_storeu_ps((float *)out, f);
-            } else {
-                float f4[4];
-                _mm_storeu_ps(f4, f);
-                for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f4[j];
-            }
+            udm1_store_f32_(f, n, (float *)out);
             return;
         }
         uint64_t r[4];
@@ -293,13 +301,7 @@ UDM1_DRAW_ void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_
             __m128i top = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(_mm_srli_epi64(v[0], 40)),
                                                           _mm_castsi128_ps(_mm_srli_epi64(v[1], 40)), 0x88));
             __m128 f = _mm_mul_ps(_mm_cvtepi32_ps(top), _mm_set1_ps(1.0f / 16777216.0f));
-            if (n == 4) {
-                _mm_storeu_ps((float *)out, f);
-            } else {
-                float f4[4];
-                _mm_storeu_ps(f4, f);
-                for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f4[j];
-            }
+            udm1_store_f32_(f, n, (float *)out);
             return;
         }
         _mm_storeu_si128((__m128i *)r, v[0]);
