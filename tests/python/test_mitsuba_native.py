@@ -99,6 +99,21 @@ def assert_refused(props, *words):
         assert w in line, f"{w!r} not in {line!r}"
 
 
+def llvm_pass_mismatches(s, seq, streams, lane, per_pass, passes, label):
+    """Each pass in `passes` of the seeded vector sampler s (advanced through the others) drawn and compared with
+    the library's values: one line per pass that differs."""
+    bad = []
+    for p in range(max(passes) + 1):
+        if p in passes:
+            got = draw(s, DRAWS)
+            dr.eval(got)
+            got, want, where = pass_mismatches(got, seq, streams, p * per_pass + lane % per_pass, DRAWS)
+            if where.size:
+                bad.append(f"{label} pass {p}: (lane, dim) {where[:3].tolist()}")
+        s.advance()
+    return bad
+
+
 def test_llvm_values_are_the_library_s(plugin):
     variant("llvm_ad_rgb")
     lane = np.arange(W * H * SPP_PASS)
@@ -118,13 +133,7 @@ def test_llvm_values_are_the_library_s(plugin):
             s = mi.load_dict({"type": "udm1", **props})
             s.seed(render_seed, W * H * SPP_PASS)
             streams = lane_streams(randomize, render_seed, pixel, W)
-            for p in range(SPP // SPP_PASS):
-                got = draw(s, DRAWS)
-                dr.eval(got)
-                got, want, where = pass_mismatches(got, seq, streams, p * SPP_PASS + lane % SPP_PASS, DRAWS)
-                if where.size:
-                    bad.append(f"{preset}/{randomize} pass {p}: (lane, dim) {where[:3].tolist()}")
-                s.advance()
+            bad += llvm_pass_mismatches(s, seq, streams, lane, SPP_PASS, range(SPP // SPP_PASS), f"{preset}/{randomize}")
     assert not bad, "\n".join(bad)
 
 
@@ -154,14 +163,7 @@ def test_llvm_values_at_high_sample_indices(plugin, spp):
             s.seed(render_seed, W * H * per_pass)
             streams = lane_streams(randomize, render_seed, pixel, W)
             last = spp // per_pass - 1  # the first pass and the last (the largest indices)
-            for p in range(last + 1):
-                if p in (0, last):
-                    got = draw(s, DRAWS)
-                    dr.eval(got)
-                    got, want, where = pass_mismatches(got, seq, streams, p * per_pass + lane % per_pass, DRAWS)
-                    if where.size:
-                        bad.append(f"{preset}/{randomize} pass {p}: (lane, dim) {where[:3].tolist()}")
-                s.advance()
+            bad += llvm_pass_mismatches(s, seq, streams, lane, per_pass, (0, last), f"{preset}/{randomize}")
     assert not bad, "\n".join(bad)
 
 
