@@ -21,11 +21,13 @@ from __future__ import annotations
 import argparse
 import os
 import re
-import shutil
 import statistics
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import callgrind_counts  # noqa: E402
 
 SECONDS = re.compile(r"\bseconds ([0-9.]+)")
 
@@ -48,20 +50,14 @@ def render(binary: str, args: list[str], out: str) -> float:
 
 def instructions(binary: str, args: list[str], tmp: str, name: str) -> dict[str, int]:
     """Instructions executed by one render under callgrind, summed by the binary they belong to."""
-    out = os.path.join(tmp, f"{name}.callgrind")
-    r = subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={out}", binary, *args, "-o",
-                        os.path.join(tmp, f"{name}.exr")], capture_output=True, text=True)
-    if r.returncode != 0:
-        lines = r.stderr.strip().splitlines()
-        fail(f"{binary} under callgrind failed (exit {r.returncode}): {lines[-1] if lines else 'no message'}")
-    ann = subprocess.run(["callgrind_annotate", "--threshold=100", out], capture_output=True, text=True, check=True)
+    try:
+        rows = callgrind_counts.count([binary, *args, "-o", os.path.join(tmp, f"{name}.exr")],
+                                      os.path.join(tmp, f"{name}.callgrind"))
+    except RuntimeError as e:
+        fail(str(e))
     by: dict[str, int] = {"udm1-pt": 0, "embree": 0, "loader": 0, "rest": 0}
-    line_re = re.compile(r"^\s*([0-9,]+) \(\s*[0-9.]+%\)\s+\S.*\[(.+)\]\s*$")
-    for line in ann.stdout.splitlines():
-        m = line_re.match(line)
-        if not m:
-            continue
-        n, obj = int(m.group(1).replace(",", "")), os.path.basename(m.group(2))
+    for n, _, path in rows:
+        obj = os.path.basename(path)
         key = ("udm1-pt" if obj == os.path.basename(binary) else "embree" if "embree" in obj
                else "loader" if obj.startswith("ld-linux") else "rest")
         by[key] += n
@@ -88,9 +84,9 @@ def main() -> None:
     if "-o" in pt_args or "--png" in pt_args:
         fail("the udm1-pt options must not name an output (-o, --png): ab_pt writes its own")
     if a.instructions:
-        for tool in ("valgrind", "callgrind_annotate"):
-            if not shutil.which(tool):
-                fail(f"--instructions needs {tool} (Debian package valgrind), which is not on PATH")
+        tool = callgrind_counts.missing_tool()
+        if tool:
+            fail(f"--instructions needs {tool} (Debian package valgrind), which is not on PATH")
         with tempfile.TemporaryDirectory(prefix="ab_pt_") as tmp:
             counts = {k: instructions(b, pt_args, tmp, k) for k, b in (("old", a.old), ("new", a.new))}
         print(f"udm1-pt {' '.join(pt_args)}: instructions executed (callgrind), millions")

@@ -319,10 +319,8 @@ def render_one(variant: str, sampler: str, size: int, spp: int) -> None:
 
 def run_instructions(variant: str, size: int, spp: int, out: Path) -> dict:
     """--instructions (see the docstring): per sampler, the instructions of its plugin and of the render."""
-    import re
-    import shutil
-    import subprocess
-    if not shutil.which("valgrind") or not shutil.which("callgrind_annotate"):
+    import callgrind_counts
+    if callgrind_counts.missing_tool():
         return {"skipped": "valgrind is not installed (Debian package valgrind)"}
     if variant.startswith("llvm") and not Path(LLVM_PATH).exists():
         return {"skipped": f"{LLVM_PATH} is missing"}
@@ -331,31 +329,25 @@ def run_instructions(variant: str, size: int, spp: int, out: Path) -> dict:
     if not use_native(mi):
         return {"skipped": "the native plugin is not built"}
     jit = not variant.startswith("scalar")
-    line_re = re.compile(r"^\s*([0-9,]+) \(\s*[0-9.]+%\)\s+(\S*?):?(\S.*?)\s+\[(.+)\]\s*$")
     rows = []
     for name in ["independent"] + [n for n, _ in udm1_samplers((size, size), False)]:
         cg = out / f"callgrind-{variant}-{name.replace(' ', '-')}.out"
-        r = subprocess.run(["valgrind", "--tool=callgrind", f"--callgrind-out-file={cg}", sys.executable, __file__,
-                            "--render-one", name, "--instructions-variant", variant,
-                            "--instructions-size", str(size), "--instructions-spp", str(spp)],
-                           capture_output=True, text=True)
-        if r.returncode != 0:
-            raise SystemExit(f"bench_mitsuba_sampler: {name} under callgrind failed: {r.stderr.strip().splitlines()[-1]}")
-        ann = subprocess.run(["callgrind_annotate", "--threshold=100", str(cg)], capture_output=True, text=True, check=True)
+        try:
+            counted = callgrind_counts.count([sys.executable, __file__, "--render-one", name, "--instructions-variant",
+                                              variant, "--instructions-size", str(size), "--instructions-spp", str(spp)],
+                                             str(cg))
+        except RuntimeError as e:
+            raise SystemExit(f"bench_mitsuba_sampler: {name}: {e}")
         sampler = render_total = 0
-        for line in ann.stdout.splitlines():
-            m = line_re.match(line)
-            if not m:
-                continue
-            n, fn, obj = int(m.group(1).replace(",", "")), m.group(3), os.path.basename(m.group(4))
+        for n, fn, path in counted:
+            obj = os.path.basename(path)
             if jit:  # the compiled kernels (in no file) hold the sampler's arithmetic
                 sampler += n if obj == "???" else 0
                 render_total += n if obj == "???" or obj.startswith("libembree") else 0
                 continue
             mine = obj in ("udm1.so", "independent.so") or (obj == "libmitsuba.so" and "PCG32Sampler" in fn)
             sampler += n if mine else 0
-            if mine or obj in ("libmitsuba.so", "libembree3.so", "path.so") or obj.endswith("plugins") or \
-                    "/plugins/" in m.group(4):
+            if mine or obj in ("libmitsuba.so", "libembree3.so", "path.so") or "/plugins/" in path:
                 render_total += n
         rows.append({"sampler": name, "sampler_minstr": sampler / 1e6, "render_minstr": render_total / 1e6})
         print(f"[instructions] {name}: sampler {sampler / 1e6:.1f} M, render {render_total / 1e6:.1f} M", flush=True)

@@ -265,7 +265,8 @@ public:
         Base::advance();
         if constexpr (!Jit) {
             m_index += 1;
-            if (m_fast && (m_point_count == 0 || m_index < m_point_count)) m_m += 1;  // (the same blocks)
+            uint64_t K = m_streams[0].point_count;  // (block 0 is filled where m_fast is not 0)
+            if (m_fast && (K == 0 || m_index < K)) m_m += 1;  // (the same blocks)
             else update_fast();
         } else {
             m_pass += 1;
@@ -380,7 +381,7 @@ private:
             uint64_t m = m_index + st.index_base;
             if (!(st.flags & UDM1_STREAM_INLINE) || (st.point_count && m_index >= st.point_count) || (b && m != m_m))
                 return;
-            m_m = m, m_point_count = st.point_count;
+            m_m = m;
             m_fast = b * kBlock + st.held;
             if (st.held < kBlock) return;
         }
@@ -543,16 +544,14 @@ private:
         UInt32 top;
         if (m_inline == 1) {  // Sobol: the XOR of the direction numbers the Gray code's four bytes select
             UInt32 at = jj * 1024u;
-            UInt32 i0 = at + (m_g & 255u), i1 = at + 256u + ((m_g >> 8) & 255u), i2 = at + 512u + ((m_g >> 16) & 255u),
-                   i3 = at + 768u + (m_g >> 24);
-            const UInt32 *at_byte[4] = {&i0, &i1, &i2, &i3};
+            auto entry = [&](uint32_t b) { return at + 256u * b + ((m_g >> (8u * b)) & 255u); };  // byte b's
             if (m_table_mode == 2) {  // reversed top halves, Owen-scrambled by the word's low half
-                UInt32 rev = dr::gather<UInt32>(m_table32, i0);
-                for (uint32_t b = 1; b < m_gray_bytes; ++b) rev = rev ^ dr::gather<UInt32>(m_table32, *at_byte[b]);
+                UInt32 rev = dr::gather<UInt32>(m_table32, entry(0));
+                for (uint32_t b = 1; b < m_gray_bytes; ++b) rev = rev ^ dr::gather<UInt32>(m_table32, entry(b));
                 top = udm1mi::jreverse32<UInt32>(udm1mi::jowen_hash32<UInt32>(rev, UInt32(word & 0xFFFFFFFFull)));
             } else {
-                UInt64 v = dr::gather<UInt64>(m_table64, i0);
-                for (uint32_t b = 1; b < m_gray_bytes; ++b) v = v ^ dr::gather<UInt64>(m_table64, *at_byte[b]);
+                UInt64 v = dr::gather<UInt64>(m_table64, entry(0));
+                for (uint32_t b = 1; b < m_gray_bytes; ++b) v = v ^ dr::gather<UInt64>(m_table64, entry(b));
                 if (m_table_mode == 1) v = v ^ word;
                 top = UInt32(v >> 32);
             }
@@ -663,7 +662,7 @@ private:
     udm1_stream m_streams[kBlocks]{};  // dimensions [16 b, 16 b + 16) of the pixel's stream, filled when drawn
     uint32_t m_filled = 0;             // which of them are
     uint32_t m_fast = 0;               // the dimensions drawn inline and their index (update_fast)
-    uint64_t m_m = 0, m_point_count = 0;
+    uint64_t m_m = 0;
     struct Weyl { uint64_t a_hi, a_lo, offset; };
     Weyl m_weyl[UDM1_STREAM_DIMS];     // a Weyl sequence's: A_j and the pixel's O_j, dimension by dimension
     uint64_t m_stream_id = 0, m_index = 0;

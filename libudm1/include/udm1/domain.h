@@ -122,10 +122,10 @@ UDM1_DRAW_ udm1_domain udm1_domain_child(udm1_domain parent, uint64_t key)
 {
     const udm1_stream *st = parent.stream;
     if (!parent.key && st && parent.dim % 4u == 0) { /* a child the stream holds: its key from the stream */
-        uint32_t kinds = (st->flags / UDM1_STREAM_CHILDREN) & 3u, blocks = (st->held + 3u) / 4u, b = parent.dim / 4u;
-        if (key < kinds && b < blocks) {
+        uint32_t blocks = udm1_stream_child_blocks_(st), b = parent.dim / 4u;
+        if (key < udm1_stream_child_kinds_(st) && b < blocks) {
             uint32_t s = (uint32_t)key * blocks + b;
-            parent.key = st->dim_key[63 - s];
+            parent.key = udm1_stream_child_key_(st, s);
             parent.dim = 0;
             parent.reserved = s + 1u;
             return parent;
@@ -215,11 +215,11 @@ UDM1_DRAW_ int udm1_domain_inline_(const udm1_domain *d, uint32_t n)
 UDM1_DRAW_ const uint64_t *udm1_domain_words_(const udm1_domain *d)
 {
     const udm1_stream *st = d->stream;
-    uint32_t s = d->reserved - 1u, r = (64u - st->held) / 4u;
-    if (d->reserved == 0 || d->dim != 0 || s >= ((st->flags / UDM1_STREAM_CHILDREN) & 3u) * ((st->held + 3u) / 4u) ||
-        st->dim_key[63 - s] != d->key)
+    uint32_t s = d->reserved - 1u;
+    if (d->reserved == 0 || d->dim != 0 || s >= udm1_stream_child_kinds_(st) * udm1_stream_child_blocks_(st) ||
+        udm1_stream_child_key_(st, s) != d->key)
         return NULL;
-    return s < r ? st->a_hi + 60 - 4 * s : st->a_lo + 60 - 4 * (s - r);
+    return udm1_stream_child_words_(st, s);
 }
 
 #if defined(UDM1_X86_)
@@ -242,14 +242,15 @@ UDM1_DRAW_ void udm1_store_f32_(__m128 f, uint32_t n, float *out)
 UDM1_DRAW_ void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_t index, uint32_t dim, uint32_t n,
                                        const uint64_t *words, int out_kind, void *out)
 {
-    uint32_t low = udm1_owen_index32((uint32_t)index, (uint32_t)(key >> 32));
+    /* the index scramble (udm1_owen_index32): hashed, then its bits reversed */
+    uint32_t hashed = udm1_owen_hash32(udm1_reverse32((uint32_t)index), (uint32_t)(key >> 32)), low = udm1_reverse32(hashed);
     if (index <= 0xFFFFFFFFu && st->index_base == 0 && dim <= UDM1_STREAM_DIMS - 4) { /* (four lanes in the arrays) */
 #if defined(UDM1_AVX2_)
         __m256i O = _mm256_add_epi64(words ? _mm256_loadu_si256((const __m256i *)words) : udm1_mix64x4_(key, st->dim_key + dim),
                                      _mm256_loadu_si256((const __m256i *)(st->base + dim)));
         /* the index scramble's final bit reversal in the register that multiplies (byte shuffles, or GFNI's
          * bit matrix where enabled): the same value, without a trip through a general register */
-        __m128i x = _mm_cvtsi32_si128((int)udm1_owen_hash32(udm1_reverse32((uint32_t)index), (uint32_t)(key >> 32)));
+        __m128i x = _mm_cvtsi32_si128((int)hashed);
 #if defined(__GFNI__)
         x = _mm_shuffle_epi8(_mm_gf2p8affine_epi64_epi8(x, _mm_set1_epi64x(0x8040201008040201ll), 0),
                              _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12));

@@ -131,6 +131,17 @@ typedef struct udm1_stream {
     uint32_t table_mode;
 } udm1_stream;
 
+/* The child domains a stream holds (UDM1_STREAM_CHILDREN above): how many keys per block, how many blocks,
+ * and slot s's key and four words. */
+UDM1_DRAW_ uint32_t udm1_stream_child_kinds_(const udm1_stream *st) { return (st->flags / UDM1_STREAM_CHILDREN) & 3u; }
+UDM1_DRAW_ uint32_t udm1_stream_child_blocks_(const udm1_stream *st) { return (st->held + 3u) / 4u; }
+UDM1_DRAW_ uint64_t udm1_stream_child_key_(const udm1_stream *st, uint32_t s) { return st->dim_key[UDM1_STREAM_DIMS - 1u - s]; }
+UDM1_DRAW_ const uint64_t *udm1_stream_child_words_(const udm1_stream *st, uint32_t s)
+{
+    uint32_t r = (UDM1_STREAM_DIMS - st->held) / 4u; /* the slots in a_hi's spare entries; then a_lo's */
+    return s < r ? st->a_hi + UDM1_STREAM_DIMS - 4u - 4u * s : st->a_lo + UDM1_STREAM_DIMS - 4u - 4u * (s - r);
+}
+
 /* Fill *st for stream `stream` of seq, dimensions [first_dimension, first_dimension + count).
  * count may exceed D (the rest is padded, as the cursor pads) and is at most UDM1_STREAM_DIMS.
  * Errors: NULL_ARGUMENT, DIMENSION (count 0 or above UDM1_STREAM_DIMS, or the range past the dimension

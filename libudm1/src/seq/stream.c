@@ -20,17 +20,15 @@
 static void stream_children(udm1_stream *s)
 {
     if (!(s->flags & (UDM1_STREAM_INLINE | UDM1_STREAM_PMJ02 | UDM1_STREAM_SOBOL)) || s->held == 0) return;
-    uint32_t blocks = (s->held + 3) / 4, room = (UDM1_STREAM_DIMS - s->held) / 4;
+    uint32_t blocks = udm1_stream_child_blocks_(s), room = (UDM1_STREAM_DIMS - s->held) / 4;
     uint32_t kinds = 2 * room / blocks < 2 ? 2 * room / blocks : 2;
-    const uint64_t K0 = s->dim_key[0], K1 = s->dim_key[1], K2 = s->dim_key[2], K3 = s->dim_key[3];
     for (uint32_t c = 0; c < kinds; ++c)
         for (uint32_t b = 0; b < blocks; ++b) {
             uint32_t slot = c * blocks + b;
             uint64_t key = udm1_domain_child(udm1_domain_next(udm1_domain_root(s, 0), b), c).key;
-            uint64_t *words = slot < room ? s->a_hi + 60 - 4 * slot : s->a_lo + 60 - 4 * (slot - room);
-            words[0] = udm1_mix64(key + K0), words[1] = udm1_mix64(key + K1);
-            words[2] = udm1_mix64(key + K2), words[3] = udm1_mix64(key + K3);
-            s->dim_key[63 - slot] = key;
+            /* (the stream's own spare entries, written where udm1/stream.h's readers find them) */
+            udm1_mix64x4(key, s->dim_key, (uint64_t *)udm1_stream_child_words_(s, slot));
+            s->dim_key[UDM1_STREAM_DIMS - 1 - slot] = key;
         }
     s->flags |= kinds * UDM1_STREAM_CHILDREN;
 }
