@@ -222,20 +222,6 @@ UDM1_DRAW_ const uint64_t *udm1_domain_words_(const udm1_domain *d)
     return udm1_stream_child_words_(st, s);
 }
 
-#if defined(UDM1_X86_)
-/* The first n (1..4) of four floats in a register into out (all four in one store where n is 4). */
-UDM1_DRAW_ void udm1_store_f32_(__m128 f, uint32_t n, float *out)
-{
-    if (n == 4) {
-        _mm_storeu_ps(out, f);
-        return;
-    }
-    float f4[4];
-    _mm_storeu_ps(f4, f);
-    for (uint32_t j = 0; j < n; ++j) out[j] = f4[j];
-}
-#endif
-
 /* A child domain's values of dimensions dim .. dim + n - 1 (inline case): its index scrambled, its own
  * shifts. Where the compiler targets AVX2 the four shifts and values stay in one register from the key to
  * the conversion (a wide load of values just stored one by one would wait for them). */

@@ -363,6 +363,20 @@ UDM1_DRAW_ uint64_t udm1_sobol_value_(const udm1_stream *st, uint32_t index, uin
     return (uint64_t)top << 32 | (uint32_t)(z ^ (z >> 31));
 }
 
+#if defined(UDM1_X86_)
+/* The first n (1..4) of four floats in a register into out (all four in one store where n is 4). */
+UDM1_DRAW_ void udm1_store_f32_(__m128 f, uint32_t n, float *out)
+{
+    if (n == 4) {
+        _mm_storeu_ps(out, f);
+        return;
+    }
+    float f4[4];
+    _mm_storeu_ps(f4, f);
+    for (uint32_t j = 0; j < n; ++j) out[j] = f4[j];
+}
+#endif
+
 /* Floats of n (1..4) Owen-scrambled Sobol dimensions first + dim .. at Gray code g, the scrambles keyed by
  * the low halves of words[0 .. n - 1] (four readable). Where the compiler targets SSE4.1 and SSSE3 (32-bit
  * vector products, byte shuffles; MSVC: AVX), and with NEON, the four lanes are scrambled, reversed and
@@ -387,7 +401,8 @@ UDM1_DRAW_ void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint32_t
 #if defined(UDM1_SOBOL_OWEN_SSE_)
     uint32_t r[4] = {0, 0, 0, 0};
     for (uint32_t j = 0; j < n && j < 4; ++j) r[j] = udm1_sobol_rev_(st, d + j, g);
-    __m128i x = _mm_loadu_si128((const __m128i *)r);
+    __m128i x = _mm_setr_epi32((int)r[0], (int)r[1], (int)r[2], (int)r[3]); /* (in registers: a wide load of
+                                                                              values just stored waits for them) */
     __m128i w0 = _mm_loadu_si128((const __m128i *)words), w1 = _mm_loadu_si128((const __m128i *)(words + 2));
     __m128i seed = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(w0), _mm_castsi128_ps(w1), 0x88)); /* low halves */
     x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32(0x3d20adea)));
@@ -396,9 +411,7 @@ UDM1_DRAW_ void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint32_t
     x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32(0x05526c56)));
     x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32(0x53a22864)));
     x = udm1_reverse32x4_(x);
-    float f[4];
-    _mm_storeu_ps(f, _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)));
-    for (uint32_t j = 0; j < n && j < 4; ++j) out[j] = f[j];
+    udm1_store_f32_(_mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)), n < 4 ? n : 4, out);
 #elif defined(UDM1_NEON_)
     uint32_t r[4] = {0, 0, 0, 0};
     for (uint32_t j = 0; j < n && j < 4; ++j) r[j] = udm1_sobol_rev_(st, d + j, g);
@@ -440,9 +453,7 @@ UDM1_DRAW_ void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32
             __m128i w0 = _mm_loadu_si128((const __m128i *)words), w1 = _mm_loadu_si128((const __m128i *)(words + 2));
             x = _mm_xor_si128(x, _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(w0), _mm_castsi128_ps(w1), 0xDD)));
         }
-        float f[4];
-        _mm_storeu_ps(f, _mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)));
-        for (uint32_t j = 0; j < n; ++j) ((float *)out)[j] = f[j];
+        udm1_store_f32_(_mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)), n, (float *)out);
         return;
     }
 #elif defined(UDM1_NEON_)

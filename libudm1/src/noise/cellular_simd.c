@@ -510,13 +510,19 @@ AVX2 static inline int finite4d(__m256d x)
     return _mm256_movemask_pd(_mm256_cmp_pd(abs4(x), _mm256_set1_pd(INFINITY), _CMP_LT_OQ)) == 0xF;
 }
 
-AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise *n, const udm1_cellular_params *p,
-                                                               uint32_t dims, const float *const *axes, size_t stride,
-                                                               size_t count, float *out)
+/* specialized by the compiler for 2 and 3 dimensions and the Euclidean metric (metric_k; UINT32_MAX: any, read
+ * from p), its loop over the cells unrolled: each cell's axes and components known where it is compiled */
+AVX2 static inline __attribute__((always_inline)) size_t cellular_f32_avx2_k(const udm1_noise *n,
+                                                                             const udm1_cellular_params *p,
+                                                                             const uint32_t dims,
+                                                                             const uint32_t metric_k,
+                                                                             const float *const *axes, size_t stride,
+                                                                             size_t count, float *out)
 {
     cellular_setup_f32 u;
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f32(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const uint32_t metric = metric_k == UINT32_MAX ? u.metric : metric_k;
     const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
     const __m256 c0 = _mm256_set1_ps(u.c0), c1 = _mm256_set1_ps(u.c1), zero = _mm256_setzero_ps();
     const __m256 inf = _mm256_set1_ps(INFINITY), margin = _mm256_set1_ps(0x1p-20f);
@@ -553,12 +559,13 @@ AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise 
         cells8(n, dims, u.period, (const __m256i(*)[3])ib, W);
         __m256 F0 = inf, F1 = inf, F2 = inf;
         __m256i near = _mm256_set1_epi32(256);
+#pragma GCC unroll 27
         for (uint32_t c = 0; c < cells; ++c) {
             const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
             __m256 v[3] = {zero, zero, zero};
             for (uint32_t a = 0; a < dims; ++a)
                 v[a] = _mm256_fmadd_ps(c1, _mm256_cvtepi32_ps(offset8(W[c], a)), K[a][d[a]]);
-            __m256 D = power8s(v, dims, u.metric);
+            __m256 D = power8s(v, dims, metric);
             if (want_cell) {
                 __m256i h = _mm256_and_si256(W[c], _mm256_set1_epi32(255));
                 __m256 m = _mm256_or_ps(_mm256_cmp_ps(D, F0, _CMP_LT_OQ),
@@ -581,15 +588,15 @@ AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise 
             gap = _mm256_min_ps(gap, gap8s(_mm256_sub_ps(c0, _mm256_add_ps(t[a], _mm256_set1_ps(2.0f))), c1, zero));
         }
         __m256 g3[3] = {gap, zero, zero};
-        __m256 bound = power8s(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+        __m256 bound = power8s(g3, dims, metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
         unsigned redo = (unsigned)_mm256_movemask_ps(
             _mm256_cmp_ps(bound, _mm256_add_ps(worst, _mm256_mul_ps(worst, margin)), _CMP_LE_OQ));
         __m256 r;
         switch (p->output) {
-        case UDM1_CELLULAR_F1: r = root8s(F0, u.metric); break;
-        case UDM1_CELLULAR_F2: r = root8s(F1, u.metric); break;
-        case UDM1_CELLULAR_F3: r = root8s(F2, u.metric); break;
-        case UDM1_CELLULAR_F2_MINUS_F1: r = _mm256_sub_ps(root8s(F1, u.metric), root8s(F0, u.metric)); break;
+        case UDM1_CELLULAR_F1: r = root8s(F0, metric); break;
+        case UDM1_CELLULAR_F2: r = root8s(F1, metric); break;
+        case UDM1_CELLULAR_F3: r = root8s(F2, metric); break;
+        case UDM1_CELLULAR_F2_MINUS_F1: r = _mm256_sub_ps(root8s(F1, metric), root8s(F0, metric)); break;
         default: r = _mm256_div_ps(_mm256_cvtepi32_ps(near), _mm256_set1_ps(255.0f)); break;
         }
         _mm256_storeu_ps(out + i, r);
@@ -606,13 +613,31 @@ AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise 
     return i;
 }
 
-AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise *n, const udm1_cellular_params *p,
-                                                               uint32_t dims, const double *const *axes, size_t stride,
-                                                               size_t count, double *out)
+AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise *n, const udm1_cellular_params *p,
+                                                               uint32_t dims, const float *const *axes, size_t stride,
+                                                               size_t count, float *out)
+{
+    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
+    if (dims == 3)
+        return euclid ? cellular_f32_avx2_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                      : cellular_f32_avx2_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
+    return euclid ? cellular_f32_avx2_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                  : cellular_f32_avx2_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
+}
+
+/* specialized by the compiler for 2 and 3 dimensions and the Euclidean metric (metric_k; UINT32_MAX: any, read
+ * from p), its loop over the cells unrolled: each cell's axes and components known where it is compiled */
+AVX2 static inline __attribute__((always_inline)) size_t cellular_f64_avx2_k(const udm1_noise *n,
+                                                                             const udm1_cellular_params *p,
+                                                                             const uint32_t dims,
+                                                                             const uint32_t metric_k,
+                                                                             const double *const *axes, size_t stride,
+                                                                             size_t count, double *out)
 {
     cellular_setup_f64 u;
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f64(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const uint32_t metric = metric_k == UINT32_MAX ? u.metric : metric_k;
     const __m128i vindex = _mm_mullo_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32((int)stride));
     const __m256d c0 = _mm256_set1_pd(u.c0), c1 = _mm256_set1_pd(u.c1), zero = _mm256_setzero_pd();
     const __m256d inf = _mm256_set1_pd(INFINITY), margin = _mm256_set1_pd(0x1p-20);
@@ -656,7 +681,8 @@ AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise 
                 for (int j = 0; j < 3; ++j) K[a][j] = _mm256_sub_pd(c0, _mm256_sub_pd(t[a][hf], _mm256_set1_pd((double)(j - 1))));
             __m256d F0 = inf, F1 = inf, F2 = inf;
             __m256i near = _mm256_set1_epi64x(256);
-            for (uint32_t c = 0; c < cells; ++c) {
+    #pragma GCC unroll 27
+        for (uint32_t c = 0; c < cells; ++c) {
                 const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
                 __m128i w = hf ? _mm256_extracti128_si256(W[c], 1) : _mm256_castsi256_si128(W[c]);
                 __m256d v[3] = {zero, zero, zero};
@@ -664,7 +690,7 @@ AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise 
                     __m128i b = _mm_and_si128(_mm_srli_epi32(w, 8 * (int)(a + 1)), _mm_set1_epi32(255));
                     v[a] = _mm256_fmadd_pd(c1, _mm256_cvtepi32_pd(b), K[a][d[a]]);
                 }
-                __m256d D = power4d(v, dims, u.metric);
+                __m256d D = power4d(v, dims, metric);
                 if (want_cell) {
                     __m256i h = _mm256_cvtepu32_epi64(_mm_and_si128(w, _mm_set1_epi32(255)));
                     __m256d m = _mm256_or_pd(_mm256_cmp_pd(D, F0, _CMP_LT_OQ),
@@ -686,16 +712,16 @@ AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise 
                 gap = _mm256_min_pd(gap, gap4d(_mm256_sub_pd(c0, _mm256_add_pd(t[a][hf], _mm256_set1_pd(2.0))), c1, zero));
             }
             __m256d g3[3] = {gap, zero, zero};
-            __m256d bound = power4d(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+            __m256d bound = power4d(g3, dims, metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
             redo |= (unsigned)_mm256_movemask_pd(
                         _mm256_cmp_pd(bound, _mm256_add_pd(worst, _mm256_mul_pd(worst, margin)), _CMP_LE_OQ))
                     << (4 * hf);
             __m256d r;
             switch (p->output) {
-            case UDM1_CELLULAR_F1: r = root4d(F0, u.metric); break;
-            case UDM1_CELLULAR_F2: r = root4d(F1, u.metric); break;
-            case UDM1_CELLULAR_F3: r = root4d(F2, u.metric); break;
-            case UDM1_CELLULAR_F2_MINUS_F1: r = _mm256_sub_pd(root4d(F1, u.metric), root4d(F0, u.metric)); break;
+            case UDM1_CELLULAR_F1: r = root4d(F0, metric); break;
+            case UDM1_CELLULAR_F2: r = root4d(F1, metric); break;
+            case UDM1_CELLULAR_F3: r = root4d(F2, metric); break;
+            case UDM1_CELLULAR_F2_MINUS_F1: r = _mm256_sub_pd(root4d(F1, metric), root4d(F0, metric)); break;
             default: { /* near < 2^31: its low 32-bit halves as ints */
                 __m128i n32 = _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(near, _mm256_setr_epi32(0, 2, 4, 6, 0, 0, 0, 0)));
                 r = _mm256_div_pd(_mm256_cvtepi32_pd(n32), _mm256_set1_pd(255.0));
@@ -715,6 +741,18 @@ AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise 
         }
     }
     return i;
+}
+
+AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise *n, const udm1_cellular_params *p,
+                                                               uint32_t dims, const double *const *axes, size_t stride,
+                                                               size_t count, double *out)
+{
+    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
+    if (dims == 3)
+        return euclid ? cellular_f64_avx2_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                      : cellular_f64_avx2_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
+    return euclid ? cellular_f64_avx2_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                  : cellular_f64_avx2_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
 }
 
 /* The kernels of the processor: 0 none (the scalar code), 1 AVX2, 2 AVX-512 with VBMI */

@@ -389,6 +389,36 @@ AVX2 static inline void gvec3_bytes8(const edge_bytes8 *g, const int k, __m256 v
     v[2] = _mm256_mul_ps(top_byte8(g->z, k), half);
 }
 
+/* The first stage of 8 points of the 3D kernel: their offsets in the cell and the four columns' hashes at z
+ * and z + 1 (the loads and gathers, which the kernel issues a step ahead of the arithmetic that reads them, so
+ * that their latency overlaps the previous points' arithmetic); ok 0 where a coordinate is not finite (the
+ * gathers' indices stay in the tables: a NaN's or infinity's index is 0) */
+typedef struct {
+    __m256 x, y, z;
+    __m256i qA, qA1, qB, qB1;
+    int ok;
+} noise3_stage8;
+
+AVX2 static inline noise3_stage8 noise3_stage(const int *hash4, const int *pair, const float *const *axes, size_t i,
+                                              size_t stride, __m256i vindex)
+{
+    const __m256i m255 = _mm256_set1_epi32(255);
+    noise3_stage8 r;
+    __m256 x = load8(axes[0] + i * stride, stride, vindex), y = load8(axes[1] + i * stride, stride, vindex);
+    __m256 z = load8(axes[2] + i * stride, stride, vindex);
+    r.ok = _mm256_movemask_ps(_mm256_and_ps(_mm256_and_ps(finite8_mask(x), finite8_mask(y)), finite8_mask(z))) == 0xFF;
+    __m256i X0, Y0, Z0;
+    r.x = axis8(x, &X0), r.y = axis8(y, &Y0), r.z = axis8(z, &Z0);
+    /* the four column hashes [p[A], p[A1], p[B], p[B1]] in one load, then each column's hashes at z and z + 1
+     * in one load (the doubled permutation's pairs) */
+    __m256i c = _mm256_i32gather_epi32(hash4, _mm256_or_si256(_mm256_slli_epi32(X0, 8), Y0), 4);
+    r.qA = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(c, m255), Z0), 4);
+    r.qA1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(c, 8), m255), Z0), 4);
+    r.qB = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(c, 16), m255), Z0), 4);
+    r.qB1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_srli_epi32(c, 24), Z0), 4);
+    return r;
+}
+
 /* specialized by the compiler for the values alone (with_gradient 0) and for values and gradients, as the
  * AVX-512 kernel */
 AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm1_noise *n, const float *const *axes,
@@ -397,26 +427,24 @@ AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm
                                                                       udm1_side_check *side)
 {
     const __m256i vindex = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32((int)stride));
-    const __m256i m255 = _mm256_set1_epi32(255);
     const __m256 onef = _mm256_set1_ps(1.0f);
     const int *hash4 = (const int *)n->hash4, *pair = n->pair;
     const edges2_8 E = edges2_load();
     __m256 checked = _mm256_setzero_ps();
     size_t i = 0;
+    if (count < 8) {
+        udm1_side_end256_ps(side, checked);
+        return 0;
+    }
+    noise3_stage8 cur = noise3_stage(hash4, pair, axes, 0, stride, vindex);
     for (; i + 8 <= count; i += 8) {
         checked = udm1_side_step256_ps(side, checked);
-        __m256 x = load8(axes[0] + i * stride, stride, vindex), y = load8(axes[1] + i * stride, stride, vindex);
-        __m256 z = load8(axes[2] + i * stride, stride, vindex);
-        if (_mm256_movemask_ps(_mm256_and_ps(_mm256_and_ps(finite8_mask(x), finite8_mask(y)), finite8_mask(z))) != 0xFF) break;
-        __m256i X0, Y0, Z0;
-        x = axis8(x, &X0), y = axis8(y, &Y0), z = axis8(z, &Z0);
-        /* the four column hashes [p[A], p[A1], p[B], p[B1]] in one load, then each column's hashes at
-         * z and z + 1 in one load (the doubled permutation's pairs) */
-        __m256i c = _mm256_i32gather_epi32(hash4, _mm256_or_si256(_mm256_slli_epi32(X0, 8), Y0), 4);
-        __m256i qA = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(c, m255), Z0), 4);
-        __m256i qA1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(c, 8), m255), Z0), 4);
-        __m256i qB = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(c, 16), m255), Z0), 4);
-        __m256i qB1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_srli_epi32(c, 24), Z0), 4);
+        if (!cur.ok) break; /* the caller reports it */
+        const int more = i + 16 <= count;
+        noise3_stage8 next = cur;
+        if (more) next = noise3_stage(hash4, pair, axes, i + 8, stride, vindex);
+        const __m256 x = cur.x, y = cur.y, z = cur.z;
+        const __m256i qA = cur.qA, qA1 = cur.qA1, qB = cur.qB, qB1 = cur.qB1;
         __m256 x1 = _mm256_sub_ps(x, onef), y1 = _mm256_sub_ps(y, onef), z1 = _mm256_sub_ps(z, onef);
         __m256 u = fade8(x), v = fade8(y), w = fade8(z);
         /* each column's hashes at z and z + 1 (bytes 0 and 3 of its edge bytes) */
@@ -453,6 +481,7 @@ AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm
             for (int j = 0; j < 8; ++j)
                 for (int k = 0; k < 3; ++k) gradient[3 * (i + j) + k] = tmp[k][j];
         }
+        cur = next;
     }
     udm1_side_end256_ps(side, checked);
     return i;
