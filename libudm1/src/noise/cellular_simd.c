@@ -162,13 +162,18 @@ AVX512 static inline __m512 root16(__m512 F, uint32_t metric)
     return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm512_sqrt_ps(F) : F;
 }
 
-AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n, const udm1_cellular_params *p,
-                                                          uint32_t dims, const float *const *axes, size_t stride,
-                                                          size_t count, float *out)
+/* specialized as the AVX2 kernels (cellular_f32_avx2_k) */
+AVX512 static inline __attribute__((always_inline)) size_t cellular_f32_k(const udm1_noise *n,
+                                                                        const udm1_cellular_params *p,
+                                                                        const uint32_t dims,
+                                                                        const uint32_t metric_k,
+                                                                        const float *const *axes, size_t stride,
+                                                                        size_t count, float *out)
 {
     cellular_setup_f32 u;
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f32(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const uint32_t metric = metric_k == UINT32_MAX ? u.metric : metric_k;
     const byte_table perm = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 16);
     const __m512 c0 = _mm512_set1_ps(u.c0), c1 = _mm512_set1_ps(u.c1), zero = _mm512_setzero_ps();
@@ -206,6 +211,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
         hash_cells(n, &perm, dims, ib, &C);
         __m512 F0 = inf, F1 = inf, F2 = inf;
         __m512i near = _mm512_set1_epi32(256);
+#pragma GCC unroll 27
         for (uint32_t c = 0; c < cells; ++c) {
             const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
             __m512 v[3] = {zero, zero, zero};
@@ -213,7 +219,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
                 __m512 b = _mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(_mm_load_si128((const __m128i *)C.O[a][c])));
                 v[a] = _mm512_fmadd_ps(c1, b, K[a][d[a]]);
             }
-            __m512 D = power16(v, dims, u.metric);
+            __m512 D = power16(v, dims, metric);
             if (want_cell) {
                 __m512i h = _mm512_cvtepu8_epi32(_mm_load_si128((const __m128i *)C.H[c]));
                 __mmask16 m = _mm512_cmp_ps_mask(D, F0, _CMP_LT_OQ) |
@@ -235,14 +241,14 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
             gap = _mm512_min_ps(gap, gap16(_mm512_sub_ps(c0, _mm512_add_ps(t[a], _mm512_set1_ps(2.0f))), c1, zero));
         }
         __m512 g3[3] = {gap, zero, zero};
-        __m512 bound = power16(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+        __m512 bound = power16(g3, dims, metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
         __mmask16 redo = _mm512_cmp_ps_mask(bound, _mm512_add_ps(worst, _mm512_mul_ps(worst, margin)), _CMP_LE_OQ);
         __m512 r;
         switch (p->output) {
-        case UDM1_CELLULAR_F1: r = root16(F0, u.metric); break;
-        case UDM1_CELLULAR_F2: r = root16(F1, u.metric); break;
-        case UDM1_CELLULAR_F3: r = root16(F2, u.metric); break;
-        case UDM1_CELLULAR_F2_MINUS_F1: r = _mm512_sub_ps(root16(F1, u.metric), root16(F0, u.metric)); break;
+        case UDM1_CELLULAR_F1: r = root16(F0, metric); break;
+        case UDM1_CELLULAR_F2: r = root16(F1, metric); break;
+        case UDM1_CELLULAR_F3: r = root16(F2, metric); break;
+        case UDM1_CELLULAR_F2_MINUS_F1: r = _mm512_sub_ps(root16(F1, metric), root16(F0, metric)); break;
         default: r = _mm512_div_ps(_mm512_cvtepi32_ps(near), _mm512_set1_ps(255.0f)); break;
         }
         _mm512_storeu_ps(out + i, r);
@@ -257,6 +263,18 @@ AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n,
         }
     }
     return i;
+}
+
+AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n, const udm1_cellular_params *p,
+                                                          uint32_t dims, const float *const *axes, size_t stride,
+                                                          size_t count, float *out)
+{
+    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
+    if (dims == 3)
+        return euclid ? cellular_f32_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                      : cellular_f32_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
+    return euclid ? cellular_f32_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                  : cellular_f32_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
 }
 
 /* ---- double: 16 points, the arithmetic in two halves of 8 lanes ---- */
@@ -276,13 +294,18 @@ AVX512 static inline __m512d root8(__m512d F, uint32_t metric)
     return metric == UDM1_CELLULAR_EUCLIDEAN ? _mm512_sqrt_pd(F) : F;
 }
 
-AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n, const udm1_cellular_params *p,
-                                                          uint32_t dims, const double *const *axes, size_t stride,
-                                                          size_t count, double *out)
+/* specialized as the AVX2 kernels (cellular_f64_avx2_k) */
+AVX512 static inline __attribute__((always_inline)) size_t cellular_f64_k(const udm1_noise *n,
+                                                                        const udm1_cellular_params *p,
+                                                                        const uint32_t dims,
+                                                                        const uint32_t metric_k,
+                                                                        const double *const *axes, size_t stride,
+                                                                        size_t count, double *out)
 {
     cellular_setup_f64 u;
     const uint32_t k = p->output == UDM1_CELLULAR_F3 ? 3 : (p->output == UDM1_CELLULAR_F1 || p->output == UDM1_CELLULAR_CELL) ? 1 : 2;
     cellular_setup_init_f64(&u, n, dims, p->metric, k, p->jitter, p->exponent);
+    const uint32_t metric = metric_k == UINT32_MAX ? u.metric : metric_k;
     const byte_table perm = byte_table_load(n->perm);
     const strided_loads L = strided_loads_init(stride, 8);
     const __m512d c0 = _mm512_set1_pd(u.c0), c1 = _mm512_set1_pd(u.c1), zero = _mm512_setzero_pd();
@@ -324,6 +347,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
         for (int hf = 0; hf < 2; ++hf) {
             __m512d F0 = inf, F1 = inf, F2 = inf;
             __m256i near = _mm256_set1_epi32(256);
+#pragma GCC unroll 27
             for (uint32_t c = 0; c < cells; ++c) {
                 const int d[3] = {(int)(c % 3), (int)(c / 3 % 3), (int)(c / 9)};
                 __m512d v[3] = {zero, zero, zero};
@@ -332,7 +356,7 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
                     __m512d b = _mm512_cvtepi32_pd(_mm256_cvtepu8_epi32(bytes));
                     v[a] = _mm512_fmadd_pd(c1, b, K[a][d[a]][hf]);
                 }
-                __m512d D = power8(v, dims, u.metric);
+                __m512d D = power8(v, dims, metric);
                 if (want_cell) {
                     __m256i h = _mm256_cvtepu8_epi32(_mm_loadl_epi64((const __m128i *)(C.H[c] + 8 * hf)));
                     __mmask8 m = _mm512_cmp_pd_mask(D, F0, _CMP_LT_OQ) |
@@ -353,15 +377,15 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
                 gap = _mm512_min_pd(gap, gap8(_mm512_sub_pd(c0, _mm512_add_pd(t[a][hf], _mm512_set1_pd(2.0))), c1, zero));
             }
             __m512d g3[3] = {gap, zero, zero};
-            __m512d bound = power8(g3, dims, u.metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
+            __m512d bound = power8(g3, dims, metric), worst = k == 1 ? F0 : (k == 2 ? F1 : F2);
             redo |= (__mmask16)((unsigned)_mm512_cmp_pd_mask(bound, _mm512_add_pd(worst, _mm512_mul_pd(worst, margin)),
                                                              _CMP_LE_OQ) << (8 * hf));
             __m512d r;
             switch (p->output) {
-            case UDM1_CELLULAR_F1: r = root8(F0, u.metric); break;
-            case UDM1_CELLULAR_F2: r = root8(F1, u.metric); break;
-            case UDM1_CELLULAR_F3: r = root8(F2, u.metric); break;
-            case UDM1_CELLULAR_F2_MINUS_F1: r = _mm512_sub_pd(root8(F1, u.metric), root8(F0, u.metric)); break;
+            case UDM1_CELLULAR_F1: r = root8(F0, metric); break;
+            case UDM1_CELLULAR_F2: r = root8(F1, metric); break;
+            case UDM1_CELLULAR_F3: r = root8(F2, metric); break;
+            case UDM1_CELLULAR_F2_MINUS_F1: r = _mm512_sub_pd(root8(F1, metric), root8(F0, metric)); break;
             default: r = _mm512_div_pd(_mm512_cvtepi32_pd(near), _mm512_set1_pd(255.0)); break;
             }
             _mm512_storeu_pd(out + i + 8 * (size_t)hf, r);
@@ -377,6 +401,18 @@ AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n,
         }
     }
     return i;
+}
+
+AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n, const udm1_cellular_params *p,
+                                                          uint32_t dims, const double *const *axes, size_t stride,
+                                                          size_t count, double *out)
+{
+    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
+    if (dims == 3)
+        return euclid ? cellular_f64_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                      : cellular_f64_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
+    return euclid ? cellular_f64_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
+                  : cellular_f64_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
 }
 
 /* ---- AVX2 + FMA: 8 points ----
