@@ -328,6 +328,28 @@ AVX2 static inline void gvec2_8(__m256i h, __m256 g[2])
     g[1] = _mm256_blendv_ps(su, sv, below4);
 }
 
+/* 8 points' gradients g[0..k-1] (k 2 or 3) stored interleaved, out[k j + c] = g[c][j], in k vector stores: each
+ * store's lane l holds point (8 o + l) / k of component (8 o + l) % k, the sources permuted alike and blended */
+AVX2 static inline void store_interleaved8(float *out, const __m256 *g, int k)
+{
+    if (k == 2) {
+        __m256 lo = _mm256_unpacklo_ps(g[0], g[1]), hi = _mm256_unpackhi_ps(g[0], g[1]); /* points 0 1 | 4 5, 2 3 | 6 7 */
+        _mm256_storeu_ps(out, _mm256_permute2f128_ps(lo, hi, 0x20));
+        _mm256_storeu_ps(out + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
+        return;
+    }
+#define UDM1_STORE3_(o, i0, i1, i2, i3, i4, i5, i6, i7, m1, m2)                                                      \
+    do {                                                                                                             \
+        const __m256i ix = _mm256_setr_epi32(i0, i1, i2, i3, i4, i5, i6, i7);                                      \
+        __m256 r = _mm256_blend_ps(_mm256_permutevar8x32_ps(g[0], ix), _mm256_permutevar8x32_ps(g[1], ix), m1);    \
+        _mm256_storeu_ps(out + 8 * (o), _mm256_blend_ps(r, _mm256_permutevar8x32_ps(g[2], ix), m2));               \
+    } while (0)
+    UDM1_STORE3_(0, 0, 0, 0, 1, 1, 1, 2, 2, 0x92, 0x24);
+    UDM1_STORE3_(1, 2, 3, 3, 3, 4, 4, 4, 5, 0x24, 0x49);
+    UDM1_STORE3_(2, 5, 5, 6, 6, 6, 7, 7, 7, 0x49, 0x92);
+#undef UDM1_STORE3_
+}
+
 /* Perlin's 3D gradient by the hash's low four bits without blends: each component doubled (+-2 or 0) is
  * a float whose low three bytes are 0, so its top byte comes from a 16-entry byte table (vpshufb), for
  * the hashes of every byte of a lane at once. */
@@ -476,10 +498,7 @@ AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm
             g[0] = _mm256_add_ps(g[0], _mm256_mul_ps(du, pu));
             g[1] = _mm256_add_ps(g[1], _mm256_mul_ps(dv, pv));
             g[2] = _mm256_add_ps(g[2], _mm256_mul_ps(dw, pw));
-            float tmp[3][8];
-            for (int k = 0; k < 3; ++k) _mm256_storeu_ps(tmp[k], g[k]);
-            for (int j = 0; j < 8; ++j)
-                for (int k = 0; k < 3; ++k) gradient[3 * (i + j) + k] = tmp[k][j];
+            store_interleaved8(gradient + 3 * i, g, 3);
         }
         cur = next;
     }
@@ -522,9 +541,7 @@ AVX2 static size_t noise2_avx2(const udm1_noise *n, const float *const *axes, si
             __m256 du = dfade8(x), dv = dfade8(y);
             g[0] = _mm256_mul_ps(scale, _mm256_add_ps(_mm256_mul_ps(du, lerp8(v, _mm256_sub_ps(b, a), _mm256_sub_ps(d, cc))), g[0]));
             g[1] = _mm256_mul_ps(scale, _mm256_add_ps(_mm256_mul_ps(dv, lerp8(u, _mm256_sub_ps(cc, a), _mm256_sub_ps(d, b))), g[1]));
-            float tmp[2][8];
-            for (int k = 0; k < 2; ++k) _mm256_storeu_ps(tmp[k], g[k]);
-            for (int j = 0; j < 8; ++j) gradient[2 * (i + j)] = tmp[0][j], gradient[2 * (i + j) + 1] = tmp[1][j];
+            store_interleaved8(gradient + 2 * i, g, 2);
         }
     }
     udm1_side_end256_ps(side, checked);
