@@ -1,7 +1,8 @@
 /* test_stream.c - udm1/stream.h and udm1/domain.h:
  *  - a stream's draws (inline where they apply, through the library elsewhere) equal the cursor, for
  *    every preset and randomization, every output type, indices below and above 2^32 and at the top of
- *    the range, dimensions held, not held and padded; a point set's index past K is NaN and an error;
+ *    the range, dimensions held, not held (past the stream's count too) and padded; a point set's index
+ *    past K is NaN and an error;
  *  - a root domain is its stream's dimensions 0..3; a child's inline draws equal udm1_domain_fill_raw
  *    (the library's own computation) bit for bit, and every kind's draws are its raw values converted;
  *  - a child's index permutation of a point set is a permutation of its K points;
@@ -68,8 +69,9 @@ static void test_stream_equals_cursor(void)
                         (st.flags & UDM1_STREAM_INLINE) ? ++inline_seen : ++library_seen;
                         for (size_t i = 0; i < sizeof seqs / sizeof seqs[0]; ++i) {
                             uint64_t index = K ? seqs[i] % K : seqs[i];
-                            for (uint32_t dim = 0; dim < counts[c]; dim += 2) {
-                                uint32_t n = counts[c] - dim < 4 ? counts[c] - dim : 4;
+                            /* (past the stream's count too: dimensions of the sequence it does not hold) */
+                            for (uint32_t dim = 0, end = counts[c] + 8; dim < end; dim += 2) {
+                                uint32_t n = end - dim < 4 ? end - dim : 4;
                                 double want64[4], got64[4];
                                 float want32[4], got32[4];
                                 uint64_t raw[4];

@@ -142,13 +142,23 @@ udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t ind
     if (checked != UDM1_OK || n == 0) return checked;
     const udm1_seq *seq = st->seq;
     uint64_t d0 = (uint64_t)st->first + dim;
-    if ((st->flags & STREAM_WORDS) && dim < st->held && n <= st->held - dim) { /* base-2 kinds: words found */
+    uint64_t found[64];
+    const uint64_t *words = NULL; /* base-2 kinds: the randomization words of the draw's dimensions */
+    if ((st->flags & STREAM_WORDS) && dim < st->held && n <= st->held - dim)
+        words = st->offset + dim; /* found by udm1_stream_init */
+    else if ((st->flags & STREAM_WORDS) && n <= 64 && d0 + n <= seq->dims) { /* past them: as the init finds them */
+        if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
+            memset(found, 0, sizeof(uint64_t) * n);
+        else
+            udm1_mix64_many(seq->dim_key + d0, seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key, found, n);
+        words = found;
+    }
+    if (words) {
         uint64_t skey = st->key;
         if (seq->kind == &udm1_weyl_scrambled_kind) {
             for (uint32_t j = 0; j < n; ++j) {
                 uint32_t d = st->first + dim + j;
-                raw[j] = udm1_randomize_base2(seq->mode, udm1_weyl_raw(&seq->gen[d], seq->offset[d], index),
-                                              st->offset[dim + j]);
+                raw[j] = udm1_randomize_base2(seq->mode, udm1_weyl_raw(&seq->gen[d], seq->offset[d], index), words[j]);
             }
         } else {
             if (seq->kind->base2_point)
@@ -156,9 +166,9 @@ udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t ind
             else
                 for (uint32_t j = 0; j < n; ++j) raw[j] = seq->kind->base2(seq, skey, index, st->first + dim + j);
             if (seq->mode == UDM1_MODE_OWEN)
-                udm1_owen64_many(raw, st->offset + dim, raw, n, low_half);
+                udm1_owen64_many(raw, words, raw, n, low_half);
             else
-                for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_randomize_base2(seq->mode, raw[j], st->offset[dim + j]);
+                for (uint32_t j = 0; j < n; ++j) raw[j] = udm1_randomize_base2(seq->mode, raw[j], words[j]);
         }
         return UDM1_OK;
     }
