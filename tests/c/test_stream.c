@@ -394,10 +394,45 @@ static void test_domain_decorrelation(void)
     udm1_seq_destroy(s);
 }
 
+/* Streams that start deep in a long sequence (the inline Sobol and pmj02 draws read tables by dimension: their
+ * far dimensions too, and a stream past them through the library), every randomization, against the cursor. */
+static void test_far_streams(void)
+{
+    static const char *const presets[] = {"sobol", "sobol-owen", "pmj02", "wr"};
+    static const uint32_t firsts[] = {60, 190, 250, 300};
+    for (size_t p = 0; p < sizeof presets / sizeof presets[0]; ++p) {
+        udm1_preset_info info;
+        CHECK_STATUS(udm1_preset_find(presets[p], &info), UDM1_OK);
+        for (uint32_t r = UDM1_RANDOMIZE_NONE; r <= UDM1_RANDOMIZE_OWEN; ++r) {
+            udm1_seq *s = variant(&info, 320, r);
+            if (!s) continue;
+            uint64_t K = udm1_seq_point_count(s);
+            for (size_t f = 0; f < sizeof firsts / sizeof firsts[0]; ++f) {
+                udm1_stream st;
+                CHECK_STATUS(udm1_stream_init(&st, s, 9, firsts[f], 16), UDM1_OK);
+                for (uint64_t index = 0; index < 300; index += 7)
+                    for (uint32_t dim = 0; dim < 16; dim += 4) {
+                        uint64_t i = K ? index % K : index * 997;
+                        double want64[4], got64[4];
+                        float want32[4], got32[4];
+                        cursor_raw(s, 9, i, firsts[f] + dim, 4, want64, want32);
+                        udm1_stream_draw_f64(&st, i, dim, 4, got64);
+                        udm1_stream_draw_f32(&st, i, dim, 4, got32);
+                        CHECKF(memcmp(want64, got64, sizeof got64) == 0 && memcmp(want32, got32, sizeof got32) == 0,
+                               "%s randomize %u first %u index %llu dim %u", presets[p], r, firsts[f],
+                               (unsigned long long)i, dim);
+                    }
+            }
+            udm1_seq_destroy(s);
+        }
+    }
+}
+
 int main(void)
 {
     if (check_built_isa_missing()) return 77;
     test_stream_equals_cursor();
+    test_far_streams();
     test_domains_agree();
     test_derivations();
     test_point_set_permutation();

@@ -29,7 +29,7 @@ extern const uint32_t udm1_sobol_table_m[];
  * first 8, indexed by the subset's bits (the Gray code's low byte), so that a point of up to 256
  * samples is one load a dimension: a loop over the set bits mispredicts its exit about once a
  * dimension, which cost more than the rest of the value */
-enum { TABLE_DIMS = 256, BYTE_DIMS = 64 };
+enum { TABLE_DIMS = 256, BYTE_DIMS = 256 };
 typedef struct sobol {
     uint32_t table_dims, byte_dims;
     uint64_t (*low)[256];
