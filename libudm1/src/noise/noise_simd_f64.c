@@ -479,51 +479,75 @@ AVX2 static inline __attribute__((always_inline)) void half2_avx2(__m128i c, __m
     }
 }
 
+/* The first stage of 8 points: their offsets in the cell (c, two halves of 4 per axis) and their hashes, the
+ * loads and gathers, which the kernel issues a step ahead of the arithmetic that reads them, so that their
+ * latency overlaps the previous points' arithmetic (as the float kernel); ok 0 where a coordinate is not
+ * finite */
+typedef struct {
+    __m256d c[3][2];
+    __m256i q, qA, qA1, qB, qB1;
+    int ok;
+} f64_stage;
+
+AVX2 static inline __attribute__((always_inline)) void f64_stage_load(const udm1_noise *n, const uint32_t dims,
+                                                                      const double *const *axes, size_t stride,
+                                                                      __m128i vindex, size_t i, f64_stage *s)
+{
+    const __m256i m255 = _mm256_set1_epi32(255);
+    const int *hash4 = (const int *)n->hash4, *pair = n->pair;
+    int ok = 1;
+    for (uint32_t a = 0; a < dims; ++a)
+        for (int h = 0; h < 2; ++h) {
+            s->c[a][h] = load4d(axes[a] + (i + 4 * (size_t)h) * stride, stride, vindex);
+            ok &= finite4d(s->c[a][h]);
+        }
+    s->ok = ok;
+    __m128i idx[3][2];
+    for (uint32_t a = 0; a < dims; ++a)
+        for (int h = 0; h < 2; ++h) s->c[a][h] = axis4d(s->c[a][h], &idx[a][h]);
+    /* (the indices are 0..255 where the coordinates are finite; masked, so that a NaN's or an infinity's,
+     * whose lanes the kernel never uses, stay in the tables too) */
+    __m256i X0 = _mm256_and_si256(_mm256_set_m128i(idx[0][1], idx[0][0]), m255);
+    __m256i Y0 = _mm256_and_si256(_mm256_set_m128i(idx[1][1], idx[1][0]), m255);
+    /* the four column hashes [p[A], p[A1], p[B], p[B1]] (2D: the corner hashes [h00, h01, h10, h11]) */
+    __m256i q = _mm256_i32gather_epi32(hash4, _mm256_or_si256(_mm256_slli_epi32(X0, 8), Y0), 4);
+    s->q = q;
+    if (dims == 3) { /* each column's hashes at z and z + 1 in one load (the doubled permutation's pairs) */
+        __m256i Z0 = _mm256_and_si256(_mm256_set_m128i(idx[2][1], idx[2][0]), m255);
+        s->qA = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(q, m255), Z0), 4);
+        s->qA1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(q, 8), m255), Z0), 4);
+        s->qB = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(q, 16), m255), Z0), 4);
+        s->qB1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_srli_epi32(q, 24), Z0), 4);
+    }
+}
+
 AVX2 static inline __attribute__((always_inline)) size_t kernel_f64_avx2(const udm1_noise *n, const uint32_t dims,
                                                                          const double *const *axes, size_t stride,
                                                                          size_t count, double *value, double *gradient,
                                                                          const int with_gradient, udm1_side_check *side)
 {
     const __m128i vindex = _mm_mullo_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32((int)stride));
-    const __m256i m255 = _mm256_set1_epi32(255);
-    const int *hash4 = (const int *)n->hash4, *pair = n->pair;
     __m256d checked = _mm256_setzero_pd();
     size_t i = 0;
-    for (; i + 8 <= count; i += 8) {
+    f64_stage st[2];
+    if (count >= 8) f64_stage_load(n, dims, axes, stride, vindex, 0, &st[0]);
+    for (int cur = 0; i + 8 <= count; i += 8, cur ^= 1) {
         checked = udm1_side_step256_pd(side, checked);
-        __m256d c[3][2];
-        int ok = 1;
-        for (uint32_t a = 0; a < dims; ++a)
-            for (int h = 0; h < 2; ++h) {
-                c[a][h] = load4d(axes[a] + (i + 4 * (size_t)h) * stride, stride, vindex);
-                ok &= finite4d(c[a][h]);
-            }
-        if (!ok) break; /* the caller reports it */
-        __m128i idx[3][2];
-        for (uint32_t a = 0; a < dims; ++a)
-            for (int h = 0; h < 2; ++h) c[a][h] = axis4d(c[a][h], &idx[a][h]);
-        __m256i X0 = _mm256_set_m128i(idx[0][1], idx[0][0]), Y0 = _mm256_set_m128i(idx[1][1], idx[1][0]);
-        /* the four column hashes [p[A], p[A1], p[B], p[B1]] (2D: the corner hashes [h00, h01, h10, h11]) */
-        __m256i q = _mm256_i32gather_epi32(hash4, _mm256_or_si256(_mm256_slli_epi32(X0, 8), Y0), 4);
-        if (dims == 3) {
-            /* each column's hashes at z and z + 1 in one load (the doubled permutation's pairs) */
-            __m256i Z0 = _mm256_set_m128i(idx[2][1], idx[2][0]);
-            __m256i qA = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(q, m255), Z0), 4);
-            __m256i qA1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(q, 8), m255), Z0), 4);
-            __m256i qB = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_and_si256(_mm256_srli_epi32(q, 16), m255), Z0), 4);
-            __m256i qB1 = _mm256_i32gather_epi32(pair, _mm256_add_epi32(_mm256_srli_epi32(q, 24), Z0), 4);
-            for (int h = 0; h < 2; ++h) {
+        const f64_stage *s = &st[cur];
+        if (!s->ok) break; /* the caller reports it */
+        if (i + 16 <= count) f64_stage_load(n, dims, axes, stride, vindex, i + 8, &st[cur ^ 1]);
 #define HALF(v) (h ? _mm256_extracti128_si256(v, 1) : _mm256_castsi256_si128(v))
-                half3_avx2(HALF(qA), HALF(qB), HALF(qA1), HALF(qB1), c[0][h], c[1][h], c[2][h],
+        if (dims == 3) {
+            for (int h = 0; h < 2; ++h)
+                half3_avx2(HALF(s->qA), HALF(s->qB), HALF(s->qA1), HALF(s->qB1), s->c[0][h], s->c[1][h], s->c[2][h],
                            value ? value + i + 4 * (size_t)h : NULL, with_gradient ? gradient + 3 * (i + 4 * (size_t)h) : NULL,
                            with_gradient);
-            }
         } else {
             for (int h = 0; h < 2; ++h)
-                half2_avx2(HALF(q), c[0][h], c[1][h], value ? value + i + 4 * (size_t)h : NULL,
+                half2_avx2(HALF(s->q), s->c[0][h], s->c[1][h], value ? value + i + 4 * (size_t)h : NULL,
                            with_gradient ? gradient + 2 * (i + 4 * (size_t)h) : NULL, with_gradient);
-#undef HALF
         }
+#undef HALF
     }
     udm1_side_end256_pd(side, checked);
     return i;
