@@ -28,7 +28,9 @@ extern const uint32_t udm1_sobol_table_m[];
 /* dims x 64 direction numbers; for the first TABLE_DIMS dimensions also the XOR of every subset of the
  * first 8, indexed by the subset's bits (the Gray code's low byte), so that a point of up to 256
  * samples is one load a dimension: a loop over the set bits mispredicts its exit about once a
- * dimension, which cost more than the rest of the value */
+ * dimension, which cost more than the rest of the value; for the first BYTE_DIMS the subsets of each byte of
+ * the first 32 numbers too (12 KiB a dimension with their reversed tops), which udm1_stream's inline draws
+ * read: a stream whose dimensions end by BYTE_DIMS draws inline (OpenQMC's protocol draws 256) */
 enum { TABLE_DIMS = 256, BYTE_DIMS = 256 };
 typedef struct sobol {
     uint32_t table_dims, byte_dims;
