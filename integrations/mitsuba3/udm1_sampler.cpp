@@ -19,6 +19,7 @@
 
 #include <mitsuba/core/properties.h>
 #include <mitsuba/render/sampler.h>
+#include <drjit/if_stmt.h>
 
 #include <udm1/udm1.h>
 
@@ -424,6 +425,7 @@ private:
     void release() {
         m_stale = true;
         m_key = m_n = m_idx = m_pkey = UInt64();
+        m_zero = UInt32();
         m_ahi = m_alo = m_base = UInt64();
         m_table = Float();
         m_lane = UInt32();
@@ -466,6 +468,7 @@ private:
         m_S = dr::opaque<UInt64>(S);
         m_key = jmix64<UInt64>(jmix64<UInt64>(stream + kGolden) ^ m_S);  // udm1_stream_key(S, stream)
         m_n = sample;
+        m_zero = dr::opaque<UInt32>(0u, lanes);  // (a stored 0 a lane, not a literal: the sum is not folded away)
         m_pkey = screen ? stream : m_key;  // padding hashes the stream key (in screen mode the stream)
         if (m_o.weyl) {
             SeqPtr plain = make_sequence(m_o, m_sample_count, 0, false);  // the base offsets o_j
@@ -640,18 +643,26 @@ private:
         return raw;
     }
 
-    /// Dimension j (per lane) of each lane's point, as float32.
-    Float value(const UInt32 &j) const {
+    /// Dimension j (per lane) of each lane's point, as float32: the sequence's value inside its D dimensions,
+    /// the padding past them. A symbolic conditional: the kernel runs a side only where a lane takes it, so the
+    /// padding's two hashes cost nothing while every lane is inside (a path's dimensions usually are).
+    Float value(const UInt32 &j_) const {
         using namespace udm1mi;
+        UInt32 j = j_;  // (the conditional runs over every lane: an index the same in all, of width 1, widened)
+        if (dr::width(j) != dr::width(m_zero)) j = j + m_zero;
         auto inside = j < m_d;
         UInt32 jj = dr::minimum(j, m_d - 1u);
         UInt64 kj = jmix64<UInt64>(m_S + (UInt64(j) + 1ull) * kGolden);  // udm1_dim_key(S, j), inside or past D
-        UInt64 raw = jmix64<UInt64>(jmix64<UInt64>(m_pkey + kj) + (m_n + 1ull) * kGolden);  // udm1_pad
-        if (m_o.weyl) raw = dr::select(inside, weyl_raw(jj, kj), raw);
-        Float v = Float(UInt32(raw >> 40)) * (1.f / 16777216.f);
-        if (m_inline) v = dr::select(inside, inline_value(jj), v);
-        else if (!m_o.weyl) v = dr::select(inside, dr::gather<Float>(m_table, jj * m_lanes + m_lane, inside), v);
-        return v;
+        auto to_f32 = [](const UInt64 &raw) { return Float(UInt32(raw >> 40)) * (1.f / 16777216.f); };
+        auto padding = [this, to_f32](const UInt32 &, const UInt64 &k) {  // udm1_pad
+            return to_f32(jmix64<UInt64>(jmix64<UInt64>(m_pkey + k) + (m_n + 1ull) * kGolden));
+        };
+        auto sequence = [this, to_f32](const UInt32 &d, const UInt64 &k) -> Float {
+            if (m_o.weyl) return to_f32(weyl_raw(d, k));
+            if (m_inline) return inline_value(d);
+            return dr::gather<Float>(m_table, d * m_lanes + m_lane);
+        };
+        return dr::if_stmt(dr::make_tuple(jj, kj), inside, sequence, padding, "udm1 value");
     }
 
     udm1mi::Options m_o;
@@ -671,7 +682,7 @@ private:
     uint32_t m_pass = 0, m_mode = 0;
     uint64_t m_render_seed = 0;
     UInt64 m_S, m_key, m_n, m_idx, m_pkey, m_ahi, m_alo, m_base;
-    UInt32 m_d, m_lanes, m_lane;
+    UInt32 m_d, m_lanes, m_lane, m_zero;
     Float m_table;
     bool m_idx32 = false;  // every Weyl index below 2^32 (setup)
     uint32_t m_gray_bytes = 4;  // the Sobol Gray code's bytes that can be non-zero (inline_tables)
