@@ -426,7 +426,7 @@ private:
         m_stale = true;
         m_key = m_n = m_idx = m_pkey = UInt64();
         m_zero = UInt32();
-        m_ahi = m_alo = m_base = UInt64();
+        m_ahi = m_alo = m_base = m_dim_key = UInt64();
         m_table = Float();
         m_lane = UInt32();
         m_inline = 0;
@@ -480,6 +480,9 @@ private:
                 if (screen)  // the fixed scheme's one shift u_j = mix(S + K_j)
                     base[j] += mix64(S + mix64(S + (j + 1) * kGolden));
             }
+            std::vector<uint64_t> dim_key(d);  // udm1_dim_key(S, j)
+            for (uint32_t j = 0; j < d; ++j) dim_key[j] = mix64(S + (j + 1) * kGolden);
+            m_dim_key = dr::load<UInt64>(dim_key.data(), d);
             m_ahi = dr::load<UInt64>(ahi.data(), d);
             m_alo = dr::load<UInt64>(alo.data(), d);
             m_base = dr::load<UInt64>(base.data(), d);
@@ -652,17 +655,17 @@ private:
         if (dr::width(j) != dr::width(m_zero)) j = j + m_zero;
         auto inside = j < m_d;
         UInt32 jj = dr::minimum(j, m_d - 1u);
-        UInt64 kj = jmix64<UInt64>(m_S + (UInt64(j) + 1ull) * kGolden);  // udm1_dim_key(S, j), inside or past D
         auto to_f32 = [](const UInt64 &raw) { return Float(UInt32(raw >> 40)) * (1.f / 16777216.f); };
-        auto padding = [this, to_f32](const UInt32 &, const UInt64 &k) {  // udm1_pad
+        auto padding = [this, to_f32](const UInt32 &, const UInt32 &jp) {  // udm1_pad of udm1_dim_key(S, j)
+            UInt64 k = jmix64<UInt64>(m_S + (UInt64(jp) + 1ull) * kGolden);
             return to_f32(jmix64<UInt64>(jmix64<UInt64>(m_pkey + k) + (m_n + 1ull) * kGolden));
         };
-        auto sequence = [this, to_f32](const UInt32 &d, const UInt64 &k) -> Float {
-            if (m_o.weyl) return to_f32(weyl_raw(d, k));
+        auto sequence = [this, to_f32](const UInt32 &d, const UInt32 &) -> Float {
+            if (m_o.weyl) return to_f32(weyl_raw(d, dr::gather<UInt64>(m_dim_key, d)));  // (K_j of j < D, held)
             if (m_inline) return inline_value(d);
             return dr::gather<Float>(m_table, d * m_lanes + m_lane);
         };
-        return dr::if_stmt(dr::make_tuple(jj, kj), inside, sequence, padding, "udm1 value");
+        return dr::if_stmt(dr::make_tuple(jj, j), inside, sequence, padding, "udm1 value");
     }
 
     udm1mi::Options m_o;
@@ -681,7 +684,7 @@ private:
     bool m_stale = true;
     uint32_t m_pass = 0, m_mode = 0;
     uint64_t m_render_seed = 0;
-    UInt64 m_S, m_key, m_n, m_idx, m_pkey, m_ahi, m_alo, m_base;
+    UInt64 m_S, m_key, m_n, m_idx, m_pkey, m_ahi, m_alo, m_base, m_dim_key;
     UInt32 m_d, m_lanes, m_lane, m_zero;
     Float m_table;
     bool m_idx32 = false;  // every Weyl index below 2^32 (setup)
