@@ -147,6 +147,20 @@ AVX512 static inline __m256i mod8(__m512d f, uint32_t period)
         return s;                                                                                           \
     }
 
+/* The kernel NAME: KERNEL compiled for 2 or 3 dimensions, Euclidean or any metric (one copy of each) */
+#define CELLULAR_DISPATCH(NAME, TARGET, KERNEL, REAL)                                                          \
+    TARGET __attribute__((noinline)) static size_t NAME(const udm1_noise *n, const udm1_cellular_params *p,       \
+                                                        uint32_t dims, const REAL *const *axes, size_t stride,    \
+                                                        size_t count, REAL *out)                                  \
+    {                                                                                                           \
+        const uint32_t metric = p->metric == UDM1_CELLULAR_EUCLIDEAN ? UDM1_CELLULAR_EUCLIDEAN : UINT32_MAX;    \
+        if (dims == 3)                                                                                          \
+            return metric == UINT32_MAX ? KERNEL(n, p, 3, UINT32_MAX, axes, stride, count, out)                  \
+                                        : KERNEL(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out);    \
+        return metric == UINT32_MAX ? KERNEL(n, p, 2, UINT32_MAX, axes, stride, count, out)                      \
+                                    : KERNEL(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out);        \
+    }
+
 CELLULAR_POWER(power16, AVX512, __m512, _mm512_fmadd_ps, _mm512_mul_ps, _mm512_add_ps, _mm512_max_ps, _mm512_abs_ps)
 
 
@@ -265,17 +279,7 @@ AVX512 static inline __attribute__((always_inline)) size_t cellular_f32_k(const 
     return i;
 }
 
-AVX512 __attribute__((noinline)) static size_t cellular_f32(const udm1_noise *n, const udm1_cellular_params *p,
-                                                          uint32_t dims, const float *const *axes, size_t stride,
-                                                          size_t count, float *out)
-{
-    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
-    if (dims == 3)
-        return euclid ? cellular_f32_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                      : cellular_f32_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
-    return euclid ? cellular_f32_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                  : cellular_f32_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
-}
+CELLULAR_DISPATCH(cellular_f32, AVX512, cellular_f32_k, float)
 
 /* ---- double: 16 points, the arithmetic in two halves of 8 lanes ---- */
 
@@ -403,17 +407,7 @@ AVX512 static inline __attribute__((always_inline)) size_t cellular_f64_k(const 
     return i;
 }
 
-AVX512 __attribute__((noinline)) static size_t cellular_f64(const udm1_noise *n, const udm1_cellular_params *p,
-                                                          uint32_t dims, const double *const *axes, size_t stride,
-                                                          size_t count, double *out)
-{
-    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
-    if (dims == 3)
-        return euclid ? cellular_f64_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                      : cellular_f64_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
-    return euclid ? cellular_f64_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                  : cellular_f64_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
-}
+CELLULAR_DISPATCH(cellular_f64, AVX512, cellular_f64_k, double)
 
 /* ---- AVX2 + FMA: 8 points ----
  * The cells' hashes by gathers: perm[X + dx] (3), perm[. + Y + dy] (9 in 3D) and the last level from the
@@ -649,17 +643,7 @@ AVX2 static inline __attribute__((always_inline)) size_t cellular_f32_avx2_k(con
     return i;
 }
 
-AVX2 __attribute__((noinline)) static size_t cellular_f32_avx2(const udm1_noise *n, const udm1_cellular_params *p,
-                                                               uint32_t dims, const float *const *axes, size_t stride,
-                                                               size_t count, float *out)
-{
-    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
-    if (dims == 3)
-        return euclid ? cellular_f32_avx2_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                      : cellular_f32_avx2_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
-    return euclid ? cellular_f32_avx2_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                  : cellular_f32_avx2_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
-}
+CELLULAR_DISPATCH(cellular_f32_avx2, AVX2, cellular_f32_avx2_k, float)
 
 /* specialized by the compiler for 2 and 3 dimensions and the Euclidean metric (metric_k; UINT32_MAX: any, read
  * from p), its loop over the cells unrolled: each cell's axes and components known where it is compiled */
@@ -779,17 +763,7 @@ AVX2 static inline __attribute__((always_inline)) size_t cellular_f64_avx2_k(con
     return i;
 }
 
-AVX2 __attribute__((noinline)) static size_t cellular_f64_avx2(const udm1_noise *n, const udm1_cellular_params *p,
-                                                               uint32_t dims, const double *const *axes, size_t stride,
-                                                               size_t count, double *out)
-{
-    const int euclid = p->metric == UDM1_CELLULAR_EUCLIDEAN;
-    if (dims == 3)
-        return euclid ? cellular_f64_avx2_k(n, p, 3, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                      : cellular_f64_avx2_k(n, p, 3, UINT32_MAX, axes, stride, count, out);
-    return euclid ? cellular_f64_avx2_k(n, p, 2, UDM1_CELLULAR_EUCLIDEAN, axes, stride, count, out)
-                  : cellular_f64_avx2_k(n, p, 2, UINT32_MAX, axes, stride, count, out);
-}
+CELLULAR_DISPATCH(cellular_f64_avx2, AVX2, cellular_f64_avx2_k, double)
 
 /* The kernels of the processor: 0 none (the scalar code), 1 AVX2, 2 AVX-512 with VBMI */
 static int vector_case(const udm1_cellular_params *p, uint32_t dims, size_t stride)
