@@ -513,25 +513,12 @@ private:
         if (!sobol && !pmj02) return false;
         uint32_t flags = st.flags, mode = st.table_mode;
         std::vector<uint64_t> words((size_t) pixels * d);
-        auto work = [&](uint32_t a, uint32_t b, bool *same) {  // each pixel's stream: its words
-            udm1_stream ps;
-            for (uint32_t p = a; p < b && *same; ++p) {
-                *same = udm1_stream_init(&ps, seq, (m_render_seed << 32) + p, 0, d) == UDM1_OK && ps.flags == flags &&
-                        ps.table_mode == mode;
-                if (*same) std::memcpy(&words[(size_t) p * d], ps.offset, d * sizeof(uint64_t));
-            }
-        };
-        uint32_t workers = std::max(1u, std::min<uint32_t>(std::thread::hardware_concurrency(), pixels / 1024));
-        std::unique_ptr<bool[]> same(new bool[workers]);
-        std::vector<std::thread> threads;
-        for (uint32_t w = 0; w < workers; ++w) same[w] = true;
-        for (uint32_t w = 1; w < workers; ++w)
-            threads.emplace_back(work, (uint32_t) ((uint64_t) pixels * w / workers),
-                                 (uint32_t) ((uint64_t) pixels * (w + 1) / workers), &same[w]);
-        work(0, (uint32_t) ((uint64_t) pixels / workers), &same[0]);
-        for (auto &t : threads) t.join();
-        for (uint32_t w = 0; w < workers; ++w)
-            if (!same[w]) return false;
+        for (uint32_t p = 0; p < pixels; ++p) {
+            if (udm1_stream_init(&st, seq, (m_render_seed << 32) + p, 0, d) != UDM1_OK || st.flags != flags ||
+                st.table_mode != mode)
+                return false;
+            std::memcpy(&words[(size_t) p * d], st.offset, d * sizeof(uint64_t));
+        }
         m_inline = sobol ? 1 : 2;
         m_table_mode = mode;
         m_words = dr::load<UInt64>(words.data(), words.size());
