@@ -430,8 +430,8 @@ private:
         m_table = Float();
         m_lane = UInt32();
         m_inline = 0;
-        m_words = m_table64 = UInt64();
-        m_table32 = m_word_at = m_g = UInt32();
+        m_table64 = UInt64();
+        m_table32 = m_g = UInt32();
     }
 
     /// Per-lane state of a pass: stream ids and sample indices, and what the draws read.
@@ -470,6 +470,9 @@ private:
         m_n = sample;
         m_zero = dr::opaque<UInt32>(0u, lanes);  // (a stored 0 a lane, not a literal: the sum is not folded away)
         m_pkey = screen ? stream : m_key;  // padding hashes the stream key (in screen mode the stream)
+        std::vector<uint64_t> dim_key(d);  // udm1_dim_key(S, j): the Weyl shifts' and the base-2 words' K_j
+        for (uint32_t j = 0; j < d; ++j) dim_key[j] = mix64(S + (j + 1) * kGolden);
+        m_dim_key = dr::load<UInt64>(dim_key.data(), d);
         if (m_o.weyl) {
             SeqPtr plain = make_sequence(m_o, m_sample_count, 0, false);  // the base offsets o_j
             std::vector<uint64_t> ahi(d), alo(d), base(d);
@@ -480,9 +483,6 @@ private:
                 if (screen)  // the fixed scheme's one shift u_j = mix(S + K_j)
                     base[j] += mix64(S + mix64(S + (j + 1) * kGolden));
             }
-            std::vector<uint64_t> dim_key(d);  // udm1_dim_key(S, j)
-            for (uint32_t j = 0; j < d; ++j) dim_key[j] = mix64(S + (j + 1) * kGolden);
-            m_dim_key = dr::load<UInt64>(dim_key.data(), d);
             m_ahi = dr::load<UInt64>(ahi.data(), d);
             m_alo = dr::load<UInt64>(alo.data(), d);
             m_base = dr::load<UInt64>(base.data(), d);
@@ -494,35 +494,25 @@ private:
             uint64_t side = 1;
             while (side < std::max(m_o.film_width, m_o.film_height)) side <<= 1;
             m_idx32 = !screen || (side <= 65536 && (side * side) <= (0xFFFFFFFFull + 1) / std::max<uint64_t>(spp, 1));
-        } else if (!inline_tables(sample, pixel, lanes / per_pass, d)) {
+        } else if (!inline_tables(sample, d)) {
             fill_table(stream, sample, lanes, d);
         }
     }
 
     /// Sobol (any randomization but the tent) and pmj02 (unrandomized or digitally shifted), the cases
     /// udm1/stream.h draws inline, drawn the same way in Dr.Jit: the library's table of the sequence (its
-    /// layout is the header's) and each pixel's randomization words, from udm1_stream_init of each pixel's
-    /// stream. False (nothing set) where the stream does not draw its D dimensions inline.
-    bool inline_tables(const UInt64 &sample, const UInt32 &pixel, uint32_t pixels, uint32_t d) {
+    /// layout is the header's) and each pixel's randomization words, udm1_stream_init's (the hash of the
+    /// stream's key and the dimension's, as a Weyl shift: made per value, not stored per pixel). False
+    /// (nothing set) where the stream does not draw its D dimensions inline.
+    bool inline_tables(const UInt64 &sample, uint32_t d) {
         const udm1_seq *seq = m_seq.get();
         udm1_stream st;
-        if (d > UDM1_STREAM_DIMS || (uint64_t) pixels * d > 0xFFFFFFFFull ||
-            udm1_stream_init(&st, seq, 0, 0, d) != UDM1_OK || st.held != d)
-            return false;
+        if (d > UDM1_STREAM_DIMS || udm1_stream_init(&st, seq, 0, 0, d) != UDM1_OK || st.held != d) return false;
         bool sobol = (st.flags & UDM1_STREAM_SOBOL) && d <= st.table_bits, pmj02 = (st.flags & UDM1_STREAM_PMJ02) != 0;
         if (!sobol && !pmj02) return false;
-        uint32_t flags = st.flags, mode = st.table_mode;
-        std::vector<uint64_t> words((size_t) pixels * d);
-        for (uint32_t p = 0; p < pixels; ++p) {
-            if (udm1_stream_init(&st, seq, (m_render_seed << 32) + p, 0, d) != UDM1_OK || st.flags != flags ||
-                st.table_mode != mode)
-                return false;
-            std::memcpy(&words[(size_t) p * d], st.offset, d * sizeof(uint64_t));
-        }
+        uint32_t mode = st.table_mode;
         m_inline = sobol ? 1 : 2;
         m_table_mode = mode;
-        m_words = dr::load<UInt64>(words.data(), words.size());
-        m_word_at = pixel * d;
         UInt32 index = UInt32(sample);  // (below 2^32: a Sobol index; below K: a pmj02 one)
         if (sobol) {
             m_g = index ^ (index >> 1);  // the Gray code
@@ -546,7 +536,7 @@ private:
 
     /// The float32 value of dimension jj < D per lane from the inline tables.
     Float inline_value(const UInt32 &jj) const {
-        UInt64 word = dr::gather<UInt64>(m_words, m_word_at + jj);
+        UInt64 word = udm1mi::jmix64<UInt64>(m_key + dr::gather<UInt64>(m_dim_key, jj));  // (mode 0: not read)
         UInt32 top;
         if (m_inline == 1) {  // Sobol: the XOR of the direction numbers the Gray code's four bytes select
             UInt32 at = jj * 1024u;
@@ -690,8 +680,8 @@ private:
     bool m_idx32 = false;  // every Weyl index below 2^32 (setup)
     uint32_t m_gray_bytes = 4;  // the Sobol Gray code's bytes that can be non-zero (inline_tables)
     uint32_t m_inline = 0, m_table_mode = 0;  // inline tables: 1 Sobol, 2 pmj02 (else 0)
-    UInt64 m_words, m_table64;
-    UInt32 m_table32, m_word_at, m_g, m_K;
+    UInt64 m_table64;
+    UInt32 m_table32, m_g, m_K;
 };
 
 #if defined(UDM1_MITSUBA_TEST_VARIANTS)
