@@ -534,9 +534,15 @@ private:
         return true;
     }
 
+    /// The randomization word of dimension jj < D per lane: udm1_shift(T, K_j) of the stream's key T and the
+    /// dimension's held key (a Weyl shift, and the base-2 kinds' word, as udm1_stream_init finds them).
+    UInt64 word_of(const UInt32 &jj) const {
+        return udm1mi::jmix64<UInt64>(m_key + dr::gather<UInt64>(m_dim_key, jj));
+    }
+
     /// The float32 value of dimension jj < D per lane from the inline tables.
     Float inline_value(const UInt32 &jj) const {
-        UInt64 word = udm1mi::jmix64<UInt64>(m_key + dr::gather<UInt64>(m_dim_key, jj));  // (mode 0: not read)
+        UInt64 word = word_of(jj);  // (mode 0: not read)
         UInt32 top;
         if (m_inline == 1) {  // Sobol: the XOR of the direction numbers the Gray code's four bytes select
             UInt32 at = jj * 1024u;
@@ -603,14 +609,14 @@ private:
         m_lane = dr::arange<UInt32>(lanes);
     }
 
-    /// Raw 64-bit value of Weyl dimension jj < D per lane, its key K_j = kj, the randomization applied.
-    UInt64 weyl_raw(const UInt32 &jj, const UInt64 &kj) const {
+    /// Raw 64-bit value of Weyl dimension jj < D per lane, the randomization applied.
+    UInt64 weyl_raw(const UInt32 &jj) const {
         using namespace udm1mi;
         UInt64 ahi = dr::gather<UInt64>(m_ahi, jj), alo = dr::gather<UInt64>(m_alo, jj),
                base = dr::gather<UInt64>(m_base, jj);
         UInt64 word;
         if (m_mode == UDM1_RANDOMIZE_SHIFT || m_mode == UDM1_RANDOMIZE_PERMUTE || m_mode == UDM1_RANDOMIZE_OWEN)
-            word = jmix64<UInt64>(m_key + kj);  // udm1_shift(T, K_j)
+            word = word_of(jj);
         if (m_mode == UDM1_RANDOMIZE_SHIFT) base = base + word;
         UInt64 raw;
         if (m_idx32) {  // (udm1_weyl_value32: the index's high half known to be 0, the four products 32 x 32-bit)
@@ -651,7 +657,7 @@ private:
             return to_f32(jmix64<UInt64>(jmix64<UInt64>(m_pkey + k) + (m_n + 1ull) * kGolden));
         };
         auto sequence = [this, to_f32](const UInt32 &d, const UInt32 &) -> Float {
-            if (m_o.weyl) return to_f32(weyl_raw(d, dr::gather<UInt64>(m_dim_key, d)));  // (K_j of j < D, held)
+            if (m_o.weyl) return to_f32(weyl_raw(d));
             if (m_inline) return inline_value(d);
             return dr::gather<Float>(m_table, d * m_lanes + m_lane);
         };
