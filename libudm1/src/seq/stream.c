@@ -33,6 +33,16 @@ static void stream_children(udm1_stream *s)
     s->flags |= kinds * UDM1_STREAM_CHILDREN;
 }
 
+/* A base-2 kind's randomization words of dimensions first .. first + n - 1 for the stream key skey (0 without
+ * randomization), udm1_word four at a time */
+static void stream_words(const udm1_seq *seq, uint64_t skey, uint32_t first, uint32_t n, uint64_t *words)
+{
+    if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
+        memset(words, 0, sizeof(uint64_t) * n);
+    else
+        udm1_mix64_many(seq->dim_key + first, skey, words, n);
+}
+
 udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stream, uint32_t first, uint32_t count)
 {
     static const char fn[] = "udm1_stream_init";
@@ -73,10 +83,7 @@ udm1_status udm1_stream_init(udm1_stream *st, const udm1_seq *seq, uint64_t stre
         /* a base-2 randomization on top of the kind's value: the stream's words found once */
         s->flags = STREAM_WORDS;
         s->held = own;
-        if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
-            for (uint32_t j = 0; j < s->held; ++j) s->offset[j] = 0;
-        else /* udm1_word of every dimension held, four at a time */
-            udm1_mix64_many(seq->dim_key + first, skey, s->offset, own);
+        stream_words(seq, skey, first, own, s->offset);
         /* pmj02 and Sobol without base offsets, unrandomized or digitally shifted (Sobol also Owen-scrambled):
          * drawn inline from their tables */
         int zero = 1;
@@ -147,10 +154,7 @@ udm1_status udm1_stream_fill(const char *fn, const udm1_stream *st, uint64_t ind
     if ((st->flags & STREAM_WORDS) && dim < st->held && n <= st->held - dim)
         words = st->offset + dim; /* found by udm1_stream_init */
     else if ((st->flags & STREAM_WORDS) && n <= 64 && d0 + n <= seq->dims) { /* past them: as the init finds them */
-        if (seq->mode == UDM1_MODE_NONE || seq->mode == UDM1_MODE_STREAMS)
-            memset(found, 0, sizeof(uint64_t) * n);
-        else
-            udm1_mix64_many(seq->dim_key + d0, seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key, found, n);
+        stream_words(seq, seq->mode == UDM1_MODE_SCREEN ? st->stream : st->key, (uint32_t)d0, n, found);
         words = found;
     }
     if (words) {
