@@ -454,19 +454,14 @@ AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm
     const edges2_8 E = edges2_load();
     __m256 checked = _mm256_setzero_ps();
     size_t i = 0;
-    if (count < 8) {
-        udm1_side_end256_ps(side, checked);
-        return 0;
-    }
-    noise3_stage8 cur = noise3_stage(hash4, pair, axes, 0, stride, vindex);
-    for (; i + 8 <= count; i += 8) {
+    noise3_stage8 st[2];
+    if (count >= 8) st[0] = noise3_stage(hash4, pair, axes, 0, stride, vindex);
+    for (int cur = 0; i + 8 <= count; i += 8, cur ^= 1) {
         checked = udm1_side_step256_ps(side, checked);
-        if (!cur.ok) break; /* the caller reports it */
-        const int more = i + 16 <= count;
-        noise3_stage8 next = cur;
-        if (more) next = noise3_stage(hash4, pair, axes, i + 8, stride, vindex);
-        const __m256 x = cur.x, y = cur.y, z = cur.z;
-        const __m256i qA = cur.qA, qA1 = cur.qA1, qB = cur.qB, qB1 = cur.qB1;
+        if (!st[cur].ok) break; /* the caller reports it */
+        if (i + 16 <= count) st[cur ^ 1] = noise3_stage(hash4, pair, axes, i + 8, stride, vindex);
+        const __m256 x = st[cur].x, y = st[cur].y, z = st[cur].z;
+        const __m256i qA = st[cur].qA, qA1 = st[cur].qA1, qB = st[cur].qB, qB1 = st[cur].qB1;
         __m256 x1 = _mm256_sub_ps(x, onef), y1 = _mm256_sub_ps(y, onef), z1 = _mm256_sub_ps(z, onef);
         __m256 u = fade8(x), v = fade8(y), w = fade8(z);
         /* each column's hashes at z and z + 1 (bytes 0 and 3 of its edge bytes) */
@@ -500,7 +495,6 @@ AVX2 static inline __attribute__((always_inline)) size_t noise3_avx2_k(const udm
             g[2] = _mm256_add_ps(g[2], _mm256_mul_ps(dw, pw));
             store_interleaved8(gradient + 3 * i, g, 3);
         }
-        cur = next;
     }
     udm1_side_end256_ps(side, checked);
     return i;
