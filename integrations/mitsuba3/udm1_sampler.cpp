@@ -234,7 +234,10 @@ public:
 
     void set_sample_count(uint32_t spp) override {
         if (spp < 1) udm1mi::fail("sample_count 0 is not in [1, 4294967295]");
-        if (spp != m_sample_count || !m_seq) m_seq = udm1mi::make_sequence(m_o, spp, m_seq_seed);  // (checked first)
+        if (spp != m_sample_count || !m_seq) {
+            m_seq = udm1mi::make_sequence(m_o, spp, m_seq_seed);  // (checked first)
+            prepare_direct(spp);
+        }
         Base::set_sample_count(spp);
     }
 
@@ -244,7 +247,8 @@ public:
             // the pixel's streams are filled at their first draw, a block of kBlock dimensions at a time: most
             // paths end long before D
             m_stream_id = seed;
-            m_filled = 0;
+            m_filled = m_inited = 0;
+            if (m_direct) m_stream_key = udm1mi::mix64(udm1mi::mix64((uint64_t) seed + udm1mi::kGolden) ^ m_S);
             m_index = 0;
             m_fast = 0;
         } else {
@@ -266,7 +270,8 @@ public:
         Base::advance();
         if constexpr (!Jit) {
             m_index += 1;
-            uint64_t K = m_streams[0].point_count;  // (block 0 is filled where m_fast is not 0)
+            // (block 0 is filled where m_fast is not 0; a direct fill's sequence has no point count)
+            uint64_t K = m_direct ? 0 : m_streams[0].point_count;
             if (m_fast && (K == 0 || m_index < K)) m_m += 1;  // (the same blocks)
             else update_fast();
         } else {
@@ -334,6 +339,46 @@ private:
             udm1mi::fail("randomize 'screen' needs film_width and film_height (the film's crop size): the pixel's "
                          "position is its stream");
         m_seq = udm1mi::make_sequence(m_o, m_o.sample_count);
+        prepare_direct(m_o.sample_count);
+    }
+
+    /// Scalar variants, a Weyl sequence with per-stream shifts and nothing else (no point count, no screen
+    /// segment): a block's inline words are A_j and o_j + mix64(T + K_j), T the pixel's stream key, made here
+    /// from A_j, o_j and K_j held per sequence (udm1/stream.h's contract) instead of by udm1_stream_init, whose
+    /// stream also derives the keys and words of its child domains, which a Mitsuba sampler never draws (at
+    /// 4 spp the streams' set-up was 5 % of a render). Used only where block 0 of two streams equals
+    /// udm1_stream_init's, word for word; else the streams fill the blocks.
+    void prepare_direct(uint32_t spp) {
+        m_direct = false;
+        if constexpr (!Jit) {
+            using namespace udm1mi;
+            const udm1_seq *seq = m_seq.get();
+            udm1_stream st;
+            if (udm1_seq_randomization(seq) != UDM1_RANDOMIZE_SHIFT || udm1_stream_init(&st, seq, 0, 0, kBlock) != UDM1_OK ||
+                !(st.flags & UDM1_STREAM_INLINE) || st.point_count || st.index_base)
+                return;
+            SeqPtr plain = make_sequence(m_o, spp, 0, false);  // the base offsets o_j
+            m_direct_dims = std::min<uint32_t>(udm1_seq_dimensions(seq), UDM1_STREAM_DIMS);
+            m_S = mix64(udm1_seq_seed(seq) ^ kSeedSalt);
+            for (uint32_t j = 0; j < m_direct_dims; ++j) {
+                Direct &w = m_direct_words[j];
+                if (udm1_seq_alpha(seq, j, &w.a_hi, &w.a_lo) != UDM1_OK || udm1_seq_offset(plain.get(), 0, j, &w.base) != UDM1_OK)
+                    return;
+                w.key = mix64(m_S + (j + 1) * kGolden);  // udm1_dim_key(S, j)
+            }
+            for (uint64_t stream : {uint64_t(0), uint64_t(0x123456789ull)}) {  // (the check: two streams' block 0)
+                if (udm1_stream_init(&st, seq, stream, 0, kBlock) != UDM1_OK) return;
+                m_direct = true;
+                m_stream_key = mix64(mix64(stream + kGolden) ^ m_S);
+                fill_block(0);
+                m_direct = false;
+                for (uint32_t k = 0; k < st.held; ++k)
+                    if (m_weyl[k].a_hi != st.a_hi[k] || m_weyl[k].a_lo != st.a_lo[k] || m_weyl[k].offset != st.offset[k])
+                        return;
+            }
+            m_direct = true;
+            m_filled = m_inited = 0;
+        }
     }
 
     /// fork(): the same configuration and sequence, to be seeded
@@ -341,6 +386,10 @@ private:
                                               m_seq_seed(s.m_seq_seed) {
         this->m_sample_count = s.m_sample_count;
         if constexpr (Jit) m_render_seed = s.m_render_seed;
+        else {  // (prepare_direct's, for the same sequence)
+            m_direct = s.m_direct, m_direct_dims = s.m_direct_dims, m_S = s.m_S;
+            std::copy(std::begin(s.m_direct_words), std::end(s.m_direct_words), std::begin(m_direct_words));
+        }
     }
 
     /// clone(): the same state, the same future draws (the stream and the arrays are values)
@@ -377,6 +426,14 @@ private:
     /// seed(), a fill and advance().
     void update_fast() {
         m_fast = 0;
+        if (m_direct) {  // (the index is the sample's: no point count, no segment)
+            m_m = m_index;
+            for (uint32_t b = 0; b < kBlocks && (m_filled & (1u << b)); ++b) {
+                m_fast = b * kBlock + m_held[b];
+                if (m_held[b] < kBlock) return;
+            }
+            return;
+        }
         for (uint32_t b = 0; b < kBlocks && (m_filled & (1u << b)); ++b) {
             const udm1_stream &st = m_streams[b];
             uint64_t m = m_index + st.index_base;
@@ -402,18 +459,40 @@ private:
                 return;
             }
         }
+        if (!(m_inited & (1u << b))) init_stream(b);  // (a direct fill's block: its stream made when it draws)
         udm1_stream_draw_f32(&st, m_index, j - st.first, n, out);
         if (std::isnan(out[0])) refused_draw();
     }
 
     MI_NOINLINE void fill_block(uint32_t b) {
-        udm1_stream &st = m_streams[b];
-        if (udm1_stream_init(&st, m_seq.get(), m_stream_id, b * kBlock, kBlock) != UDM1_OK)
-            udm1mi::fail("stream " + std::to_string(m_stream_id) + ": " + udm1_last_error());
+        if (m_direct) {  // (prepare_direct): o_j + mix64(T + K_j), four at a time
+            uint32_t first = b * kBlock, held = first < m_direct_dims ? std::min(kBlock, m_direct_dims - first) : 0;
+            for (uint32_t k = 0; k < held; k += 4) {
+                uint64_t key[4] = {}, word[4];
+                for (uint32_t i = 0; i < 4 && k + i < held; ++i) key[i] = m_direct_words[first + k + i].key;
+                udm1_mix64x4(m_stream_key, key, word);
+                for (uint32_t i = 0; i < 4 && k + i < held; ++i) {
+                    const Direct &w = m_direct_words[first + k + i];
+                    m_weyl[first + k + i] = {w.a_hi, w.a_lo, w.base + word[i]};
+                }
+            }
+            m_held[b] = held;
+            m_filled |= 1u << b;
+            return;
+        }
+        init_stream(b);
         m_filled |= 1u << b;
+        const udm1_stream &st = m_streams[b];
+        m_held[b] = st.held;
         if (st.flags & UDM1_STREAM_INLINE)  // a dimension's three words side by side
             for (uint32_t k = 0; k < st.held; ++k)
                 m_weyl[b * kBlock + k] = {st.a_hi[k], st.a_lo[k], st.offset[k]};
+    }
+
+    void init_stream(uint32_t b) {
+        if (udm1_stream_init(&m_streams[b], m_seq.get(), m_stream_id, b * kBlock, kBlock) != UDM1_OK)
+            udm1mi::fail("stream " + std::to_string(m_stream_id) + ": " + udm1_last_error());
+        m_inited |= 1u << b;
     }
 
     [[noreturn]] MI_NOINLINE void refused_draw() const {
@@ -670,7 +749,14 @@ private:
     // scalar variants
     static constexpr uint32_t kBlock = 16, kBlocks = UDM1_STREAM_DIMS / kBlock;
     udm1_stream m_streams[kBlocks]{};  // dimensions [16 b, 16 b + 16) of the pixel's stream, filled when drawn
-    uint32_t m_filled = 0;             // which of them are
+    uint32_t m_filled = 0;             // which of them are (their inline words in m_weyl where Weyl)
+    uint32_t m_inited = 0;             // which of m_streams are made (a direct fill makes one when it draws)
+    uint32_t m_held[kBlocks]{};        // the dimensions a filled block holds
+    struct Direct { uint64_t a_hi, a_lo, base, key; };
+    bool m_direct = false;             // blocks filled from m_direct_words (prepare_direct)
+    uint32_t m_direct_dims = 0;
+    uint64_t m_stream_key = 0;         // the pixel's stream key T (direct fills)
+    Direct m_direct_words[UDM1_STREAM_DIMS]{};  // A_j, o_j and K_j of the sequence's first dimensions
     uint32_t m_fast = 0;               // the dimensions drawn inline and their index (update_fast)
     uint64_t m_m = 0;
     struct Weyl { uint64_t a_hi, a_lo, offset; };
