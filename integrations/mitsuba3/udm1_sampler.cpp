@@ -349,36 +349,40 @@ private:
     /// 4 spp the streams' set-up was 5 % of a render). Used only where block 0 of two streams equals
     /// udm1_stream_init's, word for word; else the streams fill the blocks.
     void prepare_direct(uint32_t spp) {
-        m_direct = false;
         if constexpr (!Jit) {
-            using namespace udm1mi;
-            const udm1_seq *seq = m_seq.get();
-            udm1_stream st;
-            if (udm1_seq_randomization(seq) != UDM1_RANDOMIZE_SHIFT || udm1_stream_init(&st, seq, 0, 0, kBlock) != UDM1_OK ||
-                !(st.flags & UDM1_STREAM_INLINE) || st.point_count || st.index_base)
-                return;
-            SeqPtr plain = make_sequence(m_o, spp, 0, false);  // the base offsets o_j
-            m_direct_dims = std::min<uint32_t>(udm1_seq_dimensions(seq), UDM1_STREAM_DIMS);
-            m_S = mix64(udm1_seq_seed(seq) ^ kSeedSalt);
-            for (uint32_t j = 0; j < m_direct_dims; ++j) {
-                Direct &w = m_direct_words[j];
-                if (udm1_seq_alpha(seq, j, &w.a_hi, &w.a_lo) != UDM1_OK || udm1_seq_offset(plain.get(), 0, j, &w.base) != UDM1_OK)
-                    return;
-                w.key = mix64(m_S + (j + 1) * kGolden);  // udm1_dim_key(S, j)
-            }
-            for (uint64_t stream : {uint64_t(0), uint64_t(0x123456789ull)}) {  // (the check: two streams' block 0)
-                if (udm1_stream_init(&st, seq, stream, 0, kBlock) != UDM1_OK) return;
-                m_direct = true;
-                m_stream_key = mix64(mix64(stream + kGolden) ^ m_S);
-                fill_block(0);
-                m_direct = false;
-                for (uint32_t k = 0; k < st.held; ++k)
-                    if (m_weyl[k].a_hi != st.a_hi[k] || m_weyl[k].a_lo != st.a_lo[k] || m_weyl[k].offset != st.offset[k])
-                        return;
-            }
-            m_direct = true;
-            m_filled = m_inited = 0;
+            m_direct = direct_words(spp);
+            m_filled = m_inited = m_fast = 0;  // (the check's block is not a pixel's: seed() comes first)
         }
+    }
+
+    /// prepare_direct's words and their check; true where they hold.
+    bool direct_words(uint32_t spp) {
+        using namespace udm1mi;
+        const udm1_seq *seq = m_seq.get();
+        udm1_stream st;
+        if (udm1_seq_randomization(seq) != UDM1_RANDOMIZE_SHIFT || udm1_stream_init(&st, seq, 0, 0, kBlock) != UDM1_OK ||
+            !(st.flags & UDM1_STREAM_INLINE) || st.point_count || st.index_base)
+            return false;
+        SeqPtr plain = make_sequence(m_o, spp, 0, false);  // the base offsets o_j
+        m_direct_dims = std::min<uint32_t>(udm1_seq_dimensions(seq), UDM1_STREAM_DIMS);
+        m_S = mix64(udm1_seq_seed(seq) ^ kSeedSalt);
+        for (uint32_t j = 0; j < m_direct_dims; ++j) {
+            Direct &w = m_direct_words[j];
+            if (udm1_seq_alpha(seq, j, &w.a_hi, &w.a_lo) != UDM1_OK || udm1_seq_offset(plain.get(), 0, j, &w.base) != UDM1_OK)
+                return false;
+            w.key = mix64(m_S + (j + 1) * kGolden);  // udm1_dim_key(S, j)
+        }
+        for (uint64_t stream : {uint64_t(0), uint64_t(0x123456789ull)}) {  // (the check: two streams' block 0)
+            if (udm1_stream_init(&st, seq, stream, 0, kBlock) != UDM1_OK) return false;
+            m_direct = true;
+            m_stream_key = mix64(mix64(stream + kGolden) ^ m_S);
+            fill_block(0);
+            m_direct = false;
+            for (uint32_t k = 0; k < st.held; ++k)
+                if (m_weyl[k].a_hi != st.a_hi[k] || m_weyl[k].a_lo != st.a_lo[k] || m_weyl[k].offset != st.offset[k])
+                    return false;
+        }
+        return true;
     }
 
     /// fork(): the same configuration and sequence, to be seeded
