@@ -345,9 +345,9 @@ private:
     /// Scalar variants, a Weyl sequence with per-stream shifts and nothing else (no point count, no screen
     /// segment): a block's inline words are A_j and o_j + mix64(T + K_j), T the pixel's stream key, made here
     /// from A_j, o_j and K_j held per sequence (udm1/stream.h's contract) instead of by udm1_stream_init, whose
-    /// stream also derives the keys and words of its child domains, which a Mitsuba sampler never draws (at
-    /// 4 spp the streams' set-up was 5 % of a render). Used only where block 0 of two streams equals
-    /// udm1_stream_init's, word for word; else the streams fill the blocks.
+    /// stream also derives the keys and words of its child domains, which a Mitsuba sampler never draws and
+    /// which cost about 3 % of a 4-spp render. Used only where block 0 of two streams equals udm1_stream_init's,
+    /// word for word; else the streams fill the blocks.
     void prepare_direct(uint32_t spp) {
         if constexpr (!Jit) {
             m_direct = direct_words(spp);
