@@ -9,7 +9,9 @@ it is absent; --size is then the film's width, its height from the scene's aspec
    weigh more than the rest of the image), and the render time
    (scene loaded once per sampler; the JIT variant's kernels compiled by an untimed render first; the
    time includes evaluating the image and, for udm1's table presets, filling the table). The renders
-   alternate: per (spp, seed) every sampler in turn, so the machine's drift falls on all alike.
+   alternate: per (spp, seed) every sampler in turn, in one order and then the other, and a sampler's time
+   is its fastest render of the seeds (on a shared machine the least disturbed: a passing load then slows
+   no sampler's figure; every render's time is in the JSON), so the machine's drift falls on all alike.
    Mitsuba's orthogonal sampler renders the square of a prime at or above the spp asked (25, 67^2...):
    its row names the count it took.
 2. Equal error: for each target RMSE (what the independent sampler reaches at each spp) the time each
@@ -187,7 +189,8 @@ def run_variant(source: Scene, variant: str, size: int, spps, seeds: int, ref_sp
         mse = {n: [] for n in scenes}
         secs = {n: [] for n in scenes}
         for seed in range(seeds):
-            for name, scene in scenes.items():
+            order = list(scenes.items()) if seed % 2 == 0 else list(scenes.items())[::-1]  # both ways round
+            for name, scene in order:
                 img, t = render(mi, scene, spp, seed, threads[name])
                 mse[name].append(float(np.mean((np.clip(img, 0, 1) - np.clip(ref, 0, 1)) ** 2)))
                 secs[name].append(t)
@@ -196,7 +199,8 @@ def run_variant(source: Scene, variant: str, size: int, spps, seeds: int, ref_sp
             taken = scenes[name].sensors()[0].sampler().sample_count()
             rows.append({"variant": variant, "sampler": name, "spp": spp, "spp_taken": taken,
                          "threads": threads[name] or os.cpu_count(),
-                         "rmse": math.sqrt(sum(mse[name]) / seeds), "seconds": sum(secs[name]) / seeds})
+                         "rmse": math.sqrt(sum(mse[name]) / seeds), "seconds": min(secs[name]),
+                         "all_seconds": secs[name]})
     base = {r["spp"]: r["seconds"] for r in rows if r["sampler"] == "independent"}
     for r in rows:
         r["x_independent_time"] = r["seconds"] / base[r["spp"]]
