@@ -19,7 +19,9 @@ Each renderer's error is the RMSE of its linear RGB, clamped to [0, 1], against 
 (its default sampler at --ref-spp, cached in DIR: udm1-pt sobol-owen, pbrt-v4 zsobol, Mitsuba independent),
 the MSE averaged over --seeds seeds; so each is measured on its own model of the scene (spectral or RGB,
 Mitsuba's analytic plastic or pbrt-v4's layered coat). The renders alternate renderer by renderer at every
-(spp, seed), so that the machine's drift falls on all alike.
+(spp, seed), in one order and then the other, and a sampler's time is its fastest render of the seeds (on a
+shared machine the least disturbed; every render's time is in the JSON), so that the machine's drift falls on
+all alike.
 
 Equal error: the targets are the errors pbrt-v4's default sampler (zsobol) reaches at each spp but the first
 (which is there so that every curve brackets the targets); for each renderer, the seconds its best sampler needs to reach a target (log-log interpolation between measured
@@ -191,10 +193,9 @@ def run_scene(name: str, size: tuple, spps: list, args, pbrt: str | None, varian
     for spp in spps:
         acc: dict = {}
         for seed in range(1, args.seeds + 1):
-            for k in range(max(len(s) for _, s, _ in renderers)):
-                for who, samplers, _ in renderers:
-                    if k >= len(samplers):
-                        continue
+            turns = [(k, r) for k in range(max(len(s) for _, s, _ in renderers)) for r in renderers]
+            for k, (who, samplers, _) in (turns if seed % 2 else turns[::-1]):  # both ways round
+                if k < len(samplers):
                     s = samplers[k]
                     img, seconds = who.render(s, spp, seed)
                     family = "mitsuba" if who.name.startswith("mitsuba") else who.name
@@ -203,7 +204,7 @@ def run_scene(name: str, size: tuple, spps: list, args, pbrt: str | None, varian
                     a["seconds"].append(seconds)
         for (renderer, s), a in acc.items():
             rows.append({"renderer": renderer, "sampler": s, "spp": spp, "rmse": float(np.sqrt(np.mean(a["mse"]))),
-                         "seconds": float(np.mean(a["seconds"]))})
+                         "seconds": float(min(a["seconds"])), "all_seconds": a["seconds"]})
             log(f"{name} {spp} spp: {renderer} {s}: RMSE {rows[-1]['rmse']:.5f}, {rows[-1]['seconds']:.3f} s")
     loads = {who.name: who.load for who, _, _ in renderers}
 
