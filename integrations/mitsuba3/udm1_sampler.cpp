@@ -172,11 +172,21 @@ inline SeqPtr make_sequence(const Options &o, uint32_t spp, uint64_t extra_seed 
 
 inline uint64_t mix64(uint64_t z) { return udm1_mix64(z); }
 
+/// udm1's keys (udm1/seq.h): the sequence's S; a dimension's K_j and a stream's T below, after jmix64.
+inline uint64_t seq_key(const udm1_seq *seq) { return mix64(udm1_seq_seed(seq) ^ kSeedSalt); }
+
 // ---- the Dr.Jit forms of udm1's integer arithmetic (udm1/seq.h, udm1/stream.h, udm1/domain.h) ----
 template <typename U64> U64 jmix64(U64 z) {
     z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
     z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
     return z ^ (z >> 31);
+}
+
+/// K_j = mix64(S + (j + 1) G) and T = mix64(mix64(stream + G) ^ S), in scalar or Dr.Jit integers
+template <typename U64> U64 dim_key(const U64 &S, const U64 &j) { return jmix64<U64>(S + (j + 1ull) * kGolden); }
+
+template <typename U64> U64 stream_key(const U64 &S, const U64 &stream) {
+    return jmix64<U64>(jmix64<U64>(stream + kGolden) ^ S);
 }
 
 template <typename U64> U64 jspread(U64 v) {
@@ -248,7 +258,7 @@ public:
             // paths end long before D
             m_stream_id = seed;
             m_filled = m_inited = 0;
-            if (m_direct) m_stream_key = udm1mi::mix64(udm1mi::mix64((uint64_t) seed + udm1mi::kGolden) ^ m_S);
+            if (m_direct) m_stream_key = udm1mi::stream_key<uint64_t>(m_S, seed);
             m_index = 0;
             m_fast = 0;
         } else {
@@ -365,19 +375,17 @@ private:
             return false;
         SeqPtr plain = make_sequence(m_o, spp, 0, false);  // the base offsets o_j
         m_direct_dims = std::min<uint32_t>(udm1_seq_dimensions(seq), UDM1_STREAM_DIMS);
-        m_S = mix64(udm1_seq_seed(seq) ^ kSeedSalt);
+        m_S = seq_key(seq);
         for (uint32_t j = 0; j < m_direct_dims; ++j) {
             Direct &w = m_direct_words[j];
             if (udm1_seq_alpha(seq, j, &w.a_hi, &w.a_lo) != UDM1_OK || udm1_seq_offset(plain.get(), 0, j, &w.base) != UDM1_OK)
                 return false;
-            w.key = mix64(m_S + (j + 1) * kGolden);  // udm1_dim_key(S, j)
+            w.key = dim_key<uint64_t>(m_S, j);
         }
         for (uint64_t stream : {uint64_t(0), uint64_t(0x123456789ull)}) {  // (the check: two streams' block 0)
             if (udm1_stream_init(&st, seq, stream, 0, kBlock) != UDM1_OK) return false;
-            m_direct = true;
-            m_stream_key = mix64(mix64(stream + kGolden) ^ m_S);
-            fill_block(0);
-            m_direct = false;
+            m_stream_key = stream_key<uint64_t>(m_S, stream);
+            fill_direct(0);
             for (uint32_t k = 0; k < st.held; ++k)
                 if (m_weyl[k].a_hi != st.a_hi[k] || m_weyl[k].a_lo != st.a_lo[k] || m_weyl[k].offset != st.offset[k])
                     return false;
@@ -469,19 +477,8 @@ private:
     }
 
     MI_NOINLINE void fill_block(uint32_t b) {
-        if (m_direct) {  // (prepare_direct): o_j + mix64(T + K_j), four at a time
-            uint32_t first = b * kBlock, held = first < m_direct_dims ? std::min(kBlock, m_direct_dims - first) : 0;
-            for (uint32_t k = 0; k < held; k += 4) {
-                uint64_t key[4] = {}, word[4];
-                for (uint32_t i = 0; i < 4 && k + i < held; ++i) key[i] = m_direct_words[first + k + i].key;
-                udm1_mix64x4(m_stream_key, key, word);
-                for (uint32_t i = 0; i < 4 && k + i < held; ++i) {
-                    const Direct &w = m_direct_words[first + k + i];
-                    m_weyl[first + k + i] = {w.a_hi, w.a_lo, w.base + word[i]};
-                }
-            }
-            m_held[b] = held;
-            m_filled |= 1u << b;
+        if (m_direct) {
+            fill_direct(b);
             return;
         }
         init_stream(b);
@@ -491,6 +488,22 @@ private:
         if (st.flags & UDM1_STREAM_INLINE)  // a dimension's three words side by side
             for (uint32_t k = 0; k < st.held; ++k)
                 m_weyl[b * kBlock + k] = {st.a_hi[k], st.a_lo[k], st.offset[k]};
+    }
+
+    /// Block b's inline words made by the plugin (prepare_direct): o_j + mix64(T + K_j), four at a time.
+    void fill_direct(uint32_t b) {
+        uint32_t first = b * kBlock, held = first < m_direct_dims ? std::min(kBlock, m_direct_dims - first) : 0;
+        for (uint32_t k = 0; k < held; k += 4) {
+            uint64_t key[4] = {}, word[4];
+            for (uint32_t i = 0; i < 4 && k + i < held; ++i) key[i] = m_direct_words[first + k + i].key;
+            udm1_mix64x4(m_stream_key, key, word);
+            for (uint32_t i = 0; i < 4 && k + i < held; ++i) {
+                const Direct &w = m_direct_words[first + k + i];
+                m_weyl[first + k + i] = {w.a_hi, w.a_lo, w.base + word[i]};
+            }
+        }
+        m_held[b] = held;
+        m_filled |= 1u << b;
     }
 
     void init_stream(uint32_t b) {
@@ -547,15 +560,15 @@ private:
         uint32_t d = udm1_seq_dimensions(seq);
         m_d = dr::opaque<UInt32>(d);
         m_mode = udm1_seq_randomization(seq);
-        uint64_t S = mix64(udm1_seq_seed(seq) ^ kSeedSalt);
+        uint64_t S = seq_key(seq);
         m_S = dr::opaque<UInt64>(S);
-        m_key = jmix64<UInt64>(jmix64<UInt64>(stream + kGolden) ^ m_S);  // udm1_stream_key(S, stream)
+        m_key = stream_key<UInt64>(m_S, stream);
         m_n = sample;
         m_zero = dr::opaque<UInt32>(0u, lanes);  // (a stored 0 a lane, not a literal: the sum is not folded away)
         m_pkey = screen ? stream : m_key;  // padding hashes the stream key (in screen mode the stream)
-        std::vector<uint64_t> dim_key(d);  // udm1_dim_key(S, j): the Weyl shifts' and the base-2 words' K_j
-        for (uint32_t j = 0; j < d; ++j) dim_key[j] = mix64(S + (j + 1) * kGolden);
-        m_dim_key = dr::load<UInt64>(dim_key.data(), d);
+        std::vector<uint64_t> keys(d);  // the dimensions' K_j: the Weyl shifts' and the base-2 words' keys
+        for (uint32_t j = 0; j < d; ++j) keys[j] = dim_key<uint64_t>(S, j);
+        m_dim_key = dr::load<UInt64>(keys.data(), d);
         if (m_o.weyl) {
             SeqPtr plain = make_sequence(m_o, m_sample_count, 0, false);  // the base offsets o_j
             std::vector<uint64_t> ahi(d), alo(d), base(d);
@@ -564,7 +577,7 @@ private:
                     udm1_seq_offset(plain.get(), 0, j, &base[j]) != UDM1_OK)
                     fail(std::string("dimension ") + std::to_string(j) + ": " + udm1_last_error());
                 if (screen)  // the fixed scheme's one shift u_j = mix(S + K_j)
-                    base[j] += mix64(S + mix64(S + (j + 1) * kGolden));
+                    base[j] += mix64(S + keys[j]);
             }
             m_ahi = dr::load<UInt64>(ahi.data(), d);
             m_alo = dr::load<UInt64>(alo.data(), d);
@@ -736,7 +749,7 @@ private:
         UInt32 jj = dr::minimum(j, m_d - 1u);
         auto to_f32 = [](const UInt64 &raw) { return Float(UInt32(raw >> 40)) * (1.f / 16777216.f); };
         auto padding = [this, to_f32](const UInt32 &, const UInt32 &jp) {  // udm1_pad of udm1_dim_key(S, j)
-            UInt64 k = jmix64<UInt64>(m_S + (UInt64(jp) + 1ull) * kGolden);
+            UInt64 k = dim_key<UInt64>(m_S, UInt64(jp));
             return to_f32(jmix64<UInt64>(jmix64<UInt64>(m_pkey + k) + (m_n + 1ull) * kGolden));
         };
         auto sequence = [this, to_f32](const UInt32 &d, const UInt32 &) -> Float {
