@@ -343,6 +343,17 @@ UDM1_DRAW_ uint32_t udm1_sobol_rev_(const udm1_stream *st, uint32_t d, uint32_t 
     return T[0][g & 255u] ^ T[1][(g >> 8) & 255u] ^ T[2][(g >> 16) & 255u] ^ T[3][g >> 24];
 }
 
+/* The same of n (1..4) dimensions d .. into r: where g < 2^16 (a pixel's sample index, unscrambled) from
+ * the tables of its two low bytes only (a zero byte's entry is 0). */
+UDM1_DRAW_ void udm1_sobol_rev4_(const udm1_stream *st, uint32_t d, uint32_t g, uint32_t n, uint32_t *r)
+{
+    const uint32_t(*T)[256] = (const uint32_t(*)[256])st->table + 4 * (size_t)d;
+    if (g >> 16)
+        for (uint32_t j = 0; j < n && j < 4; ++j) r[j] = udm1_sobol_rev_(st, d + j, g);
+    else
+        for (uint32_t j = 0; j < n && j < 4; ++j) r[j] = T[4 * j][g & 255u] ^ T[4 * j + 1][g >> 8];
+}
+
 /* The raw Sobol value (UDM1_STREAM_SOBOL) of dimension first + dim of point index < 2^32, randomized with
  * word: XOR (table_mode 1) or Owen scrambling (2: the top 32 bits scrambled, the low 32 a hash of them, or
  * left 0 with low_half 0 - a float reads only the top 24 bits). */
@@ -378,12 +389,13 @@ UDM1_DRAW_ void udm1_store_f32_(__m128 f, uint32_t n, float *out)
 #endif
 
 /* Floats of n (1..4) Owen-scrambled Sobol dimensions first + dim .. at Gray code g, the scrambles keyed by
- * the low halves of words[0 .. n - 1] (four readable). Where the compiler targets SSE4.1 and SSSE3 (32-bit
- * vector products, byte shuffles; MSVC: AVX), and with NEON, the four lanes are scrambled, reversed and
- * converted in one register; the same values as the scalar code. (SSE2 alone, emulating both, measured
- * slower than scalar code.) */
+ * the low halves of words[0 .. n - 1] (four readable). On x86-64 and with NEON the four lanes are
+ * scrambled, reversed and converted in one register: with SSE4.1 and SSSE3 (MSVC: AVX) by 32-bit vector
+ * products and byte shuffles, with SSE2 alone (x86-64's baseline) by products of lanes 0, 2 and 1, 3
+ * (`pmuludq`) and the reversal's shifts and masks; the same values as the scalar code. */
 #if defined(UDM1_X86_) && ((defined(__SSE4_1__) && defined(__SSSE3__)) || defined(__AVX__))
 #define UDM1_SOBOL_OWEN_SSE_ 1
+#define udm1_mullo32x4_(a, b) _mm_mullo_epi32(a, b)
 UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
 {
     /* bytes swapped, then each byte's nibbles reversed (a 16-entry table) and exchanged */
@@ -391,6 +403,25 @@ UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
     x = _mm_shuffle_epi8(x, _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12));
     return _mm_or_si128(_mm_slli_epi16(_mm_shuffle_epi8(nib, _mm_and_si128(x, m4)), 4),
                         _mm_shuffle_epi8(nib, _mm_and_si128(_mm_srli_epi16(x, 4), m4)));
+}
+#elif defined(UDM1_X86_)
+#define UDM1_SOBOL_OWEN_SSE_ 1
+/* the low 32 bits of a * b in each lane: lanes 0 and 2, then 1 and 3, by 32 x 32 -> 64-bit products */
+UDM1_DRAW_ __m128i udm1_mullo32x4_(__m128i a, __m128i b)
+{
+    __m128i even = _mm_mul_epu32(a, b), odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
+    return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, 0x08), _mm_shuffle_epi32(odd, 0x08));
+}
+
+UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
+{
+    /* halves exchanged, then bytes, nibbles, pairs and bits (16-bit shifts: the masks keep each in its byte) */
+    const __m128i m4 = _mm_set1_epi8(0x0F), m2 = _mm_set1_epi8(0x33), m1 = _mm_set1_epi8(0x55);
+    x = _mm_or_si128(_mm_slli_epi32(x, 16), _mm_srli_epi32(x, 16));
+    x = _mm_or_si128(_mm_slli_epi16(x, 8), _mm_srli_epi16(x, 8));
+    x = _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 4), m4), _mm_slli_epi16(_mm_and_si128(x, m4), 4));
+    x = _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 2), m2), _mm_slli_epi16(_mm_and_si128(x, m2), 2));
+    return _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 1), m1), _mm_slli_epi16(_mm_and_si128(x, m1), 1));
 }
 #endif
 
@@ -400,21 +431,25 @@ UDM1_DRAW_ void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint32_t
     uint32_t d = st->first + dim;
 #if defined(UDM1_SOBOL_OWEN_SSE_)
     uint32_t r[4] = {0, 0, 0, 0};
-    for (uint32_t j = 0; j < n && j < 4; ++j) r[j] = udm1_sobol_rev_(st, d + j, g);
+    udm1_sobol_rev4_(st, d, g, n, r);
     __m128i x = _mm_setr_epi32((int)r[0], (int)r[1], (int)r[2], (int)r[3]); /* (in registers: a wide load of
                                                                               values just stored waits for them) */
+#if defined(UDM1_AVX2_) /* (a child's words are stored four at once: a wide load takes them) */
     __m128i w0 = _mm_loadu_si128((const __m128i *)words), w1 = _mm_loadu_si128((const __m128i *)(words + 2));
     __m128i seed = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(w0), _mm_castsi128_ps(w1), 0x88)); /* low halves */
-    x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32(0x3d20adea)));
+#else /* (stored one by one: a wide load would wait for the stores, read them one by one) */
+    __m128i seed = _mm_setr_epi32((int)words[0], (int)words[1], (int)words[2], (int)words[3]);
+#endif
+    x = _mm_xor_si128(x, udm1_mullo32x4_(x, _mm_set1_epi32(0x3d20adea)));
     x = _mm_add_epi32(x, seed);
-    x = _mm_mullo_epi32(x, _mm_or_si128(_mm_srli_epi32(seed, 16), _mm_set1_epi32(1)));
-    x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32(0x05526c56)));
-    x = _mm_xor_si128(x, _mm_mullo_epi32(x, _mm_set1_epi32(0x53a22864)));
+    x = udm1_mullo32x4_(x, _mm_or_si128(_mm_srli_epi32(seed, 16), _mm_set1_epi32(1)));
+    x = _mm_xor_si128(x, udm1_mullo32x4_(x, _mm_set1_epi32(0x05526c56)));
+    x = _mm_xor_si128(x, udm1_mullo32x4_(x, _mm_set1_epi32(0x53a22864)));
     x = udm1_reverse32x4_(x);
     udm1_store_f32_(_mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)), n < 4 ? n : 4, out);
 #elif defined(UDM1_NEON_)
     uint32_t r[4] = {0, 0, 0, 0};
-    for (uint32_t j = 0; j < n && j < 4; ++j) r[j] = udm1_sobol_rev_(st, d + j, g);
+    udm1_sobol_rev4_(st, d, g, n, r);
     uint32x4_t x = vld1q_u32(r);
     uint32x4_t seed = vcombine_u32(vmovn_u64(vld1q_u64(words)), vmovn_u64(vld1q_u64(words + 2))); /* low halves */
     x = veorq_u32(x, vmulq_u32(x, vdupq_n_u32(0x3d20adeau)));
@@ -449,9 +484,14 @@ UDM1_DRAW_ void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32
     if (out_kind == 1 && n <= 4 && d % 4 == 0 && dim <= UDM1_STREAM_DIMS - 4) {
         /* floats of a point's block of four coordinates: one load, the words' high halves, one convert */
         __m128i x = _mm_loadu_si128((const __m128i *)((const uint32_t *)st->table + ((d / 4) * st->point_count + index) * 4));
-        if (xor_words) {
+        if (xor_words) { /* the words' high halves (as udm1_sobol_owen_f32_ reads the low ones) */
+#if defined(UDM1_AVX2_)
             __m128i w0 = _mm_loadu_si128((const __m128i *)words), w1 = _mm_loadu_si128((const __m128i *)(words + 2));
             x = _mm_xor_si128(x, _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(w0), _mm_castsi128_ps(w1), 0xDD)));
+#else
+            x = _mm_xor_si128(x, _mm_setr_epi32((int)(words[0] >> 32), (int)(words[1] >> 32), (int)(words[2] >> 32),
+                                                (int)(words[3] >> 32)));
+#endif
         }
         udm1_store_f32_(_mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)), n, (float *)out);
         return;
