@@ -301,6 +301,13 @@ UDM1_DRAW_ uint32_t udm1_reverse32(uint32_t x)
     /* each byte's bits reversed by GFNI's bit matrix, then the bytes swapped (4 instructions for 16) */
     __m128i v = _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128((int)x), _mm_set1_epi64x(0x8040201008040201ll), 0);
     return __builtin_bswap32((uint32_t)_mm_cvtsi128_si32(v));
+#elif defined(__GNUC__) && defined(UDM1_X86_) && defined(__SSSE3__)
+    /* each byte's nibbles reversed by a 16-entry byte shuffle and exchanged, then the bytes swapped */
+    const __m128i m4 = _mm_set1_epi8(0x0F), nib = _mm_setr_epi8(0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15);
+    __m128i v = _mm_cvtsi32_si128((int)x);
+    v = _mm_or_si128(_mm_slli_epi16(_mm_shuffle_epi8(nib, _mm_and_si128(v, m4)), 4),
+                     _mm_shuffle_epi8(nib, _mm_and_si128(_mm_srli_epi16(v, 4), m4)));
+    return __builtin_bswap32((uint32_t)_mm_cvtsi128_si32(v));
 #else
 #if defined(__GNUC__)
     x = __builtin_bswap32(x);
