@@ -52,7 +52,7 @@
 #endif
 
 /* The inline draws use x86 vector instructions where the compiler targets them (SSE2, x86-64's baseline;
- * SSSE3, SSE4.1, AVX2, AVX-512 where enabled) and NEON on 64-bit Arm (AArch64's baseline). Defined before
+ * SSSE3, SSE4.1, AVX2, GFNI, AVX-512 where enabled) and NEON on 64-bit Arm (AArch64's baseline). Defined before
  * udm1/udm1.h is included, UDM1_INLINE_SCALAR gives the portable scalar code instead: the same values (the
  * tests build both). The header compiles as C99 and C++ with GCC, Clang and MSVC. */
 #if !defined(UDM1_INLINE_SCALAR) && (defined(__x86_64__) || defined(_M_X64)) && (defined(__SSE2__) || defined(_MSC_VER))
