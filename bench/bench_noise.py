@@ -1,6 +1,7 @@
 """Noise evaluations per second from Python, one process per instruction set, one thread, the methods
 alternating within every round of that process (best of --reps rounds), over the same 2^20 random points
-in [-100, 100]^d:
+in [-100, 100]^d, every coordinate array starting on a 64-byte boundary for both sides (FastNoiseSIMD's
+`empty_coords` aligns its own; udm1's outputs are aligned by the package):
 
 - FastNoiseSIMD (pyfastnoisesimd 0.4.2, float32, its `genFromCoords` over separate coordinate arrays, one
   worker): the anchor, the SIMD library a speed-minded user picks. The benchmark builds it from its PyPI
@@ -41,9 +42,20 @@ import udm1
 N = 1 << 20
 
 
+def aligned(a: np.ndarray) -> np.ndarray:
+    """A copy of a whose data starts on a 64-byte boundary, as FastNoiseSIMD's own coordinate arrays
+    (numpy's start on 16 bytes, and a 512-bit load from there straddles two cache lines)."""
+    raw = np.empty(a.nbytes + 64, dtype=np.uint8)
+    start = -raw.ctypes.data % 64
+    out = raw[start:start + a.nbytes].view(a.dtype).reshape(a.shape)
+    out[...] = a
+    return out
+
+
 def coords(d: int) -> np.ndarray:
-    """(d, N) float32: the same points for every method (float64 methods read them widened)."""
-    return np.random.default_rng(d).uniform(-100, 100, (d, N)).astype(np.float32)
+    """(d, N) float32: the same points for every method (float64 methods read them widened), each axis
+    on a 64-byte boundary (N floats are a multiple of 64 bytes)."""
+    return aligned(np.random.default_rng(d).uniform(-100, 100, (d, N)).astype(np.float32))
 
 
 CLOCK = time.perf_counter  # --clock cpu: time.process_time (the process's processor time, all its threads)
@@ -69,7 +81,7 @@ def udm1_methods(group: str, d: int):
     """(label, function) for udm1 in a group."""
     c = coords(d)
     c32 = tuple(c[k] for k in range(d))
-    c64 = tuple(c[k].astype(np.float64) for k in range(d))
+    c64 = tuple(aligned(c[k].astype(np.float64)) for k in range(d))
     ours = udm1.Noise()
     if group.startswith("cellular"):
         return [("udm1 cellular F1, jitter 0.45, float32", lambda: ours.cellular(c32, jitter=0.45)),

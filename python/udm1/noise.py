@@ -64,6 +64,15 @@ def _precision(dtype, where: str):
     return _PRECISIONS[dt.name]
 
 
+def _output(shape, real_type) -> np.ndarray:
+    """An uninitialized array of the results whose data starts on a 64-byte boundary, so that the kernels'
+    512-bit stores do not straddle cache lines (numpy's own arrays start on 16 bytes)."""
+    size = int(np.prod(shape)) * np.dtype(real_type).itemsize
+    raw = np.empty(size + 64, dtype=np.uint8)
+    start = -raw.ctypes.data % 64
+    return raw[start:start + size].view(real_type).reshape(shape)
+
+
 def _coordinates(points, dtype, lo: int, hi: int, where: str):
     """Points as rows of an (n, d) array or as d coordinate arrays (lo <= d <= hi), through the package's
     converter (real numbers only): the axes' addresses, the stride, n, the precision (float32 points:
@@ -157,8 +166,8 @@ class Noise:
         gradient = flag(gradient, "gradient", where="udm1.Noise.noise")
         ptrs, stride, n, real_type, keep = _coordinates(points, dtype, 1, 4, "udm1.Noise.noise")
         d = len(ptrs)
-        values = np.empty(n, dtype=real_type)  # written whole by the call, or refused before any write
-        grads = np.empty((n, d), dtype=real_type) if gradient else None
+        values = _output(n, real_type)  # written whole by the call, or refused before any write
+        grads = _output((n, d), real_type) if gradient else None
         arg = (ctypes.c_void_p * d)(*ptrs)
         fn = lib.udm1_noise_eval_f32 if real_type == np.float32 else lib.udm1_noise_eval
         check(fn(self._handle, d, arg, stride, n, values.ctypes.data, grads.ctypes.data if gradient else None))
@@ -182,7 +191,7 @@ class Noise:
         lib.udm1_cellular_params_init(ctypes.byref(p))
         p.output, p.metric = CELL_OUTPUTS[output], CELL_METRICS[metric]
         p.jitter, p.exponent = _real(jitter, "jitter", where), _real(exponent, "exponent", where)
-        out = np.empty(n, dtype=real_type)  # written whole by the call, or refused before any write
+        out = _output(n, real_type)  # written whole by the call, or refused before any write
         arg = (ctypes.c_void_p * len(ptrs))(*ptrs)
         fn = lib.udm1_cellular_eval_f32 if real_type == np.float32 else lib.udm1_cellular_eval
         check(fn(self._handle, ctypes.byref(p), len(ptrs), arg, stride, n, out.ctypes.data))
