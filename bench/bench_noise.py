@@ -62,12 +62,14 @@ CLOCK = time.perf_counter  # --clock cpu: time.process_time (the process's proce
 
 
 def best_interleaved(fs, reps):
-    """Best time of each function over reps rounds, the functions alternating within a round."""
-    for f in fs:
-        f()
+    """Best time of each function over reps rounds, the functions alternating within a round; each timed
+    call right after an untimed call of the same function, so that none pays for the one before it (on an
+    Intel Xeon an AVX-512 kernel timed right after FastNoise Lite's scalar loop took 1.4x its time: the
+    core's power state for wide vectors)."""
     best = [float("inf")] * len(fs)
     for _ in range(reps):
         for k, f in enumerate(fs):
+            f()
             t0 = CLOCK()
             f()
             best[k] = min(best[k], CLOCK() - t0)
