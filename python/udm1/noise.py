@@ -14,6 +14,7 @@ import ctypes
 import numpy as np
 
 from . import _native
+from ._aligned import aligned_empty
 from ._convert import choice, flag, real, real_array, text, u32, u64
 from ._native import lib
 from .errors import check
@@ -62,15 +63,6 @@ def _precision(dtype, where: str):
     if dt is None or dt.name not in _PRECISIONS:
         raise ValueError(f"{where}: dtype {dtype!r} is not float32 or float64")
     return _PRECISIONS[dt.name]
-
-
-def _output(shape, real_type) -> np.ndarray:
-    """An uninitialized array of the results whose data starts on a 64-byte boundary, so that the kernels'
-    512-bit stores do not straddle cache lines (numpy's own arrays start on 16 bytes)."""
-    size = int(np.prod(shape)) * np.dtype(real_type).itemsize
-    raw = np.empty(size + 64, dtype=np.uint8)
-    start = -raw.ctypes.data % 64
-    return raw[start:start + size].view(real_type).reshape(shape)
 
 
 def _coordinates(points, dtype, lo: int, hi: int, where: str):
@@ -166,8 +158,8 @@ class Noise:
         gradient = flag(gradient, "gradient", where="udm1.Noise.noise")
         ptrs, stride, n, real_type, keep = _coordinates(points, dtype, 1, 4, "udm1.Noise.noise")
         d = len(ptrs)
-        values = _output(n, real_type)  # written whole by the call, or refused before any write
-        grads = _output((n, d), real_type) if gradient else None
+        values = aligned_empty(n, real_type)  # written whole by the call, or refused before any write
+        grads = aligned_empty((n, d), real_type) if gradient else None
         arg = (ctypes.c_void_p * d)(*ptrs)
         fn = lib.udm1_noise_eval_f32 if real_type == np.float32 else lib.udm1_noise_eval
         check(fn(self._handle, d, arg, stride, n, values.ctypes.data, grads.ctypes.data if gradient else None))
@@ -191,7 +183,7 @@ class Noise:
         lib.udm1_cellular_params_init(ctypes.byref(p))
         p.output, p.metric = CELL_OUTPUTS[output], CELL_METRICS[metric]
         p.jitter, p.exponent = _real(jitter, "jitter", where), _real(exponent, "exponent", where)
-        out = _output(n, real_type)  # written whole by the call, or refused before any write
+        out = aligned_empty(n, real_type)  # written whole by the call, or refused before any write
         arg = (ctypes.c_void_p * len(ptrs))(*ptrs)
         fn = lib.udm1_cellular_eval_f32 if real_type == np.float32 else lib.udm1_cellular_eval
         check(fn(self._handle, ctypes.byref(p), len(ptrs), arg, stride, n, out.ctypes.data))

@@ -11,6 +11,7 @@ def test_points_match_samples_all_dtypes():
     for dt in (np.float64, np.float32, np.uint64):
         pts = s.points(300, first=2**40, stream=12, dtype=dt)
         assert pts.dtype == dt and pts.shape == (300, 22)
+        assert pts.ctypes.data % 64 == 0 and pts.flags.c_contiguous and pts.flags.writeable  # (512-bit stores)
         for n in (0, 1, 150, 299):
             for j in (0, 7, 21):
                 assert pts[n, j] == s.sample(2**40 + n, j, stream=12, dtype=dt)
