@@ -11,10 +11,20 @@ def test_points_match_samples_all_dtypes():
     for dt in (np.float64, np.float32, np.uint64):
         pts = s.points(300, first=2**40, stream=12, dtype=dt)
         assert pts.dtype == dt and pts.shape == (300, 22)
-        assert pts.ctypes.data % 64 == 0 and pts.flags.c_contiguous and pts.flags.writeable  # (512-bit stores)
         for n in (0, 1, 150, 299):
             for j in (0, 7, 21):
                 assert pts[n, j] == s.sample(2**40 + n, j, stream=12, dtype=dt)
+
+
+def test_points_start_on_64_byte_boundaries():
+    # the library's 512-bit stores do not straddle cache lines; numpy's own arrays start on 16 bytes, so
+    # that 80 arrays of different sizes all start on 64 bytes is no accident
+    s = udm1.Sequence("wr", 3, seed=1)
+    for n in range(1, 41):
+        for dt in (np.float64, np.float32):
+            pts = s.points(n, dtype=dt)
+            assert pts.ctypes.data % 64 == 0 and pts.flags.c_contiguous and pts.flags.writeable
+            assert np.array_equal(pts, s.points(n, dtype=dt, out=np.empty((n, 3), dtype=dt)))
 
 
 def test_dims_subrange_and_out():
