@@ -14,7 +14,6 @@ import ctypes
 import numpy as np
 
 from . import _native
-from ._aligned import aligned_empty
 from ._convert import choice, flag, real, real_array, text, u32, u64
 from ._native import lib
 from .errors import check
@@ -158,8 +157,8 @@ class Noise:
         gradient = flag(gradient, "gradient", where="udm1.Noise.noise")
         ptrs, stride, n, real_type, keep = _coordinates(points, dtype, 1, 4, "udm1.Noise.noise")
         d = len(ptrs)
-        values = aligned_empty(n, real_type)  # written whole by the call, or refused before any write
-        grads = aligned_empty((n, d), real_type) if gradient else None
+        values = np.empty(n, dtype=real_type)  # written whole by the call, or refused before any write
+        grads = np.empty((n, d), dtype=real_type) if gradient else None
         arg = (ctypes.c_void_p * d)(*ptrs)
         fn = lib.udm1_noise_eval_f32 if real_type == np.float32 else lib.udm1_noise_eval
         check(fn(self._handle, d, arg, stride, n, values.ctypes.data, grads.ctypes.data if gradient else None))
@@ -183,7 +182,7 @@ class Noise:
         lib.udm1_cellular_params_init(ctypes.byref(p))
         p.output, p.metric = CELL_OUTPUTS[output], CELL_METRICS[metric]
         p.jitter, p.exponent = _real(jitter, "jitter", where), _real(exponent, "exponent", where)
-        out = aligned_empty(n, real_type)  # written whole by the call, or refused before any write
+        out = np.empty(n, dtype=real_type)  # written whole by the call, or refused before any write
         arg = (ctypes.c_void_p * len(ptrs))(*ptrs)
         fn = lib.udm1_cellular_eval_f32 if real_type == np.float32 else lib.udm1_cellular_eval
         check(fn(self._handle, ctypes.byref(p), len(ptrs), arg, stride, n, out.ctypes.data))

@@ -9,7 +9,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import _native
-from ._aligned import aligned_empty
 from ._convert import U128, index_array, integer, real, text, u32, u64
 from ._native import lib
 from .errors import check
@@ -243,7 +242,7 @@ class Sequence:
             st = fill(self.handle, stream, first, n, d0, nd, None, nd)
             if st not in (0, 1):
                 check(st)
-            out = aligned_empty((n, nd), dt)  # written whole by the fill below, or refused before any write
+            out = np.empty((n, nd), dtype=dt)  # written whole by the fill below, or refused before any write
         elif (not isinstance(out, np.ndarray) or out.dtype != dt or out.shape != (n, nd) or not out.flags.c_contiguous
               or not out.flags.writeable):
             raise ValueError(f"udm1.Sequence.points: out must be a C-contiguous, writeable {dt} array of shape "

@@ -16,17 +16,6 @@ def test_points_match_samples_all_dtypes():
                 assert pts[n, j] == s.sample(2**40 + n, j, stream=12, dtype=dt)
 
 
-def test_points_start_on_64_byte_boundaries():
-    # the library's 512-bit stores do not straddle cache lines; numpy's own arrays start on 16 bytes, so
-    # that 80 arrays of different sizes all start on 64 bytes is no accident
-    s = udm1.Sequence("wr", 3, seed=1)
-    for n in range(1, 41):
-        for dt in (np.float64, np.float32):
-            pts = s.points(n, dtype=dt)
-            assert pts.ctypes.data % 64 == 0 and pts.flags.c_contiguous and pts.flags.writeable
-            assert np.array_equal(pts, s.points(n, dtype=dt, out=np.empty((n, 3), dtype=dt)))
-
-
 def test_dims_subrange_and_out():
     s = udm1.Sequence("wr", 10, seed=1)
     whole = s.points(64)
