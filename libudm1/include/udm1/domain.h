@@ -234,15 +234,9 @@ UDM1_DRAW_ void udm1_domain_values_(const udm1_stream *st, uint64_t key, uint64_
 #if defined(UDM1_AVX2_)
         __m256i O = _mm256_add_epi64(words ? _mm256_loadu_si256((const __m256i *)words) : udm1_mix64x4_(key, st->dim_key + dim),
                                      _mm256_loadu_si256((const __m256i *)(st->base + dim)));
-        /* the index scramble's final bit reversal in the register that multiplies (byte shuffles, or GFNI's
-         * bit matrix where enabled): the same value, without a trip through a general register */
-        __m128i x = _mm_cvtsi32_si128((int)hashed);
-#if defined(__GFNI__)
-        x = _mm_shuffle_epi8(_mm_gf2p8affine_epi64_epi8(x, _mm_set1_epi64x(0x8040201008040201ll), 0),
-                             _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12));
-#else
-        x = udm1_reverse32x4_(x);
-#endif
+        /* the index scramble's final bit reversal in the register that multiplies: the same value, without a
+         * trip through a general register */
+        __m128i x = udm1_reverse32x4_(_mm_cvtsi32_si128((int)hashed));
         __m256i N = _mm256_broadcastq_epi64(x);
         __m256i H = _mm256_loadu_si256((const __m256i *)(st->a_hi + dim));
         __m256i L = _mm256_loadu_si256((const __m256i *)(st->a_lo + dim));

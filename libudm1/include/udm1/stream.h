@@ -290,6 +290,36 @@ UDM1_DRAW_ void udm1_weyl_run32(const uint64_t *a_hi, const uint64_t *a_lo, cons
 UDM1_DRAW_ float udm1_raw_to_f32(uint64_t u) { return (float)(int32_t)(u >> 40) * (1.0f / 16777216.0f); }
 UDM1_DRAW_ double udm1_raw_to_f64(uint64_t u) { return (double)(int64_t)(u >> 11) * (1.0 / 9007199254740992.0); }
 
+/* The bits of each 32-bit lane of x reversed, in the vector register: GFNI's bit matrix (where the
+ * compiler targets GFNI) or two byte shuffles of a nibble table (SSSE3; MSVC: AVX), then the bytes swapped
+ * by a shuffle; with SSE2 alone, shifts and masks. */
+#if defined(UDM1_X86_) && (defined(__SSSE3__) || defined(__AVX__))
+#define UDM1_REVERSE_SHUFFLE_ 1
+UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
+{
+    const __m128i bswap = _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12);
+#if defined(__GFNI__)
+    return _mm_shuffle_epi8(_mm_gf2p8affine_epi64_epi8(x, _mm_set1_epi64x(0x8040201008040201ll), 0), bswap);
+#else
+    const __m128i m4 = _mm_set1_epi8(0x0F), nib = _mm_setr_epi8(0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15);
+    x = _mm_shuffle_epi8(x, bswap);
+    return _mm_or_si128(_mm_slli_epi16(_mm_shuffle_epi8(nib, _mm_and_si128(x, m4)), 4),
+                        _mm_shuffle_epi8(nib, _mm_and_si128(_mm_srli_epi16(x, 4), m4)));
+#endif
+}
+#elif defined(UDM1_X86_)
+UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
+{
+    /* halves exchanged, then bytes, nibbles, pairs and bits (16-bit shifts: the masks keep each in its byte) */
+    const __m128i m4 = _mm_set1_epi8(0x0F), m2 = _mm_set1_epi8(0x33), m1 = _mm_set1_epi8(0x55);
+    x = _mm_or_si128(_mm_slli_epi32(x, 16), _mm_srli_epi32(x, 16));
+    x = _mm_or_si128(_mm_slli_epi16(x, 8), _mm_srli_epi16(x, 8));
+    x = _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 4), m4), _mm_slli_epi16(_mm_and_si128(x, m4), 4));
+    x = _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 2), m2), _mm_slli_epi16(_mm_and_si128(x, m2), 2));
+    return _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 1), m1), _mm_slli_epi16(_mm_and_si128(x, m1), 1));
+}
+#endif
+
 /* The bits of x in reverse order; a hash of 32 bits in which each output bit depends only on the input
  * bits at or below it, each step a bijection modulo 2^k for every k (Burley 2020, with Vegdahl's
  * constants): applied to bit-reversed digits it is a nested uniform (Owen) scramble. */
@@ -297,17 +327,8 @@ UDM1_DRAW_ uint32_t udm1_reverse32(uint32_t x)
 {
 #if defined(__clang__)
     return __builtin_bitreverse32(x);
-#elif defined(__GNUC__) && defined(UDM1_X86_) && defined(__GFNI__)
-    /* each byte's bits reversed by GFNI's bit matrix, then the bytes swapped (4 instructions for 16) */
-    __m128i v = _mm_gf2p8affine_epi64_epi8(_mm_cvtsi32_si128((int)x), _mm_set1_epi64x(0x8040201008040201ll), 0);
-    return __builtin_bswap32((uint32_t)_mm_cvtsi128_si32(v));
-#elif defined(__GNUC__) && defined(UDM1_X86_) && defined(__SSSE3__)
-    /* each byte's nibbles reversed by a 16-entry byte shuffle and exchanged, then the bytes swapped */
-    const __m128i m4 = _mm_set1_epi8(0x0F), nib = _mm_setr_epi8(0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15);
-    __m128i v = _mm_cvtsi32_si128((int)x);
-    v = _mm_or_si128(_mm_slli_epi16(_mm_shuffle_epi8(nib, _mm_and_si128(v, m4)), 4),
-                     _mm_shuffle_epi8(nib, _mm_and_si128(_mm_srli_epi16(v, 4), m4)));
-    return __builtin_bswap32((uint32_t)_mm_cvtsi128_si32(v));
+#elif defined(UDM1_REVERSE_SHUFFLE_) /* (3 or 4 vector instructions for 16) */
+    return (uint32_t)_mm_cvtsi128_si32(udm1_reverse32x4_(_mm_cvtsi32_si128((int)x)));
 #else
 #if defined(__GNUC__)
     x = __builtin_bswap32(x);
@@ -397,60 +418,51 @@ UDM1_DRAW_ void udm1_store_f32_(__m128 f, uint32_t n, float *out)
     _mm_storeu_ps(f4, f);
     for (uint32_t j = 0; j < n; ++j) out[j] = f4[j];
 }
+
+/* The low (high 0) or high (high 1) 32-bit halves of words[0..3] in one register. Where the compiler
+ * targets AVX2 a child's words are hashed four at once and stored so: two wide loads take them; else they
+ * are stored one by one, and a wide load would wait for the stores: read one by one. */
+UDM1_DRAW_ __m128i udm1_word_halves_(const uint64_t *words, int high)
+{
+#if defined(UDM1_AVX2_)
+    __m128 w0 = _mm_castsi128_ps(_mm_loadu_si128((const __m128i *)words));
+    __m128 w1 = _mm_castsi128_ps(_mm_loadu_si128((const __m128i *)(words + 2)));
+    return _mm_castps_si128(high ? _mm_shuffle_ps(w0, w1, 0xDD) : _mm_shuffle_ps(w0, w1, 0x88));
+#else
+    int sh = high ? 32 : 0;
+    return _mm_setr_epi32((int)(words[0] >> sh), (int)(words[1] >> sh), (int)(words[2] >> sh), (int)(words[3] >> sh));
+#endif
+}
 #endif
 
 /* Floats of n (1..4) Owen-scrambled Sobol dimensions first + dim .. at Gray code g, the scrambles keyed by
  * the low halves of words[0 .. n - 1] (four readable). On x86-64 and with NEON the four lanes are
- * scrambled, reversed and converted in one register: with SSE4.1 and SSSE3 (MSVC: AVX) by 32-bit vector
- * products and byte shuffles, with SSE2 alone (x86-64's baseline) by products of lanes 0, 2 and 1, 3
- * (`pmuludq`) and the reversal's shifts and masks; the same values as the scalar code. */
-#if defined(UDM1_X86_) && ((defined(__SSE4_1__) && defined(__SSSE3__)) || defined(__AVX__))
-#define UDM1_SOBOL_OWEN_SSE_ 1
+ * scrambled, reversed (udm1_reverse32x4_) and converted in one register, the 32-bit products by SSE4.1's
+ * (MSVC: AVX) or, with SSE2 alone (x86-64's baseline), by products of lanes 0, 2 and 1, 3 (`pmuludq`); the
+ * same values as the scalar code. */
+#if defined(UDM1_X86_)
+#if defined(__SSE4_1__) || defined(__AVX__)
 #define udm1_mullo32x4_(a, b) _mm_mullo_epi32(a, b)
-UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
-{
-    /* bytes swapped, then each byte's nibbles reversed (a 16-entry table) and exchanged */
-    const __m128i m4 = _mm_set1_epi8(0x0F), nib = _mm_setr_epi8(0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15);
-    x = _mm_shuffle_epi8(x, _mm_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12));
-    return _mm_or_si128(_mm_slli_epi16(_mm_shuffle_epi8(nib, _mm_and_si128(x, m4)), 4),
-                        _mm_shuffle_epi8(nib, _mm_and_si128(_mm_srli_epi16(x, 4), m4)));
-}
-#elif defined(UDM1_X86_)
-#define UDM1_SOBOL_OWEN_SSE_ 1
+#else
 /* the low 32 bits of a * b in each lane: lanes 0 and 2, then 1 and 3, by 32 x 32 -> 64-bit products */
 UDM1_DRAW_ __m128i udm1_mullo32x4_(__m128i a, __m128i b)
 {
     __m128i even = _mm_mul_epu32(a, b), odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
     return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, 0x08), _mm_shuffle_epi32(odd, 0x08));
 }
-
-UDM1_DRAW_ __m128i udm1_reverse32x4_(__m128i x)
-{
-    /* halves exchanged, then bytes, nibbles, pairs and bits (16-bit shifts: the masks keep each in its byte) */
-    const __m128i m4 = _mm_set1_epi8(0x0F), m2 = _mm_set1_epi8(0x33), m1 = _mm_set1_epi8(0x55);
-    x = _mm_or_si128(_mm_slli_epi32(x, 16), _mm_srli_epi32(x, 16));
-    x = _mm_or_si128(_mm_slli_epi16(x, 8), _mm_srli_epi16(x, 8));
-    x = _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 4), m4), _mm_slli_epi16(_mm_and_si128(x, m4), 4));
-    x = _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 2), m2), _mm_slli_epi16(_mm_and_si128(x, m2), 2));
-    return _mm_or_si128(_mm_and_si128(_mm_srli_epi16(x, 1), m1), _mm_slli_epi16(_mm_and_si128(x, m1), 1));
-}
+#endif
 #endif
 
 UDM1_DRAW_ void udm1_sobol_owen_f32_(const udm1_stream *st, uint32_t g, uint32_t dim, uint32_t n,
                                         const uint64_t *words, float *out)
 {
     uint32_t d = st->first + dim;
-#if defined(UDM1_SOBOL_OWEN_SSE_)
+#if defined(UDM1_X86_)
     uint32_t r[4] = {0, 0, 0, 0};
     udm1_sobol_rev4_(st, d, g, n, r);
     __m128i x = _mm_setr_epi32((int)r[0], (int)r[1], (int)r[2], (int)r[3]); /* (in registers: a wide load of
                                                                               values just stored waits for them) */
-#if defined(UDM1_AVX2_) /* (a child's words are stored four at once: a wide load takes them) */
-    __m128i w0 = _mm_loadu_si128((const __m128i *)words), w1 = _mm_loadu_si128((const __m128i *)(words + 2));
-    __m128i seed = _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(w0), _mm_castsi128_ps(w1), 0x88)); /* low halves */
-#else /* (stored one by one: a wide load would wait for the stores, read them one by one) */
-    __m128i seed = _mm_setr_epi32((int)words[0], (int)words[1], (int)words[2], (int)words[3]);
-#endif
+    __m128i seed = udm1_word_halves_(words, 0);
     x = _mm_xor_si128(x, udm1_mullo32x4_(x, _mm_set1_epi32(0x3d20adea)));
     x = _mm_add_epi32(x, seed);
     x = udm1_mullo32x4_(x, _mm_or_si128(_mm_srli_epi32(seed, 16), _mm_set1_epi32(1)));
@@ -495,15 +507,7 @@ UDM1_DRAW_ void udm1_pmj02_values_(const udm1_stream *st, uint64_t index, uint32
     if (out_kind == 1 && n <= 4 && d % 4 == 0 && dim <= UDM1_STREAM_DIMS - 4) {
         /* floats of a point's block of four coordinates: one load, the words' high halves, one convert */
         __m128i x = _mm_loadu_si128((const __m128i *)((const uint32_t *)st->table + ((d / 4) * st->point_count + index) * 4));
-        if (xor_words) { /* the words' high halves (as udm1_sobol_owen_f32_ reads the low ones) */
-#if defined(UDM1_AVX2_)
-            __m128i w0 = _mm_loadu_si128((const __m128i *)words), w1 = _mm_loadu_si128((const __m128i *)(words + 2));
-            x = _mm_xor_si128(x, _mm_castps_si128(_mm_shuffle_ps(_mm_castsi128_ps(w0), _mm_castsi128_ps(w1), 0xDD)));
-#else
-            x = _mm_xor_si128(x, _mm_setr_epi32((int)(words[0] >> 32), (int)(words[1] >> 32), (int)(words[2] >> 32),
-                                                (int)(words[3] >> 32)));
-#endif
-        }
+        if (xor_words) x = _mm_xor_si128(x, udm1_word_halves_(words, 1)); /* the words' high halves */
         udm1_store_f32_(_mm_mul_ps(_mm_cvtepi32_ps(_mm_srli_epi32(x, 8)), _mm_set1_ps(1.0f / 16777216.0f)), n, (float *)out);
         return;
     }
